@@ -1,0 +1,149 @@
+//! Errors returned for invalid user input. The engine never panics on what a user gives it.
+
+use std::fmt;
+
+/// What is wrong with a value.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ErrorKind {
+    /// The value is NaN or infinite.
+    NotFinite,
+    /// The value must be strictly positive (a size, a mass, a time step).
+    NotPositive(f32),
+    /// The value must not be negative (friction, damping).
+    Negative(f32),
+    /// The value lies outside `[min, max]`.
+    OutOfRange { value: f32, min: f32, max: f32 },
+    /// A rotation quaternion with zero length.
+    ZeroQuaternion,
+    /// A vector that must have a length (a plane normal) is zero.
+    ZeroVector,
+    /// A convex hull could not be built: too few points, or all on one plane or line.
+    DegenerateHull(&'static str),
+    /// A compound shape with no children, or with a child that is itself a compound or a halfspace.
+    InvalidCompound(&'static str),
+    /// A halfspace on a dynamic body: it has no finite mass.
+    HalfspaceOnDynamicBody,
+    /// The body's mass would not be positive and finite.
+    InvalidMass,
+    /// A handle to a body that was removed, or that never belonged to this world.
+    StaleHandle,
+}
+
+/// An invalid input, with the place it was found.
+///
+/// `field` is a path relative to the call that failed, such as `radius` or
+/// `shape.children[1].shape.half_extents`; callers prefix their own context with [`Error::within`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Error {
+    /// Where the bad value is, as a dotted path; empty when the error concerns the whole call.
+    pub field: String,
+    /// What is wrong with it.
+    pub kind: ErrorKind,
+}
+
+/// Result type of the engine's fallible calls.
+pub type Result<T> = std::result::Result<T, Error>;
+
+impl Error {
+    /// An error about the value at `field`.
+    pub fn new(field: impl Into<String>, kind: ErrorKind) -> Self {
+        Self {
+            field: field.into(),
+            kind,
+        }
+    }
+
+    /// The same error, seen from one level up: `radius` within `shape` becomes `shape.radius`.
+    #[must_use]
+    pub fn within(mut self, prefix: &str) -> Self {
+        self.field = match (prefix.is_empty(), self.field.is_empty()) {
+            (true, _) => self.field,
+            (false, true) => prefix.to_owned(),
+            (false, false) if self.field.starts_with('[') => format!("{prefix}{}", self.field),
+            (false, false) => format!("{prefix}.{}", self.field),
+        };
+        self
+    }
+}
+
+impl fmt::Display for ErrorKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NotFinite => write!(f, "must be finite"),
+            Self::NotPositive(value) => write!(f, "must be positive, got {value}"),
+            Self::Negative(value) => write!(f, "must not be negative, got {value}"),
+            Self::OutOfRange { value, min, max } => {
+                write!(f, "must lie between {min} and {max}, got {value}")
+            }
+            Self::ZeroQuaternion => write!(f, "quaternion has zero length"),
+            Self::ZeroVector => write!(f, "vector has zero length"),
+            Self::DegenerateHull(reason) => write!(f, "degenerate convex hull: {reason}"),
+            Self::InvalidCompound(reason) => write!(f, "invalid compound: {reason}"),
+            Self::HalfspaceOnDynamicBody => {
+                write!(f, "a halfspace is only allowed on static or kinematic bodies")
+            }
+            Self::InvalidMass => write!(f, "mass of a dynamic body must be positive and finite"),
+            Self::StaleHandle => write!(f, "body handle is stale or unknown"),
+        }
+    }
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.field.is_empty() {
+            write!(f, "{}", self.kind)
+        } else {
+            write!(f, "{}: {}", self.field, self.kind)
+        }
+    }
+}
+
+impl std::error::Error for Error {}
+
+/// Checks that `value` is finite.
+pub(crate) fn check_finite(field: &str, value: f32) -> Result<f32> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::new(field, ErrorKind::NotFinite))
+    }
+}
+
+/// Checks that `value` is finite and strictly positive.
+pub(crate) fn check_positive(field: &str, value: f32) -> Result<f32> {
+    check_finite(field, value)?;
+    if value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::new(field, ErrorKind::NotPositive(value)))
+    }
+}
+
+/// Checks that `value` is finite and not negative.
+pub(crate) fn check_non_negative(field: &str, value: f32) -> Result<f32> {
+    check_finite(field, value)?;
+    if value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::new(field, ErrorKind::Negative(value)))
+    }
+}
+
+/// Checks that `value` is finite and lies in `[min, max]`.
+pub(crate) fn check_range(field: &str, value: f32, min: f32, max: f32) -> Result<f32> {
+    check_finite(field, value)?;
+    if (min..=max).contains(&value) {
+        Ok(value)
+    } else {
+        Err(Error::new(field, ErrorKind::OutOfRange { value, min, max }))
+    }
+}
+
+/// Checks that every component of `vector` is finite.
+pub(crate) fn check_finite_vector(field: &str, vector: glam::Vec3) -> Result<glam::Vec3> {
+    if vector.is_finite() {
+        Ok(vector)
+    } else {
+        Err(Error::new(field, ErrorKind::NotFinite))
+    }
+}

@@ -1,0 +1,65 @@
+//! Mass properties: mass, centre of mass and inertia tensor of a shape or body.
+
+use crate::math::{parallel_axis_shift, rotate_tensor, Mat3, Pose, Vec3};
+
+/// Mass, centre of mass and inertia of a solid, in its own (local) frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassProperties {
+    /// Mass, kg.
+    pub mass: f32,
+    /// Centre of mass in the local frame, metres.
+    pub center_of_mass: Vec3,
+    /// Inertia tensor about the centre of mass, in local axes, kg·m².
+    pub inertia: Mat3,
+}
+
+impl MassProperties {
+    /// No mass at all: the neutral element of [`MassProperties::combine`].
+    pub const ZERO: Self = Self {
+        mass: 0.0,
+        center_of_mass: Vec3::ZERO,
+        inertia: Mat3::ZERO,
+    };
+
+    /// The same solid with its density changed so that its mass is `mass`: inertia scales by
+    /// `mass / self.mass`, the centre of mass stays.
+    pub fn scaled_to_mass(&self, mass: f32) -> Self {
+        let scale = mass / self.mass;
+        Self {
+            mass,
+            center_of_mass: self.center_of_mass,
+            inertia: self.inertia * scale,
+        }
+    }
+
+    /// The same solid seen from a frame in which it sits at `position` rotated by `rotation`:
+    /// `c' = p + R c`, `I' = R I Rᵀ` (still about its own centre of mass).
+    pub fn transformed(&self, pose: &Pose) -> Self {
+        Self {
+            mass: self.mass,
+            center_of_mass: pose.transform_point(self.center_of_mass),
+            inertia: rotate_tensor(pose.rotation, self.inertia),
+        }
+    }
+
+    /// Inertia tensor about `point` instead of the centre of mass (parallel-axis theorem).
+    pub fn inertia_about(&self, point: Vec3) -> Mat3 {
+        self.inertia + parallel_axis_shift(self.mass, self.center_of_mass - point)
+    }
+
+    /// Two solids taken as one: masses add, the centre of mass is the mass-weighted mean, and each
+    /// inertia moves to the common centre by the parallel-axis theorem.
+    pub fn combine(&self, other: &MassProperties) -> Self {
+        let mass = self.mass + other.mass;
+        if mass <= 0.0 {
+            return Self::ZERO;
+        }
+        let center_of_mass =
+            (self.center_of_mass * self.mass + other.center_of_mass * other.mass) / mass;
+        Self {
+            mass,
+            center_of_mass,
+            inertia: self.inertia_about(center_of_mass) + other.inertia_about(center_of_mass),
+        }
+    }
+}

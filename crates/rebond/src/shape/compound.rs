@@ -1,0 +1,105 @@
+//! Compound: several convex shapes rigidly attached to one body.
+
+use crate::error::{Error, ErrorKind, Result};
+use crate::mass::MassProperties;
+use crate::math::{normalize_rotation, Aabb, Pose, Vec3};
+
+use super::Shape;
+
+/// One child of a compound: a convex shape and its pose in the body frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CompoundChild {
+    /// Where the child sits in the body frame.
+    pub pose: Pose,
+    /// The child's shape; never a compound or a halfspace.
+    pub shape: Shape,
+}
+
+/// A rigid union of convex children.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Compound {
+    children: Vec<CompoundChild>,
+}
+
+impl Compound {
+    /// A compound of at least one child. Child poses must be finite (their rotations are
+    /// normalised here); a child may not be a compound or a halfspace. Errors name the field as
+    /// `children[i].position`, `children[i].rotation` or `children[i].shape`.
+    pub fn new(mut children: Vec<CompoundChild>) -> Result<Self> {
+        if children.is_empty() {
+            return Err(Error::new(
+                "children",
+                ErrorKind::InvalidCompound("a compound needs at least one child"),
+            ));
+        }
+        for (index, child) in children.iter_mut().enumerate() {
+            let place = format!("children[{index}]");
+            if !child.pose.position.is_finite() {
+                return Err(Error::new(format!("{place}.position"), ErrorKind::NotFinite));
+            }
+            child.pose.rotation = normalize_rotation("rotation", child.pose.rotation)
+                .map_err(|error| error.within(&place))?;
+            let reason = match child.shape {
+                Shape::Compound(_) => Some("a child may not be a compound"),
+                Shape::Halfspace(_) => Some("a child may not be a halfspace"),
+                _ => None,
+            };
+            if let Some(reason) = reason {
+                return Err(Error::new(
+                    format!("{place}.shape"),
+                    ErrorKind::InvalidCompound(reason),
+                ));
+            }
+        }
+        Ok(Self { children })
+    }
+
+    /// The children, in the order given.
+    pub fn children(&self) -> &[CompoundChild] {
+        &self.children
+    }
+
+    /// The children's mass properties moved into the body frame and combined by the
+    /// parallel-axis theorem.
+    pub fn mass_properties(&self, density: f32) -> MassProperties {
+        self.children
+            .iter()
+            .filter_map(|child| {
+                child
+                    .shape
+                    .mass_properties(density)
+                    .map(|properties| properties.transformed(&child.pose))
+            })
+            .fold(MassProperties::ZERO, |total, part| total.combine(&part))
+    }
+
+    /// Union of the children's bounding boxes.
+    pub fn aabb(&self, pose: &Pose) -> Aabb {
+        let mut children = self.children.iter();
+        let first = children
+            .next()
+            .map(|child| child.shape.aabb(&pose.mul_pose(&child.pose)));
+        children.fold(
+            first.unwrap_or(Aabb::new(pose.position, pose.position)),
+            |bounds, child| bounds.union(&child.shape.aabb(&pose.mul_pose(&child.pose))),
+        )
+    }
+
+    /// The farthest of the children's support points along `d`.
+    pub fn support(&self, direction: Vec3) -> Vec3 {
+        let mut best = Vec3::ZERO;
+        let mut best_distance = f32::NEG_INFINITY;
+        for child in &self.children {
+            let local_direction = child.pose.inverse_transform_vector(direction);
+            if let Some(point) = child.shape.support(local_direction) {
+                let point = child.pose.transform_point(point);
+                let distance = point.dot(direction);
+                if distance > best_distance {
+                    best_distance = distance;
+                    best = point;
+                }
+            }
+        }
+        best
+    }
+}

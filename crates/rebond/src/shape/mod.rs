@@ -1,0 +1,132 @@
+//! Collision shapes in their local frame: size, mass properties, bounding box and support function.
+//!
+//! Every convex shape has a support function `support(d)`: the point of the shape farthest along
+//! `d`, which the narrow phase's GJK and EPA are built on.
+
+mod capsule;
+mod compound;
+mod convex_hull;
+mod cuboid;
+mod cylinder;
+mod halfspace;
+mod sphere;
+
+pub use capsule::Capsule;
+pub use compound::{Compound, CompoundChild};
+pub use convex_hull::{ConvexHull, HullEdge, HullFace};
+pub use cuboid::Cuboid;
+pub use cylinder::Cylinder;
+pub use halfspace::{Halfspace, HALFSPACE_EXTENT};
+pub use sphere::Sphere;
+
+use crate::error::Result;
+use crate::mass::MassProperties;
+use crate::math::{Aabb, Pose, Vec3};
+
+/// A collision shape. Built only through validated constructors, so every size is finite and
+/// positive.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shape {
+    /// A ball around the origin.
+    Sphere(Sphere),
+    /// A box centred on the origin.
+    Cuboid(Cuboid),
+    /// A segment along local Y swept by a sphere.
+    Capsule(Capsule),
+    /// A circular cylinder along local Y.
+    Cylinder(Cylinder),
+    /// The convex hull of a point cloud.
+    ConvexHull(ConvexHull),
+    /// Several convex shapes with poses in the body frame.
+    Compound(Compound),
+    /// Everything below a plane through the origin (static and kinematic bodies only).
+    Halfspace(Halfspace),
+}
+
+impl Shape {
+    /// A sphere of `radius` metres.
+    pub fn sphere(radius: f32) -> Result<Shape> {
+        Sphere::new(radius).map(Shape::Sphere)
+    }
+
+    /// A box of the given half extents, metres.
+    pub fn cuboid(half_extents: Vec3) -> Result<Shape> {
+        Cuboid::new(half_extents).map(Shape::Cuboid)
+    }
+
+    /// A capsule along local Y: `half_height` is half the distance between its sphere centres.
+    pub fn capsule(radius: f32, half_height: f32) -> Result<Shape> {
+        Capsule::new(radius, half_height).map(Shape::Capsule)
+    }
+
+    /// A cylinder along local Y of total height `2 · half_height`.
+    pub fn cylinder(radius: f32, half_height: f32) -> Result<Shape> {
+        Cylinder::new(radius, half_height).map(Shape::Cylinder)
+    }
+
+    /// The convex hull of `points` (body frame).
+    pub fn convex_hull(points: &[Vec3]) -> Result<Shape> {
+        ConvexHull::new(points).map(Shape::ConvexHull)
+    }
+
+    /// A compound of convex children placed in the body frame.
+    pub fn compound(children: Vec<CompoundChild>) -> Result<Shape> {
+        Compound::new(children).map(Shape::Compound)
+    }
+
+    /// The solid below the plane through the origin with outward `normal` (normalised here).
+    pub fn halfspace(normal: Vec3) -> Result<Shape> {
+        Halfspace::new(normal).map(Shape::Halfspace)
+    }
+
+    /// Whether the shape has a finite volume (everything but a halfspace).
+    pub fn is_bounded(&self) -> bool {
+        !matches!(self, Shape::Halfspace(_))
+    }
+
+    /// Mass properties for a uniform `density` (kg/m³), or `None` for a halfspace.
+    pub fn mass_properties(&self, density: f32) -> Option<MassProperties> {
+        match self {
+            Shape::Sphere(sphere) => Some(sphere.mass_properties(density)),
+            Shape::Cuboid(cuboid) => Some(cuboid.mass_properties(density)),
+            Shape::Capsule(capsule) => Some(capsule.mass_properties(density)),
+            Shape::Cylinder(cylinder) => Some(cylinder.mass_properties(density)),
+            Shape::ConvexHull(hull) => Some(hull.mass_properties(density)),
+            Shape::Compound(compound) => Some(compound.mass_properties(density)),
+            Shape::Halfspace(_) => None,
+        }
+    }
+
+    /// Volume in m³; infinite for a halfspace.
+    pub fn volume(&self) -> f32 {
+        self.mass_properties(1.0)
+            .map_or(f32::INFINITY, |properties| properties.mass)
+    }
+
+    /// The world bounding box of the shape placed at `pose`.
+    pub fn aabb(&self, pose: &Pose) -> Aabb {
+        match self {
+            Shape::Sphere(sphere) => sphere.aabb(pose),
+            Shape::Cuboid(cuboid) => cuboid.aabb(pose),
+            Shape::Capsule(capsule) => capsule.aabb(pose),
+            Shape::Cylinder(cylinder) => cylinder.aabb(pose),
+            Shape::ConvexHull(hull) => hull.aabb(pose),
+            Shape::Compound(compound) => compound.aabb(pose),
+            Shape::Halfspace(halfspace) => halfspace.aabb(pose),
+        }
+    }
+
+    /// The local point of the shape farthest along local `direction`; `None` for a halfspace, which
+    /// is unbounded. For a compound this is the support of the hull of its children.
+    pub fn support(&self, direction: Vec3) -> Option<Vec3> {
+        match self {
+            Shape::Sphere(sphere) => Some(sphere.support(direction)),
+            Shape::Cuboid(cuboid) => Some(cuboid.support(direction)),
+            Shape::Capsule(capsule) => Some(capsule.support(direction)),
+            Shape::Cylinder(cylinder) => Some(cylinder.support(direction)),
+            Shape::ConvexHull(hull) => Some(hull.support(direction)),
+            Shape::Compound(compound) => Some(compound.support(direction)),
+            Shape::Halfspace(_) => None,
+        }
+    }
+}
