@@ -1,11 +1,20 @@
 //! rebond: an impulse-based 3D rigid-body physics engine.
+//!
+//! The pipeline, one module a stage: [`shape`] (geometry and mass), [`body`] (rigid bodies),
+//! [`integration`] (semi-implicit Euler), [`world`] (owns everything and steps it).
 
+pub mod arena;
+pub mod body;
 pub mod error;
+mod integration;
 pub mod mass;
 pub mod math;
 pub mod shape;
+pub mod world;
 
+pub use body::{BodyDesc, BodyHandle, BodyType, RigidBody};
 pub use error::{Error, ErrorKind, Result};
 pub use mass::MassProperties;
 pub use math::{Aabb, Mat3, Pose, Quat, Vec3};
-pub use shape::Shape;
+pub use shape::{CompoundChild, Shape};
+pub use world::{World, WorldSettings};

@@ -1,0 +1,584 @@
+//! Rigid bodies: their description, their state, and the user calls that change them.
+//!
+//! A body keeps the pose of its centre of mass, which is what the engine integrates; the pose of
+//! the body origin (what users place and read) is derived from it.
+
+use crate::arena::ArenaIndex;
+use crate::error::{
+    check_finite_vector, check_non_negative, check_positive, check_range, Error, ErrorKind, Result,
+};
+use crate::mass::MassProperties;
+use crate::math::{normalize_rotation, rotate_tensor, Aabb, Mat3, Pose, Quat, Vec3};
+use crate::shape::Shape;
+
+/// How a body moves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum BodyType {
+    /// Moved by gravity, forces and contacts.
+    Dynamic,
+    /// Never moves; infinite mass.
+    Static,
+    /// Moves only by the velocity the user sets; infinite mass, pushes dynamic bodies.
+    Kinematic,
+}
+
+/// Names one body of a [`crate::World`]. A handle to a removed body stays invalid forever, even
+/// after another body takes its slot.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct BodyHandle(pub(crate) ArenaIndex);
+
+impl BodyHandle {
+    /// The storage slot of the body; unique among living bodies.
+    pub fn slot(&self) -> usize {
+        self.0.slot()
+    }
+}
+
+/// Default density, kg/m³ (water).
+pub const DEFAULT_DENSITY: f32 = 1000.0;
+/// Default Coulomb friction coefficient.
+pub const DEFAULT_FRICTION: f32 = 0.5;
+
+/// Everything needed to create a body. Values are checked when the body is added to a world.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyDesc {
+    /// Dynamic, static or kinematic.
+    pub body_type: BodyType,
+    /// The collision shape, in the body frame.
+    pub shape: Shape,
+    /// World position of the body origin, metres.
+    pub position: Vec3,
+    /// World orientation; normalised when added (a zero quaternion is an error).
+    pub rotation: Quat,
+    /// Velocity of the centre of mass, m/s (ignored for static bodies).
+    pub linear_velocity: Vec3,
+    /// Angular velocity, rad/s, world frame (ignored for static bodies).
+    pub angular_velocity: Vec3,
+    /// Density, kg/m³, default 1000; mass and inertia follow from the shape.
+    pub density: f32,
+    /// Mass, kg: overrides `density`, the inertia is scaled to match.
+    pub mass: Option<f32>,
+    /// Coulomb friction coefficient, ≥ 0, default 0.5.
+    pub friction: f32,
+    /// Coefficient of restitution, 0 to 1, default 0.
+    pub restitution: f32,
+    /// World force at the centre of mass applied during every step, newtons.
+    pub constant_force: Vec3,
+    /// World torque applied during every step, N·m.
+    pub constant_torque: Vec3,
+    /// Linear damping, 1/s, ≥ 0: `v ← v / (1 + h·c)` each substep.
+    pub linear_damping: f32,
+    /// Angular damping, 1/s, ≥ 0: `ω ← ω / (1 + h·c)` each substep.
+    pub angular_damping: f32,
+    /// Whether the body may fall asleep, default true.
+    pub can_sleep: bool,
+}
+
+impl BodyDesc {
+    /// A body of the given type and shape at the origin, at rest, with the default material.
+    pub fn new(body_type: BodyType, shape: Shape) -> Self {
+        Self {
+            body_type,
+            shape,
+            position: Vec3::ZERO,
+            rotation: Quat::IDENTITY,
+            linear_velocity: Vec3::ZERO,
+            angular_velocity: Vec3::ZERO,
+            density: DEFAULT_DENSITY,
+            mass: None,
+            friction: DEFAULT_FRICTION,
+            restitution: 0.0,
+            constant_force: Vec3::ZERO,
+            constant_torque: Vec3::ZERO,
+            linear_damping: 0.0,
+            angular_damping: 0.0,
+            can_sleep: true,
+        }
+    }
+
+    /// A dynamic body.
+    pub fn dynamic(shape: Shape) -> Self {
+        Self::new(BodyType::Dynamic, shape)
+    }
+
+    /// A static body.
+    pub fn fixed(shape: Shape) -> Self {
+        Self::new(BodyType::Static, shape)
+    }
+
+    /// A kinematic body.
+    pub fn kinematic(shape: Shape) -> Self {
+        Self::new(BodyType::Kinematic, shape)
+    }
+
+    /// Sets the world position of the body origin.
+    pub fn position(mut self, position: Vec3) -> Self {
+        self.position = position;
+        self
+    }
+
+    /// Sets the world orientation.
+    pub fn rotation(mut self, rotation: Quat) -> Self {
+        self.rotation = rotation;
+        self
+    }
+
+    /// Sets the initial linear velocity.
+    pub fn linear_velocity(mut self, velocity: Vec3) -> Self {
+        self.linear_velocity = velocity;
+        self
+    }
+
+    /// Sets the initial angular velocity (world frame).
+    pub fn angular_velocity(mut self, velocity: Vec3) -> Self {
+        self.angular_velocity = velocity;
+        self
+    }
+
+    /// Sets the density.
+    pub fn density(mut self, density: f32) -> Self {
+        self.density = density;
+        self
+    }
+
+    /// Sets the mass, overriding the density.
+    pub fn mass(mut self, mass: f32) -> Self {
+        self.mass = Some(mass);
+        self
+    }
+
+    /// Sets the friction coefficient.
+    pub fn friction(mut self, friction: f32) -> Self {
+        self.friction = friction;
+        self
+    }
+
+    /// Sets the coefficient of restitution.
+    pub fn restitution(mut self, restitution: f32) -> Self {
+        self.restitution = restitution;
+        self
+    }
+
+    /// Sets the force applied at the centre of mass during every step.
+    pub fn constant_force(mut self, force: Vec3) -> Self {
+        self.constant_force = force;
+        self
+    }
+
+    /// Sets the torque applied during every step.
+    pub fn constant_torque(mut self, torque: Vec3) -> Self {
+        self.constant_torque = torque;
+        self
+    }
+
+    /// Sets the linear and angular damping.
+    pub fn damping(mut self, linear: f32, angular: f32) -> Self {
+        self.linear_damping = linear;
+        self.angular_damping = angular;
+        self
+    }
+
+    /// Sets whether the body may fall asleep.
+    pub fn can_sleep(mut self, can_sleep: bool) -> Self {
+        self.can_sleep = can_sleep;
+        self
+    }
+}
+
+/// A rigid body in a world.
+#[derive(Debug, Clone)]
+pub struct RigidBody {
+    pub(crate) body_type: BodyType,
+    pub(crate) shape: Shape,
+    /// World position of the centre of mass.
+    pub(crate) center_of_mass: Vec3,
+    pub(crate) rotation: Quat,
+    /// Centre of mass in the body frame.
+    pub(crate) local_center_of_mass: Vec3,
+    pub(crate) linear_velocity: Vec3,
+    pub(crate) angular_velocity: Vec3,
+    pub(crate) mass: f32,
+    pub(crate) inverse_mass: f32,
+    /// Inertia about the centre of mass, body axes (zero for static and kinematic bodies).
+    pub(crate) local_inertia: Mat3,
+    pub(crate) local_inverse_inertia: Mat3,
+    /// `R · I⁻¹ · Rᵀ`, refreshed whenever the rotation changes.
+    pub(crate) world_inverse_inertia: Mat3,
+    /// Forces and torques applied by the user since the last step.
+    pub(crate) force: Vec3,
+    pub(crate) torque: Vec3,
+    pub(crate) constant_force: Vec3,
+    pub(crate) constant_torque: Vec3,
+    pub(crate) linear_damping: f32,
+    pub(crate) angular_damping: f32,
+    pub(crate) friction: f32,
+    pub(crate) restitution: f32,
+    pub(crate) can_sleep: bool,
+    pub(crate) sleeping: bool,
+}
+
+impl RigidBody {
+    /// Checks every value of `desc` and builds the body. Errors name the field of `desc`.
+    pub(crate) fn from_desc(desc: BodyDesc) -> Result<Self> {
+        check_finite_vector("position", desc.position)?;
+        let rotation = normalize_rotation("rotation", desc.rotation)?;
+        check_finite_vector("linear_velocity", desc.linear_velocity)?;
+        check_finite_vector("angular_velocity", desc.angular_velocity)?;
+        check_positive("density", desc.density)?;
+        if let Some(mass) = desc.mass {
+            check_positive("mass", mass)?;
+        }
+        check_non_negative("friction", desc.friction)?;
+        check_range("restitution", desc.restitution, 0.0, 1.0)?;
+        check_finite_vector("force", desc.constant_force)?;
+        check_finite_vector("torque", desc.constant_torque)?;
+        check_non_negative("linear_damping", desc.linear_damping)?;
+        check_non_negative("angular_damping", desc.angular_damping)?;
+
+        let mass_properties = match desc.body_type {
+            BodyType::Dynamic => Some(dynamic_mass_properties(&desc)?),
+            BodyType::Static | BodyType::Kinematic => None,
+        };
+        let moves = desc.body_type != BodyType::Static;
+        let mut body = Self {
+            body_type: desc.body_type,
+            shape: desc.shape,
+            center_of_mass: desc.position,
+            rotation,
+            local_center_of_mass: Vec3::ZERO,
+            linear_velocity: if moves { desc.linear_velocity } else { Vec3::ZERO },
+            angular_velocity: if moves { desc.angular_velocity } else { Vec3::ZERO },
+            mass: 0.0,
+            inverse_mass: 0.0,
+            local_inertia: Mat3::ZERO,
+            local_inverse_inertia: Mat3::ZERO,
+            world_inverse_inertia: Mat3::ZERO,
+            force: Vec3::ZERO,
+            torque: Vec3::ZERO,
+            constant_force: desc.constant_force,
+            constant_torque: desc.constant_torque,
+            linear_damping: desc.linear_damping,
+            angular_damping: desc.angular_damping,
+            friction: desc.friction,
+            restitution: desc.restitution,
+            can_sleep: desc.can_sleep,
+            sleeping: false,
+        };
+        if let Some((properties, inverse_inertia)) = mass_properties {
+            body.mass = properties.mass;
+            body.inverse_mass = 1.0 / properties.mass;
+            body.local_center_of_mass = properties.center_of_mass;
+            body.local_inertia = properties.inertia;
+            body.local_inverse_inertia = inverse_inertia;
+        }
+        body.set_origin_pose(Pose::new(desc.position, rotation));
+        Ok(body)
+    }
+
+    /// Dynamic, static or kinematic.
+    pub fn body_type(&self) -> BodyType {
+        self.body_type
+    }
+
+    /// The collision shape, body frame.
+    pub fn shape(&self) -> &Shape {
+        &self.shape
+    }
+
+    /// Pose of the body origin in the world.
+    pub fn pose(&self) -> Pose {
+        Pose::new(self.position(), self.rotation)
+    }
+
+    /// World position of the body origin, metres.
+    pub fn position(&self) -> Vec3 {
+        self.center_of_mass - self.rotation * self.local_center_of_mass
+    }
+
+    /// World orientation.
+    pub fn rotation(&self) -> Quat {
+        self.rotation
+    }
+
+    /// World position of the centre of mass, metres.
+    pub fn center_of_mass(&self) -> Vec3 {
+        self.center_of_mass
+    }
+
+    /// Centre of mass in the body frame, metres.
+    pub fn local_center_of_mass(&self) -> Vec3 {
+        self.local_center_of_mass
+    }
+
+    /// Velocity of the centre of mass, m/s.
+    pub fn linear_velocity(&self) -> Vec3 {
+        self.linear_velocity
+    }
+
+    /// Angular velocity, rad/s, world frame.
+    pub fn angular_velocity(&self) -> Vec3 {
+        self.angular_velocity
+    }
+
+    /// Velocity of the material point at world `point`: `v + ω × (p − c)`.
+    pub fn velocity_at_point(&self, point: Vec3) -> Vec3 {
+        self.linear_velocity + self.angular_velocity.cross(point - self.center_of_mass)
+    }
+
+    /// Mass, kg; zero for static and kinematic bodies.
+    pub fn mass(&self) -> f32 {
+        self.mass
+    }
+
+    /// `1/m`; zero for static and kinematic bodies.
+    pub fn inverse_mass(&self) -> f32 {
+        self.inverse_mass
+    }
+
+    /// Inertia tensor about the centre of mass in body axes, kg·m²; zero unless dynamic.
+    pub fn local_inertia(&self) -> Mat3 {
+        self.local_inertia
+    }
+
+    /// Inverse inertia in world axes, `R · I⁻¹ · Rᵀ`; zero unless dynamic.
+    pub fn world_inverse_inertia(&self) -> Mat3 {
+        self.world_inverse_inertia
+    }
+
+    /// Inertia in world axes, `R · I · Rᵀ`; zero unless dynamic.
+    pub fn world_inertia(&self) -> Mat3 {
+        rotate_tensor(self.rotation, self.local_inertia)
+    }
+
+    /// Linear momentum `m v`, kg·m/s.
+    pub fn linear_momentum(&self) -> Vec3 {
+        self.mass * self.linear_velocity
+    }
+
+    /// Angular momentum about the centre of mass, `R I Rᵀ ω`, kg·m²/s.
+    pub fn angular_momentum(&self) -> Vec3 {
+        self.world_inertia() * self.angular_velocity
+    }
+
+    /// Kinetic energy `½ m v² + ½ ωᵀ I ω`, joules.
+    pub fn kinetic_energy(&self) -> f32 {
+        0.5 * self.mass * self.linear_velocity.length_squared()
+            + 0.5 * self.angular_velocity.dot(self.angular_momentum())
+    }
+
+    /// Coulomb friction coefficient.
+    pub fn friction(&self) -> f32 {
+        self.friction
+    }
+
+    /// Coefficient of restitution.
+    pub fn restitution(&self) -> f32 {
+        self.restitution
+    }
+
+    /// Linear and angular damping, 1/s.
+    pub fn damping(&self) -> (f32, f32) {
+        (self.linear_damping, self.angular_damping)
+    }
+
+    /// The force applied at the centre of mass during every step, N.
+    pub fn constant_force(&self) -> Vec3 {
+        self.constant_force
+    }
+
+    /// The torque applied during every step, N·m.
+    pub fn constant_torque(&self) -> Vec3 {
+        self.constant_torque
+    }
+
+    /// Whether the body may fall asleep.
+    pub fn can_sleep(&self) -> bool {
+        self.can_sleep
+    }
+
+    /// Whether the body is asleep (skipped by the step until something wakes it).
+    pub fn is_sleeping(&self) -> bool {
+        self.sleeping
+    }
+
+    /// World bounding box of the shape.
+    pub fn aabb(&self) -> Aabb {
+        self.shape.aabb(&self.pose())
+    }
+
+    /// Moves the body origin to `position` (finite), keeping its rotation and velocities.
+    pub fn set_position(&mut self, position: Vec3) -> Result<()> {
+        check_finite_vector("position", position)?;
+        self.set_origin_pose(Pose::new(position, self.rotation));
+        self.wake();
+        Ok(())
+    }
+
+    /// Turns the body about its origin to `rotation` (normalised; zero is an error).
+    pub fn set_rotation(&mut self, rotation: Quat) -> Result<()> {
+        let rotation = normalize_rotation("rotation", rotation)?;
+        self.set_origin_pose(Pose::new(self.position(), rotation));
+        self.wake();
+        Ok(())
+    }
+
+    /// Sets the velocity of the centre of mass (ignored for static bodies).
+    pub fn set_linear_velocity(&mut self, velocity: Vec3) -> Result<()> {
+        check_finite_vector("linear_velocity", velocity)?;
+        if self.body_type != BodyType::Static {
+            self.linear_velocity = velocity;
+            self.wake();
+        }
+        Ok(())
+    }
+
+    /// Sets the world angular velocity (ignored for static bodies).
+    pub fn set_angular_velocity(&mut self, velocity: Vec3) -> Result<()> {
+        check_finite_vector("angular_velocity", velocity)?;
+        if self.body_type != BodyType::Static {
+            self.angular_velocity = velocity;
+            self.wake();
+        }
+        Ok(())
+    }
+
+    /// Adds a force at the centre of mass for the next step, N (no effect unless dynamic).
+    pub fn apply_force(&mut self, force: Vec3) -> Result<()> {
+        check_finite_vector("force", force)?;
+        if self.is_dynamic() {
+            self.force += force;
+            self.wake();
+        }
+        Ok(())
+    }
+
+    /// Adds a force at world `point` for the next step: the force, and the torque `r × F` with
+    /// `r = point − c` (no effect unless dynamic).
+    pub fn apply_force_at_point(&mut self, force: Vec3, point: Vec3) -> Result<()> {
+        check_finite_vector("force", force)?;
+        check_finite_vector("point", point)?;
+        if self.is_dynamic() {
+            self.force += force;
+            self.torque += (point - self.center_of_mass).cross(force);
+            self.wake();
+        }
+        Ok(())
+    }
+
+    /// Adds a torque for the next step, N·m (no effect unless dynamic).
+    pub fn apply_torque(&mut self, torque: Vec3) -> Result<()> {
+        check_finite_vector("torque", torque)?;
+        if self.is_dynamic() {
+            self.torque += torque;
+            self.wake();
+        }
+        Ok(())
+    }
+
+    /// Changes the velocity at once by an impulse at the centre of mass: `Δv = J/m`, N·s.
+    pub fn apply_impulse(&mut self, impulse: Vec3) -> Result<()> {
+        check_finite_vector("impulse", impulse)?;
+        if self.is_dynamic() {
+            self.linear_velocity += self.inverse_mass * impulse;
+            self.wake();
+        }
+        Ok(())
+    }
+
+    /// An impulse at world `point`: `Δv = J/m`, `Δω = I⁻¹ (r × J)` with `r = point − c`.
+    pub fn apply_impulse_at_point(&mut self, impulse: Vec3, point: Vec3) -> Result<()> {
+        check_finite_vector("impulse", impulse)?;
+        check_finite_vector("point", point)?;
+        if self.is_dynamic() {
+            self.linear_velocity += self.inverse_mass * impulse;
+            self.angular_velocity +=
+                self.world_inverse_inertia * (point - self.center_of_mass).cross(impulse);
+            self.wake();
+        }
+        Ok(())
+    }
+
+    /// Sets the force applied at the centre of mass during every step.
+    pub fn set_constant_force(&mut self, force: Vec3) -> Result<()> {
+        self.constant_force = check_finite_vector("force", force)?;
+        self.wake();
+        Ok(())
+    }
+
+    /// Sets the torque applied during every step.
+    pub fn set_constant_torque(&mut self, torque: Vec3) -> Result<()> {
+        self.constant_torque = check_finite_vector("torque", torque)?;
+        self.wake();
+        Ok(())
+    }
+
+    /// Sets linear and angular damping, 1/s, both ≥ 0.
+    pub fn set_damping(&mut self, linear: f32, angular: f32) -> Result<()> {
+        check_non_negative("linear_damping", linear)?;
+        check_non_negative("angular_damping", angular)?;
+        self.linear_damping = linear;
+        self.angular_damping = angular;
+        Ok(())
+    }
+
+    /// Sets the Coulomb friction coefficient, ≥ 0.
+    pub fn set_friction(&mut self, friction: f32) -> Result<()> {
+        self.friction = check_non_negative("friction", friction)?;
+        Ok(())
+    }
+
+    /// Sets the coefficient of restitution, 0 to 1.
+    pub fn set_restitution(&mut self, restitution: f32) -> Result<()> {
+        self.restitution = check_range("restitution", restitution, 0.0, 1.0)?;
+        Ok(())
+    }
+
+    /// Wakes the body if it sleeps.
+    pub fn wake(&mut self) {
+        self.sleeping = false;
+    }
+
+    pub(crate) fn is_dynamic(&self) -> bool {
+        self.body_type == BodyType::Dynamic
+    }
+
+    /// Places the body origin at `pose` and refreshes what follows from the rotation.
+    fn set_origin_pose(&mut self, pose: Pose) {
+        self.rotation = pose.rotation;
+        self.center_of_mass = pose.transform_point(self.local_center_of_mass);
+        self.update_world_inverse_inertia();
+    }
+
+    /// `I_world⁻¹ = R · I⁻¹ · Rᵀ`.
+    pub(crate) fn update_world_inverse_inertia(&mut self) {
+        self.world_inverse_inertia = rotate_tensor(self.rotation, self.local_inverse_inertia);
+    }
+}
+
+/// Mass properties of a dynamic body and its inverse inertia, with every failure named: a
+/// halfspace (field `shape`), or a mass or inertia that is not positive and finite (field `mass`
+/// when given, `density` otherwise).
+fn dynamic_mass_properties(desc: &BodyDesc) -> Result<(MassProperties, Mat3)> {
+    let properties = desc
+        .shape
+        .mass_properties(desc.density)
+        .ok_or_else(|| Error::new("shape", ErrorKind::HalfspaceOnDynamicBody))?;
+    let properties = match desc.mass {
+        Some(mass) => properties.scaled_to_mass(mass),
+        None => properties,
+    };
+    let field = if desc.mass.is_some() { "mass" } else { "density" };
+    let invalid = || Error::new(field, ErrorKind::InvalidMass);
+    if !(properties.mass.is_finite() && properties.mass > 0.0) {
+        return Err(invalid());
+    }
+    let determinant = properties.inertia.determinant();
+    if !(determinant.is_finite() && determinant > 0.0) {
+        return Err(invalid());
+    }
+    let inverse_inertia = properties.inertia.inverse();
+    if !(inverse_inertia.is_finite() && properties.inertia.is_finite()) {
+        return Err(invalid());
+    }
+    Ok((properties, inverse_inertia))
+}
