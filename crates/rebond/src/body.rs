@@ -246,8 +246,16 @@ impl RigidBody {
             center_of_mass: desc.position,
             rotation,
             local_center_of_mass: Vec3::ZERO,
-            linear_velocity: if moves { desc.linear_velocity } else { Vec3::ZERO },
-            angular_velocity: if moves { desc.angular_velocity } else { Vec3::ZERO },
+            linear_velocity: if moves {
+                desc.linear_velocity
+            } else {
+                Vec3::ZERO
+            },
+            angular_velocity: if moves {
+                desc.angular_velocity
+            } else {
+                Vec3::ZERO
+            },
             mass: 0.0,
             inverse_mass: 0.0,
             local_inertia: Mat3::ZERO,
@@ -567,7 +575,11 @@ fn dynamic_mass_properties(desc: &BodyDesc) -> Result<(MassProperties, Mat3)> {
         Some(mass) => properties.scaled_to_mass(mass),
         None => properties,
     };
-    let field = if desc.mass.is_some() { "mass" } else { "density" };
+    let field = if desc.mass.is_some() {
+        "mass"
+    } else {
+        "density"
+    };
     let invalid = || Error::new(field, ErrorKind::InvalidMass);
     if !(properties.mass.is_finite() && properties.mass > 0.0) {
         return Err(invalid());

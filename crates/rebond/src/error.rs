@@ -80,7 +80,10 @@ impl fmt::Display for ErrorKind {
             Self::DegenerateHull(reason) => write!(f, "degenerate convex hull: {reason}"),
             Self::InvalidCompound(reason) => write!(f, "invalid compound: {reason}"),
             Self::HalfspaceOnDynamicBody => {
-                write!(f, "a halfspace is only allowed on static or kinematic bodies")
+                write!(
+                    f,
+                    "a halfspace is only allowed on static or kinematic bodies"
+                )
             }
             Self::InvalidMass => write!(f, "mass of a dynamic body must be positive and finite"),
             Self::StaleHandle => write!(f, "body handle is stale or unknown"),

@@ -3,7 +3,9 @@
 use crate::arena::Arena;
 use crate::body::{BodyDesc, BodyHandle, RigidBody};
 use crate::error::{check_finite_vector, check_positive, Error, ErrorKind, Result};
-use crate::integration::{integrate_pose, integrate_velocities};
+use crate::integration::{
+    integrate_pose, integrate_velocities, SpeedLimits, MAX_ROTATION_PER_SUBSTEP,
+};
 use crate::math::Vec3;
 
 /// Default gravity, m/s²: Earth's, along −Y.
@@ -12,6 +14,9 @@ pub const DEFAULT_GRAVITY: Vec3 = Vec3::new(0.0, -9.81, 0.0);
 pub const DEFAULT_SUBSTEPS: u32 = 4;
 /// Largest number of substeps accepted per step.
 pub const MAX_SUBSTEPS: u32 = 64;
+/// Default speed limit of a body's centre of mass, m/s (about three times the speed of sound):
+/// it keeps a runaway body's position finite.
+pub const DEFAULT_MAX_LINEAR_SPEED: f32 = 1000.0;
 
 /// World-wide settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -20,6 +25,9 @@ pub struct WorldSettings {
     pub gravity: Vec3,
     /// Substeps per step, 1 to [`MAX_SUBSTEPS`], default 4.
     pub substeps: u32,
+    /// Speed limit of every body's centre of mass, m/s, default [`DEFAULT_MAX_LINEAR_SPEED`].
+    /// Angular speed is limited too, to a quarter turn per substep.
+    pub max_linear_speed: f32,
 }
 
 impl Default for WorldSettings {
@@ -27,6 +35,7 @@ impl Default for WorldSettings {
         Self {
             gravity: DEFAULT_GRAVITY,
             substeps: DEFAULT_SUBSTEPS,
+            max_linear_speed: DEFAULT_MAX_LINEAR_SPEED,
         }
     }
 }
@@ -34,6 +43,7 @@ impl Default for WorldSettings {
 impl WorldSettings {
     fn validate(&self) -> Result<()> {
         check_finite_vector("gravity", self.gravity)?;
+        check_positive("max_linear_speed", self.max_linear_speed)?;
         if !(1..=MAX_SUBSTEPS).contains(&self.substeps) {
             return Err(Error::new(
                 "substeps",
@@ -160,10 +170,14 @@ impl World {
     pub fn step(&mut self, dt: f32) -> Result<()> {
         check_positive("dt", dt)?;
         let h = dt / self.settings.substeps as f32;
+        let limits = SpeedLimits {
+            linear: self.settings.max_linear_speed,
+            angular: MAX_ROTATION_PER_SUBSTEP / h,
+        };
         let gravity = self.settings.gravity;
         for _ in 0..self.settings.substeps {
             for body in self.bodies.values_mut() {
-                integrate_velocities(body, gravity, h);
+                integrate_velocities(body, gravity, h, limits);
             }
             for body in self.bodies.values_mut() {
                 integrate_pose(body, h);

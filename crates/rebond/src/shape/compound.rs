@@ -35,7 +35,10 @@ impl Compound {
         for (index, child) in children.iter_mut().enumerate() {
             let place = format!("children[{index}]");
             if !child.pose.position.is_finite() {
-                return Err(Error::new(format!("{place}.position"), ErrorKind::NotFinite));
+                return Err(Error::new(
+                    format!("{place}.position"),
+                    ErrorKind::NotFinite,
+                ));
             }
             child.pose.rotation = normalize_rotation("rotation", child.pose.rotation)
                 .map_err(|error| error.within(&place))?;

@@ -36,7 +36,10 @@ impl ConvexHull {
     /// The hull of `points`.
     pub fn new(points: &[Vec3]) -> Result<Self> {
         if points.len() < 4 {
-            return Err(Error::new("points", ErrorKind::DegenerateHull("fewer than 4 points")));
+            return Err(Error::new(
+                "points",
+                ErrorKind::DegenerateHull("fewer than 4 points"),
+            ));
         }
         Ok(Self {
             vertices: points.to_vec(),

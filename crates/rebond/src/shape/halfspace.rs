@@ -32,7 +32,8 @@ impl Halfspace {
     /// A cube of half size [`HALFSPACE_EXTENT`] around the plane's origin, cut at the plane on
     /// the axis a world normal is aligned with.
     pub fn aabb(&self, pose: &Pose) -> Aabb {
-        let mut bounds = Aabb::from_center_half_extents(pose.position, Vec3::splat(HALFSPACE_EXTENT));
+        let mut bounds =
+            Aabb::from_center_half_extents(pose.position, Vec3::splat(HALFSPACE_EXTENT));
         let normal = pose.rotation * self.normal;
         for axis in 0..3 {
             if normal[axis] >= 1.0 - 1.0e-6 {

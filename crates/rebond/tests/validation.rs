@@ -1,0 +1,262 @@
+//! Every kind of bad construction returns an error naming the field, and leaves the world as it
+//! was. No call panics on user input.
+
+use rebond::shape::{Capsule, Compound, CompoundChild, Cuboid, Cylinder, Halfspace, Sphere};
+use rebond::{
+    BodyDesc, BodyType, ErrorKind, Pose, Quat, Result, Shape, Vec3, World, WorldSettings,
+};
+
+fn field_of<T: std::fmt::Debug>(result: Result<T>) -> (String, ErrorKind) {
+    let error = result.expect_err("expected an error");
+    (error.field, error.kind)
+}
+
+fn unit_box() -> Shape {
+    Shape::cuboid(Vec3::splat(0.5)).unwrap()
+}
+
+#[test]
+fn shape_sizes_must_be_finite_and_positive() {
+    for bad in [0.0, -1.0, f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+        assert_eq!(field_of(Sphere::new(bad)).0, "radius");
+        assert_eq!(field_of(Capsule::new(bad, 1.0)).0, "radius");
+        assert_eq!(field_of(Capsule::new(1.0, bad)).0, "half_height");
+        assert_eq!(field_of(Cylinder::new(bad, 1.0)).0, "radius");
+        assert_eq!(field_of(Cylinder::new(1.0, bad)).0, "half_height");
+        assert_eq!(
+            field_of(Cuboid::new(Vec3::new(1.0, 1.0, bad))).0,
+            "half_extents[2]"
+        );
+    }
+    assert_eq!(field_of(Sphere::new(-2.0)).1, ErrorKind::NotPositive(-2.0));
+    assert_eq!(field_of(Sphere::new(f32::NAN)).1, ErrorKind::NotFinite);
+}
+
+#[test]
+fn halfspace_normal_must_be_finite_and_non_zero() {
+    assert_eq!(
+        field_of(Halfspace::new(Vec3::ZERO)),
+        ("normal".to_owned(), ErrorKind::ZeroVector)
+    );
+    assert_eq!(
+        field_of(Halfspace::new(Vec3::new(0.0, f32::NAN, 0.0))),
+        ("normal".to_owned(), ErrorKind::NotFinite)
+    );
+    let normal = Halfspace::new(Vec3::new(0.0, 2.0, 0.0)).unwrap().normal();
+    assert_eq!(normal, Vec3::Y);
+}
+
+#[test]
+fn degenerate_hulls_are_refused() {
+    let flat = [
+        Vec3::ZERO,
+        Vec3::X,
+        Vec3::Y,
+        Vec3::new(1.0, 1.0, 0.0),
+        Vec3::new(0.5, 0.5, 0.0),
+    ];
+    for points in [&flat[..], &flat[..3], &[Vec3::ONE; 6][..], &[][..]] {
+        assert!(matches!(
+            field_of(Shape::convex_hull(points)),
+            (field, ErrorKind::DegenerateHull(_)) if field == "points"
+        ));
+    }
+    let mut with_nan = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z];
+    with_nan[2].y = f32::NAN;
+    assert_eq!(
+        field_of(Shape::convex_hull(&with_nan)),
+        ("points[2]".to_owned(), ErrorKind::NotFinite)
+    );
+}
+
+#[test]
+fn compounds_need_valid_children() {
+    assert_eq!(field_of(Compound::new(Vec::new())).0, "children");
+    let child = |pose: Pose, shape: Shape| CompoundChild { pose, shape };
+    let nested = Shape::compound(vec![child(Pose::IDENTITY, unit_box())]).unwrap();
+    let cases = [
+        (child(Pose::IDENTITY, nested), "children[1].shape"),
+        (
+            child(Pose::IDENTITY, Shape::halfspace(Vec3::Y).unwrap()),
+            "children[1].shape",
+        ),
+        (
+            child(Pose::from_position(Vec3::splat(f32::INFINITY)), unit_box()),
+            "children[1].position",
+        ),
+        (
+            child(
+                Pose::new(Vec3::ZERO, Quat::from_xyzw(0.0, 0.0, 0.0, 0.0)),
+                unit_box(),
+            ),
+            "children[1].rotation",
+        ),
+    ];
+    for (bad_child, field) in cases {
+        let children = vec![child(Pose::IDENTITY, unit_box()), bad_child];
+        assert_eq!(field_of(Compound::new(children)).0, field);
+    }
+}
+
+#[test]
+fn every_bad_body_value_is_refused_and_the_world_is_unchanged() {
+    let mut world = World::new(WorldSettings::default()).unwrap();
+    world.add_body(BodyDesc::dynamic(unit_box())).unwrap();
+    let base = || BodyDesc::dynamic(unit_box());
+    let cases: Vec<(BodyDesc, &str)> = vec![
+        (base().position(Vec3::new(f32::NAN, 0.0, 0.0)), "position"),
+        (
+            base().rotation(Quat::from_xyzw(0.0, 0.0, 0.0, 0.0)),
+            "rotation",
+        ),
+        (
+            base().rotation(Quat::from_xyzw(f32::NAN, 0.0, 0.0, 1.0)),
+            "rotation",
+        ),
+        (
+            base().linear_velocity(Vec3::splat(f32::INFINITY)),
+            "linear_velocity",
+        ),
+        (
+            base().angular_velocity(Vec3::splat(f32::NAN)),
+            "angular_velocity",
+        ),
+        (base().density(0.0), "density"),
+        (base().density(-5.0), "density"),
+        (base().density(1.0e38), "density"),
+        (base().mass(0.0), "mass"),
+        (base().mass(-1.0), "mass"),
+        (base().mass(f32::INFINITY), "mass"),
+        (base().mass(1.0e-45), "mass"),
+        (base().friction(-0.1), "friction"),
+        (base().restitution(1.5), "restitution"),
+        (base().restitution(-0.5), "restitution"),
+        (base().constant_force(Vec3::splat(f32::NAN)), "force"),
+        (base().constant_torque(Vec3::splat(f32::INFINITY)), "torque"),
+        (base().damping(-1.0, 0.0), "linear_damping"),
+        (base().damping(0.0, f32::NAN), "angular_damping"),
+        (
+            BodyDesc::dynamic(Shape::halfspace(Vec3::Y).unwrap()),
+            "shape",
+        ),
+    ];
+    for (desc, field) in cases {
+        let error = world.add_body(desc).expect_err(field);
+        assert_eq!(error.field, field, "{error}");
+        assert_eq!(world.body_count(), 1);
+    }
+    // A halfspace is fine on static and kinematic bodies.
+    let halfspace = Shape::halfspace(Vec3::Y).unwrap();
+    world
+        .add_body(BodyDesc::new(BodyType::Static, halfspace.clone()))
+        .unwrap();
+    world.add_body(BodyDesc::kinematic(halfspace)).unwrap();
+}
+
+#[test]
+fn setters_refuse_bad_values_and_keep_the_old_state() {
+    let mut world = World::new(WorldSettings::default()).unwrap();
+    let handle = world
+        .add_body(BodyDesc::dynamic(unit_box()).position(Vec3::Y))
+        .unwrap();
+    let body = world.body_mut(handle).unwrap();
+    let nan = Vec3::splat(f32::NAN);
+    assert_eq!(field_of(body.set_position(nan)).0, "position");
+    assert_eq!(
+        field_of(body.set_rotation(Quat::from_xyzw(0.0, 0.0, 0.0, 0.0))).1,
+        ErrorKind::ZeroQuaternion
+    );
+    assert_eq!(field_of(body.set_linear_velocity(nan)).0, "linear_velocity");
+    assert_eq!(
+        field_of(body.set_angular_velocity(nan)).0,
+        "angular_velocity"
+    );
+    assert_eq!(field_of(body.apply_force(nan)).0, "force");
+    assert_eq!(field_of(body.apply_force_at_point(Vec3::X, nan)).0, "point");
+    assert_eq!(field_of(body.apply_torque(nan)).0, "torque");
+    assert_eq!(field_of(body.apply_impulse(nan)).0, "impulse");
+    assert_eq!(
+        field_of(body.apply_impulse_at_point(nan, Vec3::ZERO)).0,
+        "impulse"
+    );
+    assert_eq!(field_of(body.set_constant_force(nan)).0, "force");
+    assert_eq!(field_of(body.set_constant_torque(nan)).0, "torque");
+    assert_eq!(field_of(body.set_damping(-1.0, 0.0)).0, "linear_damping");
+    assert_eq!(field_of(body.set_friction(f32::NAN)).0, "friction");
+    assert_eq!(field_of(body.set_restitution(2.0)).0, "restitution");
+    assert_eq!(body.position(), Vec3::Y);
+    assert_eq!(body.linear_velocity(), Vec3::ZERO);
+    world.step(1.0 / 60.0).unwrap();
+    let body = world.body(handle).unwrap();
+    assert!(body.position().is_finite() && body.linear_velocity().is_finite());
+}
+
+#[test]
+fn world_settings_and_time_step_are_checked() {
+    let bad_settings = [
+        (
+            WorldSettings {
+                gravity: Vec3::new(0.0, f32::NAN, 0.0),
+                ..WorldSettings::default()
+            },
+            "gravity",
+        ),
+        (
+            WorldSettings {
+                substeps: 0,
+                ..WorldSettings::default()
+            },
+            "substeps",
+        ),
+        (
+            WorldSettings {
+                substeps: 1000,
+                ..WorldSettings::default()
+            },
+            "substeps",
+        ),
+    ];
+    let mut world = World::new(WorldSettings::default()).unwrap();
+    for (settings, field) in bad_settings {
+        assert_eq!(field_of(World::new(settings)).0, field);
+        assert_eq!(field_of(world.set_settings(settings)).0, field);
+        assert_eq!(world.settings(), &WorldSettings::default());
+    }
+    for dt in [0.0, -1.0, f32::NAN, f32::INFINITY] {
+        assert_eq!(field_of(world.step(dt)).0, "dt");
+    }
+}
+
+#[test]
+fn stale_handles_are_errors() {
+    let mut world = World::new(WorldSettings::default()).unwrap();
+    let handle = world.add_body(BodyDesc::dynamic(unit_box())).unwrap();
+    world.remove_body(handle).unwrap();
+    assert_eq!(field_of(world.body(handle)).1, ErrorKind::StaleHandle);
+    assert_eq!(
+        field_of(world.remove_body(handle)).1,
+        ErrorKind::StaleHandle
+    );
+}
+
+#[test]
+fn huge_finite_values_never_turn_into_infinity() {
+    let mut world = World::new(WorldSettings::default()).unwrap();
+    let handle = world
+        .add_body(
+            BodyDesc::dynamic(unit_box())
+                .position(Vec3::splat(3.0e38))
+                .linear_velocity(Vec3::splat(1.0e30))
+                .angular_velocity(Vec3::splat(-1.0e30))
+                .constant_force(Vec3::splat(3.0e38)),
+        )
+        .unwrap();
+    for _ in 0..100 {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    let body = world.body(handle).unwrap();
+    let limit = world.settings().max_linear_speed;
+    assert!(body.linear_velocity().length() <= limit * 1.0001);
+    assert!(body.position().is_finite());
+    assert!(body.rotation().is_finite() && body.angular_velocity().is_finite());
+}
