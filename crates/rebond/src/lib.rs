@@ -18,3 +18,8 @@ pub use mass::MassProperties;
 pub use math::{Aabb, Mat3, Pose, Quat, Vec3};
 pub use shape::{CompoundChild, Shape};
 pub use world::{World, WorldSettings};
+
+/// The README's examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;
