@@ -5,6 +5,7 @@
 
 pub mod arena;
 pub mod body;
+pub mod collision;
 pub mod error;
 mod integration;
 pub mod mass;

@@ -116,6 +116,34 @@ impl Shape {
         }
     }
 
+    /// Rounding radius around the shape's core, metres: a sphere's or capsule's radius, zero
+    /// for every other shape.
+    pub fn core_radius(&self) -> f32 {
+        match self {
+            Shape::Sphere(sphere) => sphere.radius(),
+            Shape::Capsule(capsule) => capsule.radius(),
+            _ => 0.0,
+        }
+    }
+
+    /// Support point of the shape's core (the shape shrunk by [`Shape::core_radius`]): a
+    /// sphere's centre, an end of a capsule's segment, or the shape's own support point. A
+    /// halfspace has no core and gives the origin.
+    pub fn core_support(&self, direction: Vec3) -> Vec3 {
+        match self {
+            Shape::Sphere(_) => Vec3::ZERO,
+            Shape::Capsule(capsule) => {
+                let [bottom, top] = capsule.segment();
+                if direction.y >= 0.0 {
+                    top
+                } else {
+                    bottom
+                }
+            }
+            _ => self.support(direction).unwrap_or(Vec3::ZERO),
+        }
+    }
+
     /// The local point of the shape farthest along local `direction`; `None` for a halfspace, which
     /// is unbounded. For a compound this is the support of the hull of its children.
     pub fn support(&self, direction: Vec3) -> Option<Vec3> {

@@ -1,0 +1,39 @@
+//! Collision detection: the broad phase finds pairs of bodies whose bounding boxes overlap, the
+//! narrow phase turns each pair into contact manifolds, and the contact cache carries impulses
+//! from one step to the next.
+
+pub mod manifold;
+
+pub use manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
+
+use crate::math::{Pose, Vec3};
+use crate::shape::Shape;
+
+/// Contact points are made while two shapes are still apart by less than this, metres, so the
+/// solver can stop approaching bodies before they touch.
+pub const SPECULATIVE_DISTANCE: f32 = 0.02;
+
+/// A convex solid given by its support function in world coordinates.
+pub trait SupportMap {
+    /// The point of the solid farthest along world `direction` (any length, not zero).
+    fn support(&self, direction: Vec3) -> Vec3;
+}
+
+/// The core of a convex shape placed in the world: the shape without its rounding radius (a
+/// sphere's centre point, a capsule's segment; boxes, cylinders and hulls are their own core).
+/// Distance algorithms run on cores; the radius is added back afterwards, which keeps rounded
+/// shapes exact and the algorithms away from curved surfaces.
+#[derive(Debug, Clone, Copy)]
+pub struct PosedCore<'a> {
+    /// A convex shape: not a compound, not a halfspace.
+    pub shape: &'a Shape,
+    /// Where it sits in the world.
+    pub pose: &'a Pose,
+}
+
+impl SupportMap for PosedCore<'_> {
+    fn support(&self, direction: Vec3) -> Vec3 {
+        let local = self.pose.inverse_transform_vector(direction);
+        self.pose.transform_point(self.shape.core_support(local))
+    }
+}
