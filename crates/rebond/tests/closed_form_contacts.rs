@@ -1,0 +1,164 @@
+//! Closed-form contacts of spheres, capsules and boxes against hand-computed configurations.
+//!
+//! Tolerance: positions are a few f32 operations on values below 10 m, so 1e-5 m covers their
+//! rounding; separations likewise.
+
+use rebond::collision::closed_form::{capsule_capsule, sphere_box, sphere_capsule, sphere_sphere};
+use rebond::collision::{Manifold, SPECULATIVE_DISTANCE};
+use rebond::shape::{Capsule, Cuboid, Sphere};
+use rebond::{Pose, Quat, Vec3};
+
+const TOLERANCE: f32 = 1.0e-5;
+
+fn at(x: f32, y: f32, z: f32) -> Pose {
+    Pose::from_position(Vec3::new(x, y, z))
+}
+
+fn assert_vec(actual: Vec3, expected: Vec3) {
+    assert!(
+        (actual - expected).length() <= TOLERANCE,
+        "got {actual}, expected {expected}"
+    );
+}
+
+fn assert_single(manifold: Option<Manifold>, normal: Vec3, separation: f32, position: Vec3) {
+    let manifold = manifold.expect("expected a contact");
+    assert_eq!(manifold.len(), 1);
+    assert_vec(manifold.normal, normal);
+    let point = manifold.points()[0];
+    assert!((point.separation - separation).abs() <= TOLERANCE, "separation {}", point.separation);
+    assert_vec(point.position, position);
+}
+
+#[test]
+fn sphere_sphere_separated_touching_overlapping() {
+    let (a, b) = (Sphere::new(1.0).unwrap(), Sphere::new(0.5).unwrap());
+    let margin = SPECULATIVE_DISTANCE;
+    assert!(sphere_sphere(&a, &at(0.0, 0.0, 0.0), &b, &at(3.0, 0.0, 0.0), margin).is_none());
+    // Apart by 0.01 m, within the speculative margin: a point with positive separation.
+    assert_single(
+        sphere_sphere(&a, &at(0.0, 0.0, 0.0), &b, &at(1.51, 0.0, 0.0), margin),
+        Vec3::X,
+        0.01,
+        Vec3::new(1.005, 0.0, 0.0),
+    );
+    assert_single(
+        sphere_sphere(&a, &at(0.0, 0.0, 0.0), &b, &at(0.0, 1.5, 0.0), margin),
+        Vec3::Y,
+        0.0,
+        Vec3::new(0.0, 1.0, 0.0),
+    );
+    // Overlapping along a diagonal: centres 1.2 m apart, depth 0.3 m.
+    let direction = Vec3::new(1.0, 2.0, -2.0) / 3.0;
+    let manifold = sphere_sphere(
+        &a,
+        &Pose::from_position(Vec3::ONE),
+        &b,
+        &Pose::from_position(Vec3::ONE + direction * 1.2),
+        margin,
+    );
+    assert_single(manifold, direction, -0.3, Vec3::ONE + direction * 0.85);
+}
+
+#[test]
+fn sphere_capsule_against_the_side_and_the_cap() {
+    let sphere = Sphere::new(0.5).unwrap();
+    let capsule = Capsule::new(0.25, 1.0).unwrap();
+    let margin = SPECULATIVE_DISTANCE;
+    // Beside the capsule's middle: the capsule axis is Y, the sphere at x = 0.7.
+    assert_single(
+        sphere_capsule(&sphere, &at(0.7, 0.3, 0.0), &capsule, &at(0.0, 0.0, 0.0), margin),
+        -Vec3::X,
+        -0.05,
+        Vec3::new(0.225, 0.3, 0.0),
+    );
+    // Above the top cap, capsule lying along X after a quarter turn about Z.
+    let lying = Pose::new(Vec3::ZERO, Quat::from_rotation_z(std::f32::consts::FRAC_PI_2));
+    assert_single(
+        sphere_capsule(&sphere, &at(1.5, 0.0, 0.0), &capsule, &lying, margin),
+        -Vec3::X,
+        -0.25,
+        Vec3::new(1.125, 0.0, 0.0),
+    );
+    assert!(sphere_capsule(&sphere, &at(3.0, 0.0, 0.0), &capsule, &lying, margin).is_none());
+}
+
+#[test]
+fn crossing_capsules_touch_at_one_point_and_parallel_ones_at_two() {
+    let capsule = Capsule::new(0.5, 1.0).unwrap();
+    let margin = SPECULATIVE_DISTANCE;
+    let along_x = Quat::from_rotation_z(std::f32::consts::FRAC_PI_2);
+    let along_z = Quat::from_rotation_x(std::f32::consts::FRAC_PI_2);
+    // A along X at the origin, B along Z 0.9 m above: one point, depth 0.1 m.
+    assert_single(
+        capsule_capsule(
+            &capsule,
+            &Pose::new(Vec3::ZERO, along_x),
+            &capsule,
+            &Pose::new(Vec3::new(0.2, 0.9, -0.3), along_z),
+            margin,
+        ),
+        Vec3::Y,
+        -0.1,
+        Vec3::new(0.2, 0.45, 0.0),
+    );
+    // B along X too, lying on A and shifted by 0.5 m: two points at the ends of the overlap.
+    let manifold = capsule_capsule(
+        &capsule,
+        &Pose::new(Vec3::ZERO, along_x),
+        &capsule,
+        &Pose::new(Vec3::new(0.5, 0.95, 0.0), along_x),
+        margin,
+    )
+    .expect("contact");
+    assert_eq!(manifold.len(), 2);
+    assert_vec(manifold.normal, Vec3::Y);
+    let mut xs: Vec<f32> = manifold.points().iter().map(|p| p.position.x).collect();
+    xs.sort_by(f32::total_cmp);
+    assert!((xs[0] + 0.5).abs() <= TOLERANCE && (xs[1] - 1.0).abs() <= TOLERANCE, "{xs:?}");
+    for point in manifold.points() {
+        assert!((point.separation + 0.05).abs() <= TOLERANCE);
+        assert!((point.position.y - 0.475).abs() <= TOLERANCE);
+    }
+}
+
+#[test]
+fn sphere_box_face_edge_corner_and_inside() {
+    let sphere = Sphere::new(0.5).unwrap();
+    let cube = Cuboid::new(Vec3::new(1.0, 0.5, 2.0)).unwrap();
+    let margin = SPECULATIVE_DISTANCE;
+    let origin = at(0.0, 0.0, 0.0);
+    // Resting on the top face, 0.1 m deep. Normal from the sphere (A) toward the box (B): −Y.
+    assert_single(
+        sphere_box(&sphere, &at(0.3, 0.9, 0.0), &cube, &origin, margin),
+        -Vec3::Y,
+        -0.1,
+        Vec3::new(0.3, 0.45, 0.0),
+    );
+    // Beyond the edge x = 1, y = 0.5, 0.01 m apart: the closest point is on the edge.
+    let edge = Vec3::new(1.0, 0.5, 0.0);
+    let direction = Vec3::new(1.0, 1.0, 0.0).normalize();
+    let center = edge + direction * 0.51;
+    assert_single(
+        sphere_box(&sphere, &Pose::from_position(center), &cube, &origin, margin),
+        -direction,
+        0.01,
+        edge + direction * 0.005,
+    );
+    // Centre inside the box, 0.2 m below the top face: leaves through the top.
+    assert_single(
+        sphere_box(&sphere, &at(0.0, 0.3, 1.0), &cube, &origin, margin),
+        -Vec3::Y,
+        -0.7,
+        Vec3::new(0.0, 0.15, 1.0),
+    );
+    // A rotated box: a quarter turn about Y swaps its X and Z extents.
+    let turned = Pose::new(Vec3::ZERO, Quat::from_rotation_y(std::f32::consts::FRAC_PI_2));
+    assert_single(
+        sphere_box(&sphere, &at(2.4, 0.0, 0.0), &cube, &turned, margin),
+        -Vec3::X,
+        -0.1,
+        Vec3::new(1.95, 0.0, 0.0),
+    );
+    assert!(sphere_box(&sphere, &at(0.0, 2.0, 0.0), &cube, &origin, margin).is_none());
+}
