@@ -2,6 +2,8 @@
 //! narrow phase turns each pair into contact manifolds, and the contact cache carries impulses
 //! from one step to the next.
 
+pub mod closed_form;
+pub mod contact_cache;
 pub mod manifold;
 
 pub use manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
