@@ -1,1 +1,173 @@
-fn main() {}
+//! `rebond`: runs, times and lists physics scenes from the command line.
+//!
+//! Scene files and records follow the contract in `shared/scene-format.md`. Exit status: 0 on
+//! success, 1 when a file cannot be read or written, 2 for an invalid scene or bad arguments.
+
+mod bench;
+mod builtin;
+mod failure;
+mod record;
+mod run;
+mod scene;
+mod source;
+
+use std::io::{self, Write};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Args, Parser, Subcommand};
+
+use crate::builtin::BUILTIN_SCENES;
+use crate::failure::Failure;
+use crate::run::{RunLength, RunOptions};
+use crate::source::SceneSource;
+
+/// What `SCENE` means, shared by the subcommands' help.
+const SCENE_HELP: &str =
+    "Scene file (JSON), or the name of a built-in scene (see `rebond scenes`). \
+     A path that exists wins over a built-in name: use ./NAME for a file named like a built-in \
+     scene";
+
+/// Default simulated time of `rebond run`, seconds.
+const DEFAULT_RUN_SECONDS: f64 = 10.0;
+
+/// Default number of measured steps of `rebond bench`.
+const DEFAULT_BENCH_STEPS: u32 = 300;
+
+/// rebond: an impulse-based 3D rigid-body physics engine, from the command line.
+#[derive(Debug, Parser)]
+#[command(name = "rebond", version)]
+#[command(
+    after_help = "Exit status: 0 on success, 1 when a file cannot be read or written, \
+                  2 for an invalid scene (one `error:` line names the file and the place) or \
+                  bad arguments."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Run a scene headless and print a summary; optionally record every body's state as JSON
+    /// Lines.
+    ///
+    /// Runs 10 s of simulated time unless --steps or --seconds says otherwise. The scene is
+    /// checked completely before anything runs. The summary on stdout gives the scene, steps,
+    /// simulated time, the counts of bodies, contacts, islands and sleeping bodies at the end, the
+    /// mean wall-clock time of a step and the total energy at start and end. A progress bar is
+    /// drawn on stderr only when stderr is a terminal.
+    ///
+    /// A record line is {"step", "time", "bodies"}, each body with its name, position, rotation
+    /// [x, y, z, w], linear_velocity, angular_velocity and sleeping, every body in scene order.
+    /// "time" is step × the scene's timestep in double precision (the engine steps with the
+    /// timestep rounded to 32 bits). Floats are the shortest text that reads back as the same
+    /// 32-bit value, so two runs of a scene write byte-identical records; a value that is not
+    /// finite, should a simulation blow up, is written as null.
+    Run(RunArgs),
+    /// Time the steps of a scene: 30 warm-up steps, then N timed steps (300 by default).
+    ///
+    /// Prints the median, min, max and interquartile spread of the wall-clock time of a step in
+    /// milliseconds, and the counts of bodies, contacts and islands at the end.
+    Bench(BenchArgs),
+    /// List the built-in scenes, one per line with a description.
+    Scenes,
+}
+
+/// Arguments of `rebond run`.
+#[derive(Debug, Args)]
+struct RunArgs {
+    #[arg(value_name = "SCENE", help = SCENE_HELP)]
+    scene: PathBuf,
+    /// Number of steps to run [default: 10 s of simulated time, see --seconds]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    steps: Option<u64>,
+    /// Simulated time to run, seconds: T / timestep steps, rounded up [default: 10]
+    #[arg(long, value_name = "T", conflicts_with = "steps", value_parser = positive_seconds)]
+    seconds: Option<f64>,
+    /// Write the state of every body to FILE as JSON Lines: step 0, every K-th step and the last
+    /// step. The file is created only once the scene is valid
+    #[arg(long, value_name = "FILE")]
+    record: Option<PathBuf>,
+    /// Record every K-th step (K ≥ 1); needs --record
+    #[arg(
+        long,
+        value_name = "K",
+        default_value_t = 1,
+        requires = "record",
+        value_parser = clap::value_parser!(u64).range(1..)
+    )]
+    every: u64,
+}
+
+/// Arguments of `rebond bench`.
+#[derive(Debug, Args)]
+struct BenchArgs {
+    #[arg(value_name = "SCENE", help = SCENE_HELP)]
+    scene: PathBuf,
+    /// Number of timed steps, after 30 warm-up steps
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = DEFAULT_BENCH_STEPS,
+        value_parser = clap::value_parser!(u32).range(1..)
+    )]
+    steps: u32,
+}
+
+/// Parses `--seconds`: a finite, positive number.
+fn positive_seconds(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(seconds) if seconds.is_finite() && seconds > 0.0 => Ok(seconds),
+        Ok(_) => Err("must be a finite, positive number of seconds".to_owned()),
+        Err(error) => Err(error.to_string()),
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match execute(cli.command) {
+        Ok(output) => {
+            let mut stdout = io::stdout().lock();
+            // A closed stdout (such as `rebond scenes | head -1`) is not an error worth reporting.
+            let _ = stdout
+                .write_all(output.as_bytes())
+                .and_then(|()| stdout.flush());
+            ExitCode::SUCCESS
+        }
+        Err(failure) => {
+            eprintln!("error: {failure}");
+            ExitCode::from(failure.exit_status())
+        }
+    }
+}
+
+/// Runs one subcommand and returns what it prints on stdout.
+fn execute(command: Command) -> Result<String, Failure> {
+    match command {
+        Command::Run(arguments) => {
+            let source = SceneSource::resolve(&arguments.scene)?;
+            let length = match (arguments.steps, arguments.seconds) {
+                (Some(steps), _) => RunLength::Steps(steps),
+                (None, Some(seconds)) => RunLength::Seconds(seconds),
+                (None, None) => RunLength::Seconds(DEFAULT_RUN_SECONDS),
+            };
+            let options = RunOptions {
+                length,
+                record: arguments.record,
+                every: arguments.every,
+            };
+            run::run(&source, &options).map(|summary| summary.to_string())
+        }
+        Command::Bench(arguments) => {
+            let source = SceneSource::resolve(&arguments.scene)?;
+            let steps = usize::try_from(arguments.steps).unwrap_or(usize::MAX);
+            bench::bench(&source, steps).map(|report| report.to_string())
+        }
+        Command::Scenes => Ok(BUILTIN_SCENES
+            .iter()
+            .map(|scene| format!("{:<10} {}\n", scene.name, scene.description))
+            .collect()),
+    }
+}

@@ -1,0 +1,61 @@
+//! The built-in scenes: JSON files under `scenes/` at the workspace root, embedded in the binary.
+//! `python3 scenes/generate.py` (run from anywhere) regenerates them.
+
+/// A scene shipped inside the binary.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BuiltinScene {
+    /// The name to run it by.
+    pub name: &'static str,
+    /// What it shows, in one line.
+    pub description: &'static str,
+    /// The scene file.
+    pub json: &'static str,
+}
+
+/// Every built-in scene, in the order `rebond scenes` lists them.
+pub const BUILTIN_SCENES: &[BuiltinScene] = &[
+    BuiltinScene {
+        name: "showcase",
+        description: "a bit of everything: pyramid, column, bouncing and rolling balls, \
+                      capsules, cylinders and hulls on a ramp, a compound",
+        json: include_str!("../../../scenes/showcase.json"),
+    },
+    BuiltinScene {
+        name: "pyramid",
+        description: "210 unit boxes in a 20-row pyramid on a ground box",
+        json: include_str!("../../../scenes/pyramid.json"),
+    },
+    BuiltinScene {
+        name: "column",
+        description: "10 unit boxes stacked on a ground box",
+        json: include_str!("../../../scenes/column.json"),
+    },
+    BuiltinScene {
+        name: "rain",
+        description: "4,096 unit boxes in a tilted 16x16x16 grid falling onto a ground box",
+        json: include_str!("../../../scenes/rain.json"),
+    },
+    BuiltinScene {
+        name: "ramp",
+        description: "boxes and balls on a 20-degree incline, friction 0.1 to 0.9 by lane, \
+                      halfspace floor",
+        json: include_str!("../../../scenes/ramp.json"),
+    },
+    BuiltinScene {
+        name: "cradle",
+        description: "Newton's cradle: five touching balls with restitution 1, the first moving, \
+                      zero gravity",
+        json: include_str!("../../../scenes/cradle.json"),
+    },
+    BuiltinScene {
+        name: "spinner",
+        description: "free bodies spinning in zero gravity; the intermediate-axis box flips \
+                      (Dzhanibekov effect)",
+        json: include_str!("../../../scenes/spinner.json"),
+    },
+];
+
+/// The built-in scene called `name`.
+pub fn find(name: &str) -> Option<&'static BuiltinScene> {
+    BUILTIN_SCENES.iter().find(|scene| scene.name == name)
+}

@@ -1,0 +1,89 @@
+//! What can make a command fail, and the exit status each failure gives.
+
+use std::fmt;
+use std::io;
+use std::path::{Path, PathBuf};
+
+use crate::scene::SceneError;
+
+/// Exit status for a scene that is not valid (the contract's "bad input").
+pub const EXIT_INVALID_SCENE: u8 = 2;
+/// Exit status for a file that cannot be read or written.
+pub const EXIT_IO: u8 = 1;
+
+/// A failed command; printed as one `error:` line on stderr.
+#[derive(Debug)]
+pub enum Failure {
+    /// The scene was read but is not valid.
+    InvalidScene {
+        /// The file path, or the built-in scene's label.
+        source: String,
+        /// What is wrong, and where.
+        error: SceneError,
+    },
+    /// A file could not be read or written.
+    Io {
+        /// The file concerned.
+        path: PathBuf,
+        /// What was being done, such as `cannot read scene`.
+        action: &'static str,
+        /// Why it failed.
+        error: io::Error,
+    },
+    /// The scene argument is neither an existing file nor a built-in scene.
+    UnknownScene {
+        /// The argument as given.
+        argument: String,
+    },
+    /// The engine refused to step a loaded scene.
+    Step {
+        /// The file path, or the built-in scene's label.
+        source: String,
+        /// The step that failed, counting from 1.
+        step: u64,
+        /// The engine's reason.
+        error: rebond::Error,
+    },
+}
+
+impl Failure {
+    /// A failed read or write of `path`.
+    pub fn io(path: &Path, action: &'static str, error: io::Error) -> Self {
+        Self::Io {
+            path: path.to_owned(),
+            action,
+            error,
+        }
+    }
+
+    /// The process exit status for this failure.
+    pub fn exit_status(&self) -> u8 {
+        match self {
+            Self::InvalidScene { .. } => EXIT_INVALID_SCENE,
+            Self::Io { .. } | Self::UnknownScene { .. } | Self::Step { .. } => EXIT_IO,
+        }
+    }
+}
+
+impl fmt::Display for Failure {
+    fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::InvalidScene { source, error } => write!(formatter, "{source}: {error}"),
+            Self::Io {
+                path,
+                action,
+                error,
+            } => write!(formatter, "{}: {action}: {error}", path.display()),
+            Self::UnknownScene { argument } => write!(
+                formatter,
+                "{argument}: cannot read scene: no such file, and no built-in scene of that name \
+                 (`rebond scenes` lists them)"
+            ),
+            Self::Step {
+                source,
+                step,
+                error,
+            } => write!(formatter, "{source}: step {step} failed: {error}"),
+        }
+    }
+}

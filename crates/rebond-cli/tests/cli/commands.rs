@@ -1,0 +1,143 @@
+//! The command line itself: summaries, bench reports, defaults and usage errors.
+
+use crate::common::{rebond, TestDir};
+
+/// A small scene file: a ground and two unnamed balls.
+const SCENE: &str = r#"{"bodies": [
+    {"name": "ground", "type": "static",
+     "shape": {"type": "box", "half_extents": [10, 0.5, 10]}, "position": [0, -0.5, 0]},
+    {"shape": {"type": "sphere", "radius": 0.5}, "position": [0, 5, 0]},
+    {"shape": {"type": "sphere", "radius": 0.5}, "position": [2, 5, 0]}
+]}"#;
+
+#[test]
+fn run_prints_a_summary() {
+    let dir = TestDir::new("run_summary");
+    let scene = dir.write("scene.json", SCENE);
+    let outcome = rebond([
+        "run".as_ref(),
+        scene.as_os_str(),
+        "--steps".as_ref(),
+        "30".as_ref(),
+    ]);
+    assert_eq!(outcome.status, 0, "{}", outcome.stderr);
+    assert_eq!(outcome.stderr, "");
+    for label in [
+        "scene ",
+        "steps ",
+        "simulated time ",
+        "bodies ",
+        "contacts ",
+        "islands ",
+        "sleeping bodies ",
+        "ms per step ",
+        "energy at start ",
+        "energy at end ",
+    ] {
+        assert!(
+            outcome.stdout.lines().any(|line| line.starts_with(label)),
+            "no `{label}` line in:\n{}",
+            outcome.stdout
+        );
+    }
+    assert!(outcome.stdout.contains("steps            30\n"));
+    assert!(outcome.stdout.contains("simulated time   0.5 s\n"));
+    assert!(outcome.stdout.contains("bodies           3\n"));
+}
+
+#[test]
+fn bench_prints_timings_and_counts() {
+    let dir = TestDir::new("bench_report");
+    let scene = dir.write("scene.json", SCENE);
+    let outcome = rebond([
+        "bench".as_ref(),
+        scene.as_os_str(),
+        "--steps".as_ref(),
+        "20".as_ref(),
+    ]);
+    assert_eq!(outcome.status, 0, "{}", outcome.stderr);
+    for label in [
+        "warm-up steps    30",
+        "measured steps   20",
+        "median ",
+        "min ",
+        "max ",
+        "interquartile ",
+        "bodies           3",
+        "contacts ",
+        "islands ",
+    ] {
+        assert!(
+            outcome.stdout.lines().any(|line| line.starts_with(label)),
+            "no `{label}` line in:\n{}",
+            outcome.stdout
+        );
+    }
+}
+
+#[test]
+fn bench_refuses_a_bad_scene_like_run() {
+    let dir = TestDir::new("bench_bad_scene");
+    let scene = dir.write(
+        "scene.json",
+        r#"{"bodies": [{"shape": {"type": "sphere", "radius": 0}}]}"#,
+    );
+    let outcome = rebond(["bench".as_ref(), scene.as_os_str()]);
+    let line = crate::common::assert_one_error_line(&outcome, 2, &scene);
+    assert!(
+        line.contains("bodies[0].shape.radius: must be positive"),
+        "{line}"
+    );
+}
+
+#[test]
+fn an_unknown_scene_name_is_an_error_with_status_1() {
+    let outcome = rebond(["run", "no-such-scene-or-file"]);
+    assert_eq!(outcome.status, 1);
+    assert_eq!(outcome.stdout, "");
+    assert_eq!(outcome.stderr.lines().count(), 1);
+    assert!(outcome
+        .stderr
+        .starts_with("error: no-such-scene-or-file: cannot read scene"));
+}
+
+#[test]
+fn bad_arguments_are_usage_errors() {
+    for arguments in [
+        &["run", "column", "--steps", "5", "--seconds", "1"][..],
+        &["run", "column", "--steps", "0"],
+        &["run", "column", "--steps", "-3"],
+        &["run", "column", "--seconds", "0"],
+        &["run", "column", "--seconds", "inf"],
+        &["run", "column", "--record", "x.jsonl", "--every", "0"],
+        &["run", "column", "--every", "2"],
+        &["run"],
+        &["bench", "column", "--steps", "0"],
+        &["fly", "column"],
+    ] {
+        let outcome = rebond(arguments);
+        assert_eq!(outcome.status, 2, "{arguments:?}: {}", outcome.stderr);
+        assert_eq!(outcome.stdout, "", "{arguments:?}");
+        assert!(outcome.stderr.starts_with("error:"), "{arguments:?}");
+        assert!(!outcome.stderr.contains("panicked"), "{arguments:?}");
+    }
+}
+
+#[test]
+fn no_subcommand_prints_usage_with_status_2() {
+    let outcome = rebond::<[&str; 0], &str>([]);
+    assert_eq!(outcome.status, 2);
+    assert_eq!(outcome.stdout, "");
+    assert!(outcome.stderr.contains("Usage: rebond"));
+}
+
+#[test]
+fn help_documents_the_defaults_and_the_scene_rule() {
+    let outcome = rebond(["run", "--help"]);
+    assert_eq!(outcome.status, 0);
+    assert!(outcome.stdout.contains("A path that exists wins"));
+    assert!(outcome.stdout.contains("10 s of simulated time"));
+    let outcome = rebond(["bench", "--help"]);
+    assert!(outcome.stdout.contains("30 warm-up steps"));
+    assert!(outcome.stdout.contains("[default: 300]"));
+}

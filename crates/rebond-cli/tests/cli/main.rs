@@ -1,0 +1,8 @@
+//! Tests of the `rebond` binary against the contract in `shared/scene-format.md`: they run the
+//! built binary on scene files written to a scratch directory.
+
+mod bad_input;
+mod commands;
+mod common;
+mod records;
+mod scenes;
