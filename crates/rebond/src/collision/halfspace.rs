@@ -1,0 +1,130 @@
+//! Contacts of any convex shape B resting on or sinking into a halfspace A: the points of B's
+//! surface deepest below the plane, measured along the plane's normal.
+
+use std::f32::consts::TAU;
+
+use super::clipping::reduce_contacts;
+use super::manifold::{ContactPoint, Manifold};
+use crate::math::{Pose, Vec3};
+use crate::shape::{Halfspace, Shape};
+
+/// Most candidate points read from one shape; a hull with more vertices within the margin keeps
+/// the first ones found (a flat face of a hull rarely has more).
+const MAX_CANDIDATES: usize = 64;
+
+/// Rim points sampled on each cylinder cap, at fixed angles in the cylinder's frame so a cylinder
+/// standing on its cap keeps the same point ids from step to step.
+const CYLINDER_RIM_SAMPLES: usize = 8;
+
+/// A cylinder's cap is taken as parallel to the plane when the sine of the angle between its axis
+/// and the normal is below this; the exact deepest rim point is then undefined and the rim
+/// samples carry the contact.
+const CAP_PARALLEL_SINE: f32 = 1.0e-4;
+
+/// A rim sample closer than this fraction of the radius to the exact deepest rim point is the same
+/// point and is not added twice.
+const DUPLICATE_FRACTION: f32 = 1.0e-3;
+
+/// Candidate points of B below (or within `margin` above) the plane.
+struct Candidates {
+    normal: Vec3,
+    plane_point: Vec3,
+    margin: f32,
+    points: [ContactPoint; MAX_CANDIDATES],
+    len: usize,
+}
+
+impl Candidates {
+    /// Adds the surface point `point` of B if it lies within the margin of the plane; the contact
+    /// point sits midway between it and the plane.
+    fn offer(&mut self, point: Vec3, id: u32) {
+        let separation = self.normal.dot(point - self.plane_point);
+        if separation <= self.margin && self.len < MAX_CANDIDATES {
+            self.points[self.len] = ContactPoint {
+                position: point - self.normal * (0.5 * separation),
+                separation,
+                id,
+            };
+            self.len += 1;
+        }
+    }
+}
+
+/// The contact of halfspace A (at `pose_a`) with the convex shape B (at `pose_b`; never a
+/// compound or a halfspace), with the normal from A toward B: the plane's outward normal.
+/// Points: a sphere's lowest point; a capsule's two lowest segment ends; a box's or hull's
+/// vertices; a cylinder's deepest rim points and fixed rim samples. More than four are reduced to
+/// four by depth and spread.
+pub fn collide_halfspace(
+    halfspace: &Halfspace,
+    pose_a: &Pose,
+    shape: &Shape,
+    pose_b: &Pose,
+    margin: f32,
+) -> Option<Manifold> {
+    let normal = pose_a.transform_vector(halfspace.normal());
+    let mut candidates = Candidates {
+        normal,
+        plane_point: pose_a.position,
+        margin,
+        points: [ContactPoint::default(); MAX_CANDIDATES],
+        len: 0,
+    };
+    let down = -normal * shape.core_radius();
+    match shape {
+        Shape::Sphere(_) => candidates.offer(pose_b.position + down, 0),
+        Shape::Capsule(capsule) => {
+            for (id, end) in (0..).zip(capsule.segment()) {
+                candidates.offer(pose_b.transform_point(end) + down, id);
+            }
+        }
+        Shape::Cuboid(cuboid) => {
+            let half = cuboid.half_extents();
+            for id in 0..8u32 {
+                let corner = Vec3::new(
+                    if id & 1 == 0 { -half.x } else { half.x },
+                    if id & 2 == 0 { -half.y } else { half.y },
+                    if id & 4 == 0 { -half.z } else { half.z },
+                );
+                candidates.offer(pose_b.transform_point(corner), id);
+            }
+        }
+        Shape::ConvexHull(hull) => {
+            for (id, vertex) in (0..).zip(hull.vertices()) {
+                candidates.offer(pose_b.transform_point(*vertex), id);
+            }
+        }
+        Shape::Cylinder(cylinder) => {
+            let local_normal = pose_b.inverse_transform_vector(normal);
+            let radial = Vec3::new(local_normal.x, 0.0, local_normal.z);
+            for (cap, y) in [-cylinder.half_height(), cylinder.half_height()]
+                .into_iter()
+                .enumerate()
+            {
+                let cap = cap as u32;
+                let center = Vec3::new(0.0, y, 0.0);
+                let deepest = (radial.length() > CAP_PARALLEL_SINE)
+                    .then(|| center - radial.normalize() * cylinder.radius());
+                if let Some(deepest) = deepest {
+                    candidates.offer(pose_b.transform_point(deepest), 16 + cap);
+                }
+                for sample in 0..CYLINDER_RIM_SAMPLES {
+                    let angle = TAU * sample as f32 / CYLINDER_RIM_SAMPLES as f32;
+                    let rim = center + Vec3::new(angle.cos(), 0.0, angle.sin()) * cylinder.radius();
+                    let duplicate = deepest.is_some_and(|deepest| {
+                        rim.distance(deepest) < DUPLICATE_FRACTION * cylinder.radius()
+                    });
+                    if !duplicate {
+                        let id = cap * CYLINDER_RIM_SAMPLES as u32 + sample as u32;
+                        candidates.offer(pose_b.transform_point(rim), id);
+                    }
+                }
+            }
+        }
+        Shape::Compound(_) | Shape::Halfspace(_) => {}
+    }
+    if candidates.len == 0 {
+        return None;
+    }
+    Some(reduce_contacts(normal, &candidates.points[..candidates.len]))
+}
