@@ -1,89 +1,974 @@
-//! Convex hull of a point cloud. PLACEHOLDER: being replaced by a full implementation.
+//! Convex hull of a point cloud: the smallest convex polyhedron that holds every point.
+//!
+//! Built in four steps:
+//! 1. points within the tolerance of an earlier point are welded to it;
+//! 2. the rest are snapped onto an integer grid of 2³⁹ cells across the cloud's largest extent
+//!    (finer than anything an `f32` can tell apart), and quickhull runs there on exact `i128`
+//!    orientation tests, so its triangulated hull is exactly convex and its topology consistent
+//!    whatever the input (duplicates, coplanar or collinear subsets);
+//! 3. neighbouring triangles within the tolerance of a common plane are merged into one polygon;
+//! 4. vertices left in the middle of an edge between two polygons are dropped.
+//!
+//! Quickhull (step 2) is exact; the other steps use the tolerance.
+
+use std::collections::BTreeMap;
+
+use glam::{DMat3, DVec3};
 
 use crate::error::{Error, ErrorKind, Result};
 use crate::mass::MassProperties;
 use crate::math::{Aabb, Pose, Vec3};
+
+/// Distance within which points count as on a plane (or a line), as a fraction of the cloud's
+/// largest extent. `f32` points carry rounding noise of a few ulps, about 1e-7 of the cloud's size
+/// once rotated or scaled; 1e-5 sits two orders of magnitude above that noise, so a rotated box
+/// still merges into six quads, and far below any feature modelled on purpose (a 10 µm bevel on a
+/// 1 m part).
+const RELATIVE_TOLERANCE: f64 = 1e-5;
+
+/// Lower bound of the tolerance in units of the largest coordinate magnitude: a cloud far from its
+/// origin carries the rounding of its coordinates (a few `f32` ulps), which may exceed 1e-5 of its
+/// size.
+const MAGNITUDE_TOLERANCE: f64 = 4.0 * f32::EPSILON as f64;
+
+/// Cosine of the largest angle between the normals of a facet and of the plane it merges into.
+/// A facet whose corners all lie within the tolerance of the plane is nearly parallel to it or
+/// thin across it; the angle keeps a steep facet of a thin hull (a slab's rim) from folding its top
+/// face over onto its sides. Slivers, no higher than the tolerance, merge on distance alone: their
+/// normal is rounding noise.
+const MERGE_COSINE: f64 = 0.5;
+
+/// Grid cells across the cloud's largest extent. Snapped coordinates lie in `[-2³⁸, 2³⁸]`, so their
+/// differences fit in 40 bits, a triangle normal (a cross product) in 82 bits and an orientation
+/// test (normal · difference) in 123 bits: exact in `i128`.
+const GRID_CELLS: f64 = (1u64 << 39) as f64;
 
 /// A planar face of a hull.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HullFace {
     /// Unit outward normal.
     pub normal: Vec3,
-    /// Plane offset: `normal · p = offset` on the face.
+    /// Plane offset, metres: `normal · p = offset` on the face. The face's vertices lie on the
+    /// plane and every input point behind it (`normal · p ≤ offset`), both to within twice the
+    /// hull tolerance.
     pub offset: f32,
-    /// Vertex indices, counter-clockwise seen from outside.
+    /// Indices into [`ConvexHull::vertices`], counter-clockwise seen from outside, starting with the
+    /// smallest.
     pub vertices: Vec<u32>,
 }
 
 /// An edge of a hull between two faces.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HullEdge {
-    /// Vertex indices of the two ends.
+    /// Indices into [`ConvexHull::vertices`] of the two ends, smaller first.
     pub vertices: [u32; 2],
-    /// The two faces that meet at the edge.
+    /// Indices into [`ConvexHull::faces`]: `faces[0]` runs along the edge from `vertices[0]` to
+    /// `vertices[1]` (counter-clockwise), `faces[1]` the other way.
     pub faces: [u32; 2],
 }
 
-/// The convex hull of a point cloud.
+/// The convex hull of a point cloud, in the body frame: vertices, planar polygon faces and edges.
+///
+/// Its vertices are the input points that are corners of the hull, in input order (the first of
+/// points closer than the tolerance); points inside, on a face or in the middle of an edge are
+/// dropped. The topology is a closed polyhedron: `V − E + F = 2`, every edge between exactly two
+/// faces, every face a polygon planar to within the tolerance. A corner lies on at least three
+/// faces, except where the cloud has features at the scale of the tolerance: two nearly coplanar
+/// faces may then meet along a slightly bent edge.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ConvexHull {
     vertices: Vec<Vec3>,
     faces: Vec<HullFace>,
     edges: Vec<HullEdge>,
+    /// Mass properties at unit density: the mass equals the volume.
+    unit: MassProperties,
 }
 
 impl ConvexHull {
-    /// The hull of `points`.
+    /// The hull of `points` (metres, body frame).
+    ///
+    /// The tolerance is `1e-5` of the cloud's largest extent, and at least four `f32` ulps of its
+    /// largest coordinate. Points closer than that to each other count as one, and to a plane of
+    /// the hull as on it: nearly coplanar faces merge and the points inside them drop.
+    ///
+    /// # Errors
+    /// A non-finite coordinate, field `points[i]` ([`ErrorKind::NotFinite`]); fewer than 4 points,
+    /// points all coincident, collinear or coplanar (the hull no thicker than twice the tolerance),
+    /// or a volume or inertia that an `f32` cannot hold, field `points`
+    /// ([`ErrorKind::DegenerateHull`]). Building takes `O(n log n)` time for typical clouds.
     pub fn new(points: &[Vec3]) -> Result<Self> {
-        if points.len() < 4 {
-            return Err(Error::new(
-                "points",
-                ErrorKind::DegenerateHull("fewer than 4 points"),
-            ));
+        if let Some(index) = points.iter().position(|point| !point.is_finite()) {
+            return Err(Error::new(format!("points[{index}]"), ErrorKind::NotFinite));
         }
-        Ok(Self {
-            vertices: points.to_vec(),
-            faces: Vec::new(),
-            edges: Vec::new(),
-        })
+        if points.len() < 4 {
+            return Err(degenerate("fewer than 4 points"));
+        }
+        if u32::try_from(points.len()).is_err() {
+            return Err(degenerate("more than u32::MAX points"));
+        }
+        let cloud = Cloud::new(points)?;
+        let simplex = initial_simplex(&cloud)?;
+        let facets = Quickhull::build(&cloud.grid, simplex)?;
+        let (outlines, normals) = Merger::new(&cloud, &facets).merge();
+        let outlines = drop_edge_vertices(outlines, &cloud.positions, cloud.tolerance);
+        assemble(&cloud.positions, &outlines, &normals, cloud.tolerance)
     }
 
-    /// Hull vertices.
+    /// Hull vertices, metres, in the order of the input points.
     pub fn vertices(&self) -> &[Vec3] {
         &self.vertices
     }
 
-    /// Hull faces.
+    /// Hull faces: convex polygons (to within the tolerance), one per plane.
     pub fn faces(&self) -> &[HullFace] {
         &self.faces
     }
 
-    /// Hull edges.
+    /// Hull edges, each once, sorted by their vertex indices.
     pub fn edges(&self) -> &[HullEdge] {
         &self.edges
     }
 
-    /// Mass properties.
-    pub fn mass_properties(&self, _density: f32) -> MassProperties {
-        MassProperties::ZERO
-    }
-
-    /// World bounding box.
-    pub fn aabb(&self, pose: &Pose) -> Aabb {
-        let mut bounds = Aabb::new(Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
-        for vertex in &self.vertices {
-            let point = pose.transform_point(*vertex);
-            bounds = bounds.union(&Aabb::new(point, point));
+    /// Mass properties of the solid hull at uniform `density` (kg/m³), exact for the polyhedron.
+    ///
+    /// Each face is fanned into triangles `(a, b, c)`, taken relative to the mean vertex `r`; each
+    /// makes a tetrahedron with apex `r` of signed volume `det[a b c]/6`. Summed over all of them:
+    /// `V = Σ det/6`, `∫x dV = Σ det·s/24` and `∫x xᵀ dV = Σ det/120·(aaᵀ + bbᵀ + ccᵀ + ssᵀ)` with
+    /// `s = a + b + c`. With `g = ∫x dV / V`, the centre of mass is `r + g`, the central second
+    /// moment `C = ∫x xᵀ dV − V g gᵀ`, and the inertia about the centre of mass `I = ρ (tr C·𝟙 − C)`,
+    /// a full symmetric tensor (kg·m²); the mass is `ρ V` (kg). Evaluated once, in `f64`, when the
+    /// hull is built.
+    pub fn mass_properties(&self, density: f32) -> MassProperties {
+        MassProperties {
+            mass: density * self.unit.mass,
+            center_of_mass: self.unit.center_of_mass,
+            inertia: self.unit.inertia * density,
         }
-        bounds
     }
 
-    /// Support point.
-    pub fn support(&self, direction: Vec3) -> Vec3 {
-        self.vertices
-            .iter()
-            .copied()
-            .max_by(|a, b| a.dot(direction).total_cmp(&b.dot(direction)))
-            .unwrap_or(Vec3::ZERO)
+    /// World bounding box at `pose`: the box of the transformed vertices.
+    pub fn aabb(&self, pose: &Pose) -> Aabb {
+        let (min, max) = self.vertices.iter().fold(
+            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+            |(min, max), vertex| {
+                let point = pose.transform_point(*vertex);
+                (min.min(point), max.max(point))
+            },
+        );
+        Aabb::new(min, max)
     }
+
+    /// The vertex with the largest `vertex · direction`; ties (and a NaN direction) go to the
+    /// lowest index.
+    pub fn support(&self, direction: Vec3) -> Vec3 {
+        let mut best = self.vertices.first().copied().unwrap_or(Vec3::ZERO);
+        let mut best_dot = best.dot(direction);
+        for vertex in self.vertices.iter().skip(1) {
+            let dot = vertex.dot(direction);
+            if dot > best_dot {
+                best = *vertex;
+                best_dot = dot;
+            }
+        }
+        best
+    }
+}
+
+/// A [`ErrorKind::DegenerateHull`] error on field `points`.
+fn degenerate(reason: &'static str) -> Error {
+    Error::new("points", ErrorKind::DegenerateHull(reason))
+}
+
+/// The error for a hull whose exact construction contradicts itself; exact arithmetic rules it
+/// out, so it stands guard instead of a panic.
+fn inconsistent() -> Error {
+    degenerate("inconsistent hull topology")
+}
+
+/// The input points, welded, in `f64` and on the exact grid.
+struct Cloud {
+    /// Coordinates, metres, in input order; each farther than the tolerance from the others.
+    positions: Vec<DVec3>,
+    /// The same points snapped to the grid.
+    grid: Vec<[i64; 3]>,
+    /// Grid cells per metre.
+    scale: f64,
+    /// Distance within which a point counts as on a plane or line, metres.
+    tolerance: f64,
+}
+
+impl Cloud {
+    /// Welds finite `points` (drops each point within the tolerance of an earlier kept one) and
+    /// snaps the rest to the grid.
+    fn new(points: &[Vec3]) -> Result<Self> {
+        let positions: Vec<DVec3> = points.iter().map(|point| point.as_dvec3()).collect();
+        let (min, max) = positions.iter().fold(
+            (DVec3::INFINITY, DVec3::NEG_INFINITY),
+            |(min, max), point| (min.min(*point), max.max(*point)),
+        );
+        let extent = (max - min).max_element();
+        if extent <= 0.0 {
+            return Err(degenerate("all points coincide"));
+        }
+        let magnitude = min.abs().max(max.abs()).max_element();
+        let tolerance = (RELATIVE_TOLERANCE * extent).max(MAGNITUDE_TOLERANCE * magnitude);
+        // Kept points go in buckets of side `tolerance` (at most 1e5 across), so a kept point
+        // within the tolerance of a new one can only be in the 27 buckets around it.
+        let bucket_of = |point: DVec3| {
+            let bucket = ((point - min) / tolerance).floor();
+            [bucket.x as i64, bucket.y as i64, bucket.z as i64]
+        };
+        let mut buckets: BTreeMap<[i64; 3], Vec<DVec3>> = BTreeMap::new();
+        let mut kept = Vec::new();
+        for point in positions {
+            let [x, y, z] = bucket_of(point);
+            let welded = (x - 1..=x + 1).any(|x| {
+                (y - 1..=y + 1).any(|y| {
+                    (z - 1..=z + 1).any(|z| {
+                        buckets.get(&[x, y, z]).is_some_and(|near| {
+                            near.iter().any(|other| other.distance(point) <= tolerance)
+                        })
+                    })
+                })
+            });
+            if !welded {
+                buckets.entry([x, y, z]).or_default().push(point);
+                kept.push(point);
+            }
+        }
+        let center = 0.5 * (min + max);
+        let scale = GRID_CELLS / extent;
+        let grid = kept
+            .iter()
+            .map(|point| {
+                let cell = ((*point - center) * scale).round();
+                [cell.x as i64, cell.y as i64, cell.z as i64]
+            })
+            .collect();
+        Ok(Self {
+            positions: kept,
+            grid,
+            scale,
+            tolerance,
+        })
+    }
+}
+
+/// An exact vector of grid differences or normals.
+type Exact = [i128; 3];
+
+fn difference(a: [i64; 3], b: [i64; 3]) -> Exact {
+    [
+        i128::from(a[0]) - i128::from(b[0]),
+        i128::from(a[1]) - i128::from(b[1]),
+        i128::from(a[2]) - i128::from(b[2]),
+    ]
+}
+
+fn cross(a: Exact, b: Exact) -> Exact {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: Exact, b: Exact) -> i128 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn to_f64(a: Exact) -> DVec3 {
+    DVec3::new(a[0] as f64, a[1] as f64, a[2] as f64)
+}
+
+/// Four points spanning a tetrahedron: the farthest pair among the axis extremes, the point
+/// farthest from their line, the point farthest from the plane of the three. Fails when one of
+/// these distances is within the tolerance (coincident, collinear or coplanar cloud).
+fn initial_simplex(cloud: &Cloud) -> Result<[u32; 4]> {
+    let grid = &cloud.grid;
+    let tolerance = cloud.tolerance * cloud.scale;
+    let mut extremes = [0usize; 6];
+    for (index, point) in grid.iter().enumerate() {
+        for axis in 0..3 {
+            if point[axis] < grid[extremes[2 * axis]][axis] {
+                extremes[2 * axis] = index;
+            }
+            if point[axis] > grid[extremes[2 * axis + 1]][axis] {
+                extremes[2 * axis + 1] = index;
+            }
+        }
+    }
+    let (mut a, mut b, mut widest) = (extremes[0], extremes[1], 0);
+    for (k, &first) in extremes.iter().enumerate() {
+        for &second in &extremes[k + 1..] {
+            let span = difference(grid[second], grid[first]);
+            if dot(span, span) > widest {
+                (a, b, widest) = (first, second, dot(span, span));
+            }
+        }
+    }
+    if (widest as f64).sqrt() <= tolerance {
+        return Err(degenerate("all points coincide"));
+    }
+    let axis = difference(grid[b], grid[a]);
+    let (mut c, mut farthest) = (a, 0.0);
+    for (index, point) in grid.iter().enumerate() {
+        let area = to_f64(cross(axis, difference(*point, grid[a]))).length();
+        if area > farthest {
+            (c, farthest) = (index, area);
+        }
+    }
+    if farthest <= tolerance * to_f64(axis).length() {
+        return Err(degenerate("all points are collinear"));
+    }
+    let normal = cross(axis, difference(grid[c], grid[a]));
+    let (mut d, mut highest) = (a, 0);
+    for (index, point) in grid.iter().enumerate() {
+        let height = dot(normal, difference(*point, grid[a])).abs();
+        if height > highest {
+            (d, highest) = (index, height);
+        }
+    }
+    if highest as f64 <= tolerance * to_f64(normal).length() {
+        return Err(degenerate("all points are coplanar"));
+    }
+    Ok([a as u32, b as u32, c as u32, d as u32])
+}
+
+/// A triangle of the hull under construction.
+struct Triangle {
+    /// Point indices, counter-clockwise seen from outside.
+    vertices: [u32; 3],
+    /// Outward normal `(v1 − v0) × (v2 − v0)`, grid units².
+    normal: Exact,
+    /// The triangle across edge `k`, which runs from `vertices[k]` to `vertices[(k + 1) % 3]`.
+    neighbors: [usize; 3],
+    /// Points strictly above the triangle's plane that no earlier triangle claimed.
+    outside: Vec<u32>,
+    /// False once the triangle is replaced.
+    alive: bool,
+    /// The pass that last tested the triangle against an eye point.
+    visit: usize,
+    /// Whether that pass found the eye strictly above it.
+    visible: bool,
+}
+
+/// A triangle of the finished exact hull.
+struct Facet {
+    /// Point indices, counter-clockwise seen from outside.
+    vertices: [u32; 3],
+    /// The facet across edge `k` (from `vertices[k]` to `vertices[(k + 1) % 3]`).
+    neighbors: [usize; 3],
+    /// Unit outward normal.
+    normal: DVec3,
+    /// Twice the area in grid units², a weight.
+    area: f64,
+}
+
+/// Quickhull on the grid: repeatedly take the farthest point outside a triangle, remove every
+/// triangle that sees it and fan new triangles from it to the horizon.
+struct Quickhull<'a> {
+    grid: &'a [[i64; 3]],
+    triangles: Vec<Triangle>,
+}
+
+impl<'a> Quickhull<'a> {
+    /// The exact triangulated hull of `grid`, starting from a non-degenerate `simplex`.
+    fn build(grid: &'a [[i64; 3]], simplex: [u32; 4]) -> Result<Vec<Facet>> {
+        let mut hull = Self {
+            grid,
+            triangles: Vec::new(),
+        };
+        hull.start(simplex)?;
+        hull.expand()?;
+        Ok(hull.facets())
+    }
+
+    /// `normal · (point − v0)`: positive strictly above the triangle's plane, exact.
+    fn height(&self, triangle: usize, point: u32) -> i128 {
+        let triangle = &self.triangles[triangle];
+        dot(
+            triangle.normal,
+            difference(
+                self.grid[point as usize],
+                self.grid[triangle.vertices[0] as usize],
+            ),
+        )
+    }
+
+    fn normal(&self, [a, b, c]: [u32; 3]) -> Exact {
+        let origin = self.grid[a as usize];
+        cross(
+            difference(self.grid[b as usize], origin),
+            difference(self.grid[c as usize], origin),
+        )
+    }
+
+    fn push(&mut self, vertices: [u32; 3], neighbors: [usize; 3]) {
+        let normal = self.normal(vertices);
+        self.triangles.push(Triangle {
+            vertices,
+            normal,
+            neighbors,
+            outside: Vec::new(),
+            alive: true,
+            visit: 0,
+            visible: false,
+        });
+    }
+
+    /// The four faces of the simplex, facing away from its fourth corner, and every other point
+    /// handed to the first face it lies strictly above.
+    fn start(&mut self, simplex: [u32; 4]) -> Result<()> {
+        for [i, j, k, omitted] in [[1, 2, 3, 0], [0, 2, 3, 1], [0, 1, 3, 2], [0, 1, 2, 3]] {
+            let mut corners = [simplex[i], simplex[j], simplex[k]];
+            let opposite = difference(
+                self.grid[simplex[omitted] as usize],
+                self.grid[corners[0] as usize],
+            );
+            if dot(self.normal(corners), opposite) > 0 {
+                corners.swap(1, 2);
+            }
+            self.push(corners, [0; 3]);
+        }
+        let mut directed = BTreeMap::new();
+        for (index, triangle) in self.triangles.iter().enumerate() {
+            for k in 0..3 {
+                directed.insert(
+                    (triangle.vertices[k], triangle.vertices[(k + 1) % 3]),
+                    index,
+                );
+            }
+        }
+        for triangle in &mut self.triangles {
+            for k in 0..3 {
+                let reverse = (triangle.vertices[(k + 1) % 3], triangle.vertices[k]);
+                triangle.neighbors[k] = *directed.get(&reverse).ok_or_else(inconsistent)?;
+            }
+        }
+        for point in 0..self.grid.len() as u32 {
+            if !simplex.contains(&point) {
+                if let Some(triangle) = (0..4).find(|&t| self.height(t, point) > 0) {
+                    self.triangles[triangle].outside.push(point);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The point of a live triangle's outside set farthest above it (lowest index on ties).
+    fn eye(&self, triangle: usize) -> Option<u32> {
+        if !self.triangles[triangle].alive {
+            return None;
+        }
+        let mut best: Option<(u32, i128)> = None;
+        for &point in &self.triangles[triangle].outside {
+            let height = self.height(triangle, point);
+            if best.is_none_or(|(_, highest)| height > highest) {
+                best = Some((point, height));
+            }
+        }
+        best.map(|(point, _)| point)
+    }
+
+    /// Adds outside points one by one until no triangle has any.
+    fn expand(&mut self) -> Result<()> {
+        let mut pending: Vec<usize> = (0..self.triangles.len()).collect();
+        let mut pass = 0;
+        while let Some(start) = pending.pop() {
+            let Some(eye) = self.eye(start) else {
+                continue;
+            };
+            pass += 1;
+            let visible = self.visible_from(start, eye, pass);
+            let horizon = self.horizon(&visible, pass)?;
+            let first = self.triangles.len();
+            let count = horizon.len();
+            for (k, &(from, to, outer)) in horizon.iter().enumerate() {
+                self.push(
+                    [from, to, eye],
+                    [
+                        outer,
+                        first + (k + 1) % count,
+                        first + (k + count - 1) % count,
+                    ],
+                );
+                let vertices = self.triangles[outer].vertices;
+                let slot = (0..3)
+                    .find(|&j| vertices[j] == to && vertices[(j + 1) % 3] == from)
+                    .ok_or_else(inconsistent)?;
+                self.triangles[outer].neighbors[slot] = first + k;
+            }
+            let mut orphans = Vec::new();
+            for &triangle in &visible {
+                self.triangles[triangle].alive = false;
+                orphans.append(&mut self.triangles[triangle].outside);
+            }
+            for point in orphans {
+                if point == eye {
+                    continue;
+                }
+                if let Some(triangle) = (first..first + count).find(|&t| self.height(t, point) > 0)
+                {
+                    self.triangles[triangle].outside.push(point);
+                }
+            }
+            pending
+                .extend((first..first + count).filter(|&t| !self.triangles[t].outside.is_empty()));
+        }
+        Ok(())
+    }
+
+    /// The triangles that see `eye` strictly above their plane, found by flooding from `start`.
+    fn visible_from(&mut self, start: usize, eye: u32, pass: usize) -> Vec<usize> {
+        self.triangles[start].visit = pass;
+        self.triangles[start].visible = true;
+        let mut visible = vec![start];
+        let mut next = 0;
+        while next < visible.len() {
+            let neighbors = self.triangles[visible[next]].neighbors;
+            next += 1;
+            for neighbor in neighbors {
+                if self.triangles[neighbor].visit == pass {
+                    continue;
+                }
+                let sees = self.height(neighbor, eye) > 0;
+                self.triangles[neighbor].visit = pass;
+                self.triangles[neighbor].visible = sees;
+                if sees {
+                    visible.push(neighbor);
+                }
+            }
+        }
+        visible
+    }
+
+    /// The edges `(from, to, outer triangle)` between visible and hidden triangles, in order around
+    /// the visible region. Exact tests make that region a disk, so the edges form one cycle.
+    fn horizon(&self, visible: &[usize], pass: usize) -> Result<Vec<(u32, u32, usize)>> {
+        let mut edges = Vec::new();
+        for &triangle in visible {
+            let triangle = &self.triangles[triangle];
+            for k in 0..3 {
+                let neighbor = &self.triangles[triangle.neighbors[k]];
+                if !(neighbor.visit == pass && neighbor.visible) {
+                    edges.push((
+                        triangle.vertices[k],
+                        triangle.vertices[(k + 1) % 3],
+                        triangle.neighbors[k],
+                    ));
+                }
+            }
+        }
+        edges.sort_unstable();
+        if edges.is_empty() || edges.windows(2).any(|pair| pair[0].0 == pair[1].0) {
+            return Err(inconsistent());
+        }
+        let mut ordered = vec![edges[0]];
+        loop {
+            let to = ordered[ordered.len() - 1].1;
+            let next = edges
+                .binary_search_by_key(&to, |edge| edge.0)
+                .map_err(|_| inconsistent())?;
+            if next == 0 {
+                break;
+            }
+            if ordered.len() == edges.len() {
+                return Err(inconsistent());
+            }
+            ordered.push(edges[next]);
+        }
+        if ordered.len() == edges.len() {
+            Ok(ordered)
+        } else {
+            Err(inconsistent())
+        }
+    }
+
+    /// The live triangles, renumbered.
+    fn facets(self) -> Vec<Facet> {
+        let alive: Vec<usize> = (0..self.triangles.len())
+            .filter(|&t| self.triangles[t].alive)
+            .collect();
+        let mut renumber = vec![0; self.triangles.len()];
+        for (index, &triangle) in alive.iter().enumerate() {
+            renumber[triangle] = index;
+        }
+        alive
+            .iter()
+            .map(|&triangle| {
+                let triangle = &self.triangles[triangle];
+                let normal = to_f64(triangle.normal);
+                Facet {
+                    vertices: triangle.vertices,
+                    neighbors: triangle.neighbors.map(|neighbor| renumber[neighbor]),
+                    normal: normal.normalize(),
+                    area: normal.length(),
+                }
+            })
+            .collect()
+    }
+}
+
+/// Groups neighbouring facets lying within the tolerance of a common plane into polygons.
+///
+/// Largest facets seed first. A group grows across edges to facets whose three corners lie within
+/// the tolerance of the group's plane and whose normal is within 60° of the group's
+/// ([`MERGE_COSINE`]; slivers, whose normal means nothing, are exempt). The plane is first the
+/// seed's, then the area-weighted plane of that first growth, from which the group grows again
+/// (when the seed itself lies on it). Every member lies within the tolerance of the plane the
+/// group ends with, so merging cannot drift along a curved surface, and that plane is the face's.
+/// A group whose outline is not a single simple loop (not a disk) is dropped back to its seed.
+struct Merger<'a> {
+    positions: &'a [DVec3],
+    facets: &'a [Facet],
+    tolerance: f64,
+    /// Whether each facet is a sliver: no higher than the tolerance over its longest edge.
+    sliver: Vec<bool>,
+    /// The group of each facet, `usize::MAX` while unassigned.
+    group: Vec<usize>,
+    /// The growth that last reached each facet.
+    mark: Vec<usize>,
+    growth: usize,
+}
+
+impl<'a> Merger<'a> {
+    fn new(cloud: &'a Cloud, facets: &'a [Facet]) -> Self {
+        let sliver = facets
+            .iter()
+            .map(|facet| {
+                let [a, b, c] = facet
+                    .vertices
+                    .map(|vertex| cloud.positions[vertex as usize]);
+                let longest = (b - a).length().max((c - b).length()).max((a - c).length());
+                (b - a).cross(c - a).length() <= cloud.tolerance * longest
+            })
+            .collect();
+        Self {
+            positions: &cloud.positions,
+            facets,
+            tolerance: cloud.tolerance,
+            sliver,
+            group: vec![usize::MAX; facets.len()],
+            mark: vec![0; facets.len()],
+            growth: 0,
+        }
+    }
+
+    /// The outline of each polygon (point indices counter-clockwise seen from outside) and the
+    /// unit normal of the plane its members lie on.
+    fn merge(mut self) -> (Vec<Vec<u32>>, Vec<DVec3>) {
+        let facets = self.facets;
+        let mut order: Vec<usize> = (0..facets.len()).collect();
+        order.sort_by(|&a, &b| facets[b].area.total_cmp(&facets[a].area).then(a.cmp(&b)));
+        let mut outlines = Vec::new();
+        let mut normals = Vec::new();
+        for seed in order {
+            if self.group[seed] != usize::MAX {
+                continue;
+            }
+            let mut normal = facets[seed].normal;
+            let mut members = self.grow(seed, normal, normal.dot(self.centroid(seed)));
+            let (fitted, offset) = self.fit(&members, normal);
+            if self.on_plane(seed, fitted, offset) {
+                normal = fitted;
+                members = self.grow(seed, normal, offset);
+            }
+            let (members, outline, normal) = match self.outline(&members) {
+                Some(outline) => (members, outline, normal),
+                None => (
+                    vec![seed],
+                    facets[seed].vertices.to_vec(),
+                    facets[seed].normal,
+                ),
+            };
+            for member in members {
+                self.group[member] = outlines.len();
+            }
+            outlines.push(outline);
+            normals.push(normal);
+        }
+        (outlines, normals)
+    }
+
+    fn centroid(&self, facet: usize) -> DVec3 {
+        let [a, b, c] = self.facets[facet].vertices;
+        (self.positions[a as usize] + self.positions[b as usize] + self.positions[c as usize]) / 3.0
+    }
+
+    /// The unassigned facets reachable from `seed` within the tolerance of the plane
+    /// `normal · p = offset`, marked with a new growth number.
+    fn grow(&mut self, seed: usize, normal: DVec3, offset: f64) -> Vec<usize> {
+        self.growth += 1;
+        self.mark[seed] = self.growth;
+        let mut members = vec![seed];
+        let mut next = 0;
+        while next < members.len() {
+            let neighbors = self.facets[members[next]].neighbors;
+            next += 1;
+            for neighbor in neighbors {
+                if self.mark[neighbor] == self.growth || self.group[neighbor] != usize::MAX {
+                    continue;
+                }
+                let steep = self.facets[neighbor].normal.dot(normal) <= MERGE_COSINE;
+                if self.on_plane(neighbor, normal, offset) && (self.sliver[neighbor] || !steep) {
+                    self.mark[neighbor] = self.growth;
+                    members.push(neighbor);
+                }
+            }
+        }
+        members
+    }
+
+    /// Whether the corners of `facet` lie within the tolerance of the plane `normal · p = offset`.
+    fn on_plane(&self, facet: usize, normal: DVec3, offset: f64) -> bool {
+        self.facets[facet].vertices.iter().all(|&vertex| {
+            (normal.dot(self.positions[vertex as usize]) - offset).abs() <= self.tolerance
+        })
+    }
+
+    /// The area-weighted mean plane of `members`: normal and offset.
+    fn fit(&self, members: &[usize], fallback: DVec3) -> (DVec3, f64) {
+        let mut normal = DVec3::ZERO;
+        let mut moment = DVec3::ZERO;
+        let mut area = 0.0;
+        for &member in members {
+            let facet = &self.facets[member];
+            normal += facet.area * facet.normal;
+            moment += facet.area * self.centroid(member);
+            area += facet.area;
+        }
+        let normal = normal.normalize_or(fallback);
+        (normal, normal.dot(moment / area))
+    }
+
+    /// The boundary of the last growth `members` as one loop of point indices, or `None` when it
+    /// is not a single simple loop.
+    fn outline(&self, members: &[usize]) -> Option<Vec<u32>> {
+        let mut edges = Vec::new();
+        for &member in members {
+            let facet = &self.facets[member];
+            for k in 0..3 {
+                if self.mark[facet.neighbors[k]] != self.growth {
+                    edges.push((facet.vertices[k], facet.vertices[(k + 1) % 3]));
+                }
+            }
+        }
+        edges.sort_unstable();
+        if edges.is_empty() || edges.windows(2).any(|pair| pair[0].0 == pair[1].0) {
+            return None;
+        }
+        let mut outline = vec![edges[0].0];
+        let mut to = edges[0].1;
+        while to != edges[0].0 {
+            if outline.len() == edges.len() {
+                return None;
+            }
+            let next = edges.binary_search_by_key(&to, |edge| edge.0).ok()?;
+            outline.push(to);
+            to = edges[next].1;
+        }
+        (outline.len() == edges.len()).then_some(outline)
+    }
+}
+
+/// Drops every vertex shared by exactly two polygons that lies within `tolerance` of the segment
+/// between its two neighbours: it sits in the middle of an edge. The polygons run through such a
+/// vertex in opposite directions with the same neighbours, so dropping it from both keeps them
+/// consistent. A polygon keeps at least three vertices.
+fn drop_edge_vertices(
+    mut outlines: Vec<Vec<u32>>,
+    positions: &[DVec3],
+    tolerance: f64,
+) -> Vec<Vec<u32>> {
+    let mut places = vec![Vec::new(); positions.len()];
+    for (polygon, outline) in outlines.iter().enumerate() {
+        for (slot, &vertex) in outline.iter().enumerate() {
+            places[vertex as usize].push((polygon, slot));
+        }
+    }
+    let ring = |outline: &Vec<u32>, step: usize| -> Vec<usize> {
+        (0..outline.len())
+            .map(|slot| (slot + step) % outline.len())
+            .collect()
+    };
+    let mut next: Vec<Vec<usize>> = outlines.iter().map(|outline| ring(outline, 1)).collect();
+    let mut previous: Vec<Vec<usize>> = outlines
+        .iter()
+        .map(|outline| ring(outline, outline.len() - 1))
+        .collect();
+    let mut remaining: Vec<usize> = outlines.iter().map(Vec::len).collect();
+    let mut dropped = vec![false; positions.len()];
+    for (vertex, place) in places.iter().enumerate() {
+        let &[(first, slot), (second, other_slot)] = place.as_slice() else {
+            continue;
+        };
+        if remaining[first] <= 3 || remaining[second] <= 3 {
+            continue;
+        }
+        let before = positions[outlines[first][previous[first][slot]] as usize];
+        let after = positions[outlines[first][next[first][slot]] as usize];
+        if !near_segment(positions[vertex], before, after, tolerance) {
+            continue;
+        }
+        for (polygon, slot) in [(first, slot), (second, other_slot)] {
+            let (back, ahead) = (previous[polygon][slot], next[polygon][slot]);
+            next[polygon][back] = ahead;
+            previous[polygon][ahead] = back;
+            remaining[polygon] -= 1;
+        }
+        dropped[vertex] = true;
+    }
+    for outline in &mut outlines {
+        outline.retain(|&vertex| !dropped[vertex as usize]);
+    }
+    outlines
+}
+
+/// Whether `point` lies within `tolerance` of the segment from `a` to `b`, between its ends.
+fn near_segment(point: DVec3, a: DVec3, b: DVec3, tolerance: f64) -> bool {
+    let along = b - a;
+    let t = (point - a).dot(along) / along.length_squared();
+    (0.0..=1.0).contains(&t) && (point - (a + t * along)).length() <= tolerance
+}
+
+/// The hull of polygon `outlines` over `positions`: vertices renumbered in input order, face planes
+/// (the `normals` the polygons were merged on, offset of the farthest face vertex), edges and mass
+/// properties.
+///
+/// Fails as coplanar when the hull is no thicker than twice `tolerance` across its largest face:
+/// it then fits in the band of ±`tolerance` that faces merge within, so its top and bottom are not
+/// told apart. (The initial simplex only catches a cloud thinner than about one tolerance.)
+fn assemble(
+    positions: &[DVec3],
+    outlines: &[Vec<u32>],
+    normals: &[DVec3],
+    tolerance: f64,
+) -> Result<ConvexHull> {
+    let mut used = vec![false; positions.len()];
+    for &vertex in outlines.iter().flatten() {
+        used[vertex as usize] = true;
+    }
+    let mut renumber = vec![0u32; positions.len()];
+    let mut corners = Vec::new();
+    for (point, position) in positions.iter().enumerate() {
+        if used[point] {
+            renumber[point] = corners.len() as u32;
+            corners.push(*position);
+        }
+    }
+    let mut faces = Vec::with_capacity(outlines.len());
+    let mut largest = (0.0, DVec3::ZERO, 0.0);
+    for (outline, &normal) in outlines.iter().zip(normals) {
+        let mut vertices: Vec<u32> = outline
+            .iter()
+            .map(|&vertex| renumber[vertex as usize])
+            .collect();
+        let smallest = (0..vertices.len())
+            .min_by_key(|&k| vertices[k])
+            .unwrap_or(0);
+        vertices.rotate_left(smallest);
+        let origin = corners[vertices[0] as usize];
+        let area = vertices
+            .iter()
+            .zip(vertices.iter().cycle().skip(1))
+            .map(|(&a, &b)| (corners[a as usize] - origin).cross(corners[b as usize] - origin))
+            .sum::<DVec3>()
+            .dot(normal);
+        let offset = vertices
+            .iter()
+            .map(|&vertex| normal.dot(corners[vertex as usize]))
+            .fold(f64::NEG_INFINITY, f64::max);
+        if area > largest.0 {
+            largest = (area, normal, offset);
+        }
+        faces.push(HullFace {
+            normal: normal.as_vec3(),
+            offset: offset as f32,
+            vertices,
+        });
+    }
+    let (_, normal, offset) = largest;
+    let thickness = corners
+        .iter()
+        .map(|corner| offset - normal.dot(*corner))
+        .fold(0.0, f64::max);
+    if thickness <= 2.0 * tolerance {
+        return Err(degenerate("all points are coplanar"));
+    }
+    let mut directed = BTreeMap::new();
+    for (index, face) in faces.iter().enumerate() {
+        let ring = face
+            .vertices
+            .iter()
+            .zip(face.vertices.iter().cycle().skip(1));
+        for (&from, &to) in ring {
+            if directed.insert((from, to), index as u32).is_some() {
+                return Err(inconsistent());
+            }
+        }
+    }
+    let mut edges = Vec::with_capacity(directed.len() / 2);
+    for (&(from, to), &face) in &directed {
+        if from < to {
+            let twin = *directed.get(&(to, from)).ok_or_else(inconsistent)?;
+            edges.push(HullEdge {
+                vertices: [from, to],
+                faces: [face, twin],
+            });
+        }
+    }
+    if 2 * edges.len() != directed.len() {
+        return Err(inconsistent());
+    }
+    let unit = unit_mass_properties(&corners, &faces)?;
+    Ok(ConvexHull {
+        vertices: corners.iter().map(|corner| corner.as_vec3()).collect(),
+        faces,
+        edges,
+        unit,
+    })
+}
+
+/// `a aᵀ`.
+fn outer(a: DVec3) -> DMat3 {
+    DMat3::from_cols(a * a.x, a * a.y, a * a.z)
+}
+
+/// Volume, centroid and central inertia at unit density, by the tetrahedron fan described on
+/// [`ConvexHull::mass_properties`].
+fn unit_mass_properties(corners: &[DVec3], faces: &[HullFace]) -> Result<MassProperties> {
+    let reference = corners.iter().sum::<DVec3>() / corners.len() as f64;
+    let mut six_volume = 0.0;
+    let mut first_moment = DVec3::ZERO;
+    let mut second_moment = DMat3::ZERO;
+    for face in faces {
+        let corner = |vertex: u32| corners[vertex as usize] - reference;
+        let a = corner(face.vertices[0]);
+        for pair in face.vertices[1..].windows(2) {
+            let (b, c) = (corner(pair[0]), corner(pair[1]));
+            let det = a.dot(b.cross(c));
+            let s = a + b + c;
+            six_volume += det;
+            first_moment += det * s;
+            second_moment += det * (outer(a) + outer(b) + outer(c) + outer(s));
+        }
+    }
+    let volume = six_volume / 6.0;
+    let offset = first_moment / (24.0 * volume);
+    let central = second_moment * (1.0 / 120.0) - volume * outer(offset);
+    let trace = central.x_axis.x + central.y_axis.y + central.z_axis.z;
+    let inertia = DMat3::from_diagonal(DVec3::splat(trace)) - central;
+    let properties = MassProperties {
+        mass: volume as f32,
+        center_of_mass: (reference + offset).as_vec3(),
+        inertia: inertia.as_mat3(),
+    };
+    if !(properties.mass.is_normal() && properties.mass > 0.0) {
+        return Err(degenerate("volume does not fit in an f32"));
+    }
+    if !properties.center_of_mass.is_finite() || !properties.inertia.is_finite() {
+        return Err(degenerate("inertia does not fit in an f32"));
+    }
+    Ok(properties)
 }
