@@ -1,0 +1,365 @@
+//! The broad phase: keeps the set of body pairs whose fat bounding boxes overlap, updated
+//! incrementally from one step to the next.
+//!
+//! Bodies live in two [`DynamicTree`]s, one for static bodies and one for everything that moves
+//! (dynamic and kinematic), so two static bodies are never paired. Each step the caller reports
+//! new tight boxes with [`BroadPhase::update`]; a proxy whose tight box left its fat box gets a
+//! new fat box and is marked moved. [`BroadPhase::update_pairs`] then drops every pair of a moved
+//! or removed proxy and lets each moved proxy query the trees for its current overlaps, so the
+//! work is proportional to what moved, not to the number of bodies.
+
+use super::dynamic_tree::{DynamicTree, ProxyId};
+use crate::math::Aabb;
+
+/// Names one body's proxy in a [`BroadPhase`]: which tree it is in and its id there.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct ProxyHandle {
+    is_static: bool,
+    proxy: ProxyId,
+}
+
+impl ProxyHandle {
+    /// Whether the proxy is in the static tree.
+    pub fn is_static(self) -> bool {
+        self.is_static
+    }
+
+    /// The proxy's id in its tree.
+    pub fn proxy(self) -> ProxyId {
+        self.proxy
+    }
+}
+
+/// Where a proxy stands since the last [`BroadPhase::update_pairs`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum ProxyState {
+    /// Fat box unchanged: its pairs are still right.
+    Unchanged,
+    /// Inserted or given a new fat box: its pairs are dropped and found again by a query.
+    Moved,
+    /// Removed: its pairs are dropped.
+    Removed,
+}
+
+/// One overlapping pair: the two bodies' keys, smaller first, and their proxies in the same order.
+/// Ordered by keys first, so a sorted list of pairs is sorted by keys.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+struct Pair {
+    keys: (u32, u32),
+    proxies: (ProxyHandle, ProxyHandle),
+}
+
+impl Pair {
+    fn new(first: (u32, ProxyHandle), second: (u32, ProxyHandle)) -> Self {
+        let (low, high) = if first.0 <= second.0 {
+            (first, second)
+        } else {
+            (second, first)
+        };
+        Self {
+            keys: (low.0, high.0),
+            proxies: (low.1, high.1),
+        }
+    }
+}
+
+/// One tree and the state of each of its proxies, indexed by [`ProxyId::index`].
+#[derive(Debug, Clone, Default)]
+struct TreeWithStates {
+    tree: DynamicTree,
+    states: Vec<ProxyState>,
+}
+
+impl TreeWithStates {
+    fn state(&self, proxy: ProxyId) -> ProxyState {
+        self.states
+            .get(proxy.index())
+            .copied()
+            .unwrap_or(ProxyState::Unchanged)
+    }
+
+    fn state_mut(&mut self, proxy: ProxyId) -> &mut ProxyState {
+        if proxy.index() >= self.states.len() {
+            self.states.resize(proxy.index() + 1, ProxyState::Unchanged);
+        }
+        &mut self.states[proxy.index()]
+    }
+}
+
+/// The set of pairs of bodies whose fat boxes overlap, static–static pairs excepted; see the
+/// [module documentation](super::broad_phase).
+///
+/// Bodies are named by a `u32` key the caller chooses (the body's slot); keys must be unique among
+/// the live proxies. Buffers are kept from step to step, so a steady-state step does not allocate.
+#[derive(Debug, Clone, Default)]
+pub struct BroadPhase {
+    static_side: TreeWithStates,
+    moving_side: TreeWithStates,
+    /// Proxies moved, inserted or removed since the last [`update_pairs`](Self::update_pairs),
+    /// each once.
+    changed: Vec<ProxyHandle>,
+    /// The current pairs, sorted.
+    pairs: Vec<Pair>,
+    /// The keys of [`pairs`](Self::pairs), in the same order, for the public view.
+    pair_keys: Vec<(u32, u32)>,
+    /// Scratch: pairs found by this update's queries.
+    found_pairs: Vec<Pair>,
+    /// Scratch: the merge of the kept and found pairs.
+    merged_pairs: Vec<Pair>,
+}
+
+impl BroadPhase {
+    /// An empty broad phase.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds the body `key` with the tight box `aabb` (finite), in the static tree if `is_static`
+    /// and in the moving tree otherwise. Its pairs appear at the next
+    /// [`update_pairs`](Self::update_pairs).
+    pub fn insert(&mut self, key: u32, aabb: Aabb, is_static: bool) -> ProxyHandle {
+        let side = self.side_mut(is_static);
+        let proxy = side.tree.create_proxy(aabb, key);
+        let handle = ProxyHandle { is_static, proxy };
+        self.mark(handle, ProxyState::Moved);
+        handle
+    }
+
+    /// Removes a body's proxy. Its pairs are dropped at the next
+    /// [`update_pairs`](Self::update_pairs).
+    ///
+    /// # Panics
+    /// If `handle` does not name a live proxy of this broad phase.
+    pub fn remove(&mut self, handle: ProxyHandle) {
+        self.side_mut(handle.is_static)
+            .tree
+            .destroy_proxy(handle.proxy);
+        self.mark(handle, ProxyState::Removed);
+    }
+
+    /// Reports a body's new tight box. Returns whether the box left the fat box, in which case the
+    /// proxy gets a new fat box and its pairs are recomputed at the next
+    /// [`update_pairs`](Self::update_pairs).
+    ///
+    /// # Panics
+    /// If `handle` does not name a live proxy of this broad phase.
+    pub fn update(&mut self, handle: ProxyHandle, tight_aabb: Aabb) -> bool {
+        let moved = self
+            .side_mut(handle.is_static)
+            .tree
+            .move_proxy(handle.proxy, tight_aabb);
+        if moved {
+            self.mark(handle, ProxyState::Moved);
+        }
+        moved
+    }
+
+    /// Brings [`pairs`](Self::pairs) up to date with every insertion, removal and move since the
+    /// last call: drops the pairs of changed proxies, then each moved proxy queries the moving
+    /// tree (and, if it moves, the static tree) for its overlaps.
+    pub fn update_pairs(&mut self) {
+        if self.changed.is_empty() {
+            return;
+        }
+        let Self {
+            static_side,
+            moving_side,
+            changed,
+            pairs,
+            pair_keys,
+            found_pairs,
+            merged_pairs,
+        } = self;
+        let sides = [&*moving_side, &*static_side];
+        let side_of = |handle: ProxyHandle| sides[usize::from(handle.is_static)];
+        let is_unchanged =
+            |handle: ProxyHandle| side_of(handle).state(handle.proxy) == ProxyState::Unchanged;
+        pairs.retain(|pair| is_unchanged(pair.proxies.0) && is_unchanged(pair.proxies.1));
+
+        found_pairs.clear();
+        for &handle in changed.iter() {
+            let side = side_of(handle);
+            if side.state(handle.proxy) != ProxyState::Moved {
+                continue;
+            }
+            let key = side.tree.user_data(handle.proxy);
+            let fat_aabb = side.tree.fat_aabb(handle.proxy);
+            let searched: &[&TreeWithStates] = if handle.is_static {
+                &sides[..1]
+            } else {
+                &sides
+            };
+            for (other_is_static, other_side) in [false, true].into_iter().zip(searched) {
+                other_side.tree.query(&fat_aabb, |other_proxy| {
+                    let other = ProxyHandle {
+                        is_static: other_is_static,
+                        proxy: other_proxy,
+                    };
+                    let other_key = other_side.tree.user_data(other_proxy);
+                    // Two moved proxies find each other: only the smaller one adds the pair.
+                    let found_by_other =
+                        other_side.state(other_proxy) == ProxyState::Moved && other < handle;
+                    if other_key != key && !found_by_other {
+                        found_pairs.push(Pair::new((key, handle), (other_key, other)));
+                    }
+                    true
+                });
+            }
+        }
+        found_pairs.sort_unstable();
+
+        merged_pairs.clear();
+        merged_pairs.reserve(pairs.len() + found_pairs.len());
+        let (mut kept, mut found) = (pairs.iter().peekable(), found_pairs.iter().peekable());
+        while let (Some(&&next_kept), Some(&&next_found)) = (kept.peek(), found.peek()) {
+            if next_kept <= next_found {
+                merged_pairs.push(next_kept);
+                kept.next();
+            } else {
+                merged_pairs.push(next_found);
+                found.next();
+            }
+        }
+        merged_pairs.extend(kept);
+        merged_pairs.extend(found);
+        std::mem::swap(pairs, merged_pairs);
+        pair_keys.clear();
+        pair_keys.extend(pairs.iter().map(|pair| pair.keys));
+
+        for handle in changed.drain(..) {
+            let side = if handle.is_static {
+                &mut *static_side
+            } else {
+                &mut *moving_side
+            };
+            *side.state_mut(handle.proxy) = ProxyState::Unchanged;
+        }
+    }
+
+    /// The pairs of keys whose fat boxes overlapped at the last
+    /// [`update_pairs`](Self::update_pairs): smaller key first, sorted, each pair once, never two
+    /// static bodies.
+    pub fn pairs(&self) -> &[(u32, u32)] {
+        &self.pair_keys
+    }
+
+    /// Number of live proxies, static and moving.
+    pub fn proxy_count(&self) -> usize {
+        self.static_side.tree.proxy_count() + self.moving_side.tree.proxy_count()
+    }
+
+    /// The proxy's fat box: its tight box at the last reinsertion grown by
+    /// [`AABB_MARGIN`](super::dynamic_tree::AABB_MARGIN).
+    ///
+    /// # Panics
+    /// If `handle` does not name a live proxy of this broad phase.
+    pub fn fat_aabb(&self, handle: ProxyHandle) -> Aabb {
+        self.side(handle.is_static).tree.fat_aabb(handle.proxy)
+    }
+
+    /// The key the proxy was inserted with.
+    ///
+    /// # Panics
+    /// If `handle` does not name a live proxy of this broad phase.
+    pub fn key(&self, handle: ProxyHandle) -> u32 {
+        self.side(handle.is_static).tree.user_data(handle.proxy)
+    }
+
+    /// The tree of static bodies.
+    pub fn static_tree(&self) -> &DynamicTree {
+        &self.static_side.tree
+    }
+
+    /// The tree of dynamic and kinematic bodies.
+    pub fn moving_tree(&self) -> &DynamicTree {
+        &self.moving_side.tree
+    }
+
+    fn side(&self, is_static: bool) -> &TreeWithStates {
+        if is_static {
+            &self.static_side
+        } else {
+            &self.moving_side
+        }
+    }
+
+    fn side_mut(&mut self, is_static: bool) -> &mut TreeWithStates {
+        if is_static {
+            &mut self.static_side
+        } else {
+            &mut self.moving_side
+        }
+    }
+
+    /// Records a change to a proxy, listing it for the next update if it was not listed yet.
+    fn mark(&mut self, handle: ProxyHandle, state: ProxyState) {
+        let slot = self.side_mut(handle.is_static).state_mut(handle.proxy);
+        let already_listed = *slot != ProxyState::Unchanged;
+        *slot = state;
+        if !already_listed {
+            self.changed.push(handle);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Vec3;
+
+    fn unit_box_at(x: f32) -> Aabb {
+        Aabb::from_center_half_extents(Vec3::new(x, 0.0, 0.0), Vec3::splat(0.5))
+    }
+
+    #[test]
+    fn pairs_list_the_smaller_key_first_and_skip_static_static() {
+        let mut broad_phase = BroadPhase::new();
+        broad_phase.insert(9, unit_box_at(0.0), true);
+        broad_phase.insert(4, unit_box_at(0.5), true);
+        broad_phase.insert(7, unit_box_at(0.9), false);
+        broad_phase.insert(2, unit_box_at(1.5), false);
+        broad_phase.update_pairs();
+        assert_eq!(broad_phase.pairs(), &[(2, 4), (2, 7), (4, 7), (7, 9)]);
+        assert_eq!(broad_phase.proxy_count(), 4);
+    }
+
+    #[test]
+    fn moving_inside_the_fat_box_changes_nothing_and_leaving_it_updates_the_pairs() {
+        let mut broad_phase = BroadPhase::new();
+        let ground = broad_phase.insert(0, unit_box_at(0.0), true);
+        let ball = broad_phase.insert(1, unit_box_at(1.1), false);
+        broad_phase.update_pairs();
+        assert_eq!(broad_phase.pairs(), &[(0, 1)]);
+
+        assert!(!broad_phase.update(ball, unit_box_at(1.15)));
+        assert!(broad_phase.update(ball, unit_box_at(3.0)));
+        assert_eq!(
+            broad_phase.pairs(),
+            &[(0, 1)],
+            "pairs change at update_pairs"
+        );
+        broad_phase.update_pairs();
+        assert!(broad_phase.pairs().is_empty());
+
+        assert!(broad_phase.update(ground, unit_box_at(2.5)));
+        broad_phase.update_pairs();
+        assert_eq!(broad_phase.pairs(), &[(0, 1)]);
+        assert_eq!(broad_phase.key(ground), 0);
+    }
+
+    #[test]
+    fn removing_a_proxy_drops_its_pairs_even_when_its_slot_is_reused() {
+        let mut broad_phase = BroadPhase::new();
+        let first = broad_phase.insert(1, unit_box_at(0.0), false);
+        broad_phase.insert(2, unit_box_at(0.5), false);
+        broad_phase.insert(3, unit_box_at(10.0), false);
+        broad_phase.update_pairs();
+        assert_eq!(broad_phase.pairs(), &[(1, 2)]);
+
+        broad_phase.remove(first);
+        broad_phase.insert(4, unit_box_at(10.5), false);
+        broad_phase.update_pairs();
+        assert_eq!(broad_phase.pairs(), &[(3, 4)]);
+        assert_eq!(broad_phase.proxy_count(), 3);
+    }
+}

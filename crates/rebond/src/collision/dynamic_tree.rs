@@ -1,0 +1,745 @@
+//! A dynamic AABB tree: a bounding volume hierarchy over boxes that are created, moved and
+//! destroyed one at a time.
+//!
+//! Every leaf is a proxy holding a *fat* box (the caller's tight box grown by [`AABB_MARGIN`]) and
+//! a `u32` chosen by the caller; every internal node holds the union of its two children. All
+//! nodes live in one vector and link to each other by index; destroyed nodes go on a free list
+//! threaded through the same vector, so the tree allocates only when it outgrows its capacity.
+//!
+//! A new leaf goes next to the sibling that adds the least surface area to the tree (the
+//! surface-area heuristic, searched exactly by branch and bound), and the ancestors are then
+//! rebalanced on the way up by rotations that keep the two subtrees of every node within one level
+//! of each other, so the height stays logarithmic whatever order the boxes arrive in.
+
+use crate::math::{Aabb, Vec3};
+
+/// How far a proxy's fat box reaches beyond its tight box on every side, metres.
+///
+/// 10 cm: a body moving at 3 m/s under a 60 Hz step crosses it in about two steps, so ordinary
+/// motion touches the tree every few steps instead of every step, while the extra pairs the fat
+/// boxes produce stay few for bodies of a decimetre or more.
+pub const AABB_MARGIN: f32 = 0.1;
+
+/// Marks a missing link: no parent (the root), no children (a leaf), the end of the free list.
+const NULL_NODE: u32 = u32::MAX;
+
+/// The height stored in nodes that are on the free list.
+const FREE_HEIGHT: u32 = u32::MAX;
+
+/// Depth of the query stack kept on the program stack; deeper trees spill into a heap vector. A
+/// balanced tree needs one entry per level, so 64 covers far more proxies than memory can hold.
+const INLINE_STACK_DEPTH: usize = 64;
+
+/// Names one proxy (one leaf) of a [`DynamicTree`]: the index of its node, stable from
+/// [`DynamicTree::create_proxy`] until [`DynamicTree::destroy_proxy`]. A destroyed proxy's index
+/// is later reused by a new proxy.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct ProxyId(u32);
+
+impl ProxyId {
+    /// The node index: dense, below the number of nodes the tree has ever held at once, so it can
+    /// index a side table.
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// One node of the tree: a leaf (a proxy) or an internal node with exactly two children.
+#[derive(Debug, Clone, Copy)]
+struct Node {
+    /// Fat box for a leaf, union of the children's boxes for an internal node.
+    aabb: Aabb,
+    /// The parent node, or [`NULL_NODE`] for the root; for a free node, the next free node.
+    parent: u32,
+    /// Both children of an internal node; both [`NULL_NODE`] for a leaf.
+    children: [u32; 2],
+    /// The caller's value for a leaf; unused by internal nodes.
+    user_data: u32,
+    /// Zero for a leaf, one more than the taller child for an internal node, [`FREE_HEIGHT`] for
+    /// a free node.
+    height: u32,
+}
+
+impl Node {
+    fn is_leaf(&self) -> bool {
+        self.children[0] == NULL_NODE
+    }
+
+    fn is_free(&self) -> bool {
+        self.height == FREE_HEIGHT
+    }
+}
+
+/// Half the surface area of a box, `xy + yz + zx` (m²): the surface-area heuristic's measure of
+/// how likely a random query is to hit the box.
+fn half_area(aabb: &Aabb) -> f32 {
+    let size = aabb.max - aabb.min;
+    size.x * size.y + size.y * size.z + size.z * size.x
+}
+
+/// Whether `inner` lies inside `outer` (touching counts).
+fn contains(outer: &Aabb, inner: &Aabb) -> bool {
+    outer.min.cmple(inner.min).all() && inner.max.cmple(outer.max).all()
+}
+
+/// A tight box grown by [`AABB_MARGIN`] on every side.
+fn fatten(tight: &Aabb) -> Aabb {
+    let margin = Vec3::splat(AABB_MARGIN);
+    Aabb::new(tight.min - margin, tight.max + margin)
+}
+
+/// A dynamic AABB tree; see the [module documentation](self).
+#[derive(Debug, Clone)]
+pub struct DynamicTree {
+    nodes: Vec<Node>,
+    root: u32,
+    /// First node of the free list, threaded through [`Node::parent`].
+    free_list: u32,
+    proxy_count: usize,
+    /// Scratch stack of the sibling search: (node, cost of making it the new leaf's sibling),
+    /// kept between insertions so inserting does not allocate.
+    insertion_stack: Vec<(u32, f32)>,
+}
+
+impl Default for DynamicTree {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl DynamicTree {
+    /// An empty tree.
+    pub fn new() -> Self {
+        Self {
+            nodes: Vec::new(),
+            root: NULL_NODE,
+            free_list: NULL_NODE,
+            proxy_count: 0,
+            insertion_stack: Vec::new(),
+        }
+    }
+
+    /// Adds a proxy for the tight box `tight_aabb` with the caller's value `user_data`; the tree
+    /// stores the box grown by [`AABB_MARGIN`]. Boxes must be finite.
+    pub fn create_proxy(&mut self, tight_aabb: Aabb, user_data: u32) -> ProxyId {
+        let leaf = self.allocate_node(Node {
+            aabb: fatten(&tight_aabb),
+            parent: NULL_NODE,
+            children: [NULL_NODE; 2],
+            user_data,
+            height: 0,
+        });
+        self.insert_leaf(leaf);
+        self.proxy_count += 1;
+        ProxyId(leaf)
+    }
+
+    /// Removes a proxy; its id may be handed out again by a later
+    /// [`create_proxy`](Self::create_proxy).
+    ///
+    /// # Panics
+    /// If `id` does not name a live proxy of this tree.
+    pub fn destroy_proxy(&mut self, id: ProxyId) {
+        self.check_proxy(id);
+        self.remove_leaf(id.0);
+        self.free_node(id.0);
+        self.proxy_count -= 1;
+    }
+
+    /// Tells the tree the proxy's tight box is now `tight_aabb`. While it stays inside the fat box
+    /// nothing changes and this returns false; once it leaves, the proxy gets a new fat box around
+    /// `tight_aabb`, is reinserted, and this returns true.
+    ///
+    /// # Panics
+    /// If `id` does not name a live proxy of this tree.
+    pub fn move_proxy(&mut self, id: ProxyId, tight_aabb: Aabb) -> bool {
+        self.check_proxy(id);
+        let leaf = id.0;
+        if contains(&self.nodes[leaf as usize].aabb, &tight_aabb) {
+            return false;
+        }
+        self.remove_leaf(leaf);
+        self.nodes[leaf as usize].aabb = fatten(&tight_aabb);
+        self.insert_leaf(leaf);
+        true
+    }
+
+    /// The proxy's fat box: the tight box it was last (re)inserted with, grown by [`AABB_MARGIN`].
+    ///
+    /// # Panics
+    /// If `id` does not name a live proxy of this tree.
+    pub fn fat_aabb(&self, id: ProxyId) -> Aabb {
+        self.check_proxy(id);
+        self.nodes[id.index()].aabb
+    }
+
+    /// The value the proxy was created with.
+    ///
+    /// # Panics
+    /// If `id` does not name a live proxy of this tree.
+    pub fn user_data(&self, id: ProxyId) -> u32 {
+        self.check_proxy(id);
+        self.nodes[id.index()].user_data
+    }
+
+    /// Calls `callback` with every proxy whose fat box overlaps `aabb` (touching counts), in an
+    /// unspecified but deterministic order, until it returns false. Walks the tree with a stack
+    /// on the program stack, so a query does not allocate.
+    pub fn query<F: FnMut(ProxyId) -> bool>(&self, aabb: &Aabb, mut callback: F) {
+        if self.root == NULL_NODE {
+            return;
+        }
+        let mut stack = NodeStack::new();
+        stack.push(self.root);
+        while let Some(index) = stack.pop() {
+            let node = &self.nodes[index as usize];
+            if !node.aabb.overlaps(aabb) {
+                continue;
+            }
+            if node.is_leaf() {
+                if !callback(ProxyId(index)) {
+                    return;
+                }
+            } else {
+                stack.push(node.children[0]);
+                stack.push(node.children[1]);
+            }
+        }
+    }
+
+    /// Number of live proxies.
+    pub fn proxy_count(&self) -> usize {
+        self.proxy_count
+    }
+
+    /// Levels below the root: 0 for an empty tree or a single leaf.
+    pub fn height(&self) -> u32 {
+        if self.root == NULL_NODE {
+            0
+        } else {
+            self.nodes[self.root as usize].height
+        }
+    }
+
+    /// Checks every invariant of the tree (links, heights, boxes, balance, free list and counts)
+    /// in time linear in its size; for tests and debugging. Describes the first broken invariant.
+    pub fn validate(&self) -> Result<(), String> {
+        let mut reached = vec![false; self.nodes.len()];
+        let mut leaves = 0;
+        if self.root != NULL_NODE {
+            let root = self.node_checked(self.root)?;
+            if root.parent != NULL_NODE {
+                return Err(format!("root {} has parent {}", self.root, root.parent));
+            }
+            let mut stack = vec![self.root];
+            while let Some(index) = stack.pop() {
+                let node = self.node_checked(index)?;
+                if std::mem::replace(&mut reached[index as usize], true) {
+                    return Err(format!("node {index} is reached twice"));
+                }
+                if node.is_free() {
+                    return Err(format!("free node {index} is in the tree"));
+                }
+                if node.is_leaf() {
+                    if node.children[1] != NULL_NODE || node.height != 0 {
+                        return Err(format!("leaf {index} has a child or a height"));
+                    }
+                    leaves += 1;
+                    continue;
+                }
+                let [left, right] = node.children;
+                let (left_node, right_node) = (self.node_checked(left)?, self.node_checked(right)?);
+                if left_node.parent != index || right_node.parent != index {
+                    return Err(format!("a child of {index} does not link back to it"));
+                }
+                if left_node.height.max(right_node.height).checked_add(1) != Some(node.height) {
+                    return Err(format!("node {index} has a wrong height"));
+                }
+                if left_node.height.abs_diff(right_node.height) > 1 {
+                    return Err(format!("node {index} is unbalanced"));
+                }
+                if node.aabb != left_node.aabb.union(&right_node.aabb) {
+                    return Err(format!("node {index}'s box is not its children's union"));
+                }
+                stack.push(left);
+                stack.push(right);
+            }
+        }
+        if leaves != self.proxy_count {
+            return Err(format!("{leaves} leaves but {} proxies", self.proxy_count));
+        }
+        let mut free = self.free_list;
+        while free != NULL_NODE {
+            let node = self.node_checked(free)?;
+            if !node.is_free() || std::mem::replace(&mut reached[free as usize], true) {
+                return Err(format!("free list reaches node {free} twice or in use"));
+            }
+            free = node.parent;
+        }
+        match reached.iter().position(|&was_reached| !was_reached) {
+            Some(lost) => Err(format!("node {lost} is neither in the tree nor free")),
+            None => Ok(()),
+        }
+    }
+
+    fn node_checked(&self, index: u32) -> Result<&Node, String> {
+        self.nodes
+            .get(index as usize)
+            .ok_or_else(|| format!("link to missing node {index}"))
+    }
+
+    fn check_proxy(&self, id: ProxyId) {
+        let node = &self.nodes[id.index()];
+        assert!(
+            node.is_leaf() && !node.is_free(),
+            "proxy {} is not live in this tree",
+            id.0
+        );
+    }
+
+    fn allocate_node(&mut self, node: Node) -> u32 {
+        if self.free_list == NULL_NODE {
+            let index = u32::try_from(self.nodes.len())
+                .ok()
+                .filter(|&index| index != NULL_NODE)
+                .unwrap_or_else(|| panic!("a dynamic tree holds at most {NULL_NODE} nodes"));
+            self.nodes.push(node);
+            index
+        } else {
+            let index = self.free_list;
+            self.free_list = self.nodes[index as usize].parent;
+            self.nodes[index as usize] = node;
+            index
+        }
+    }
+
+    fn free_node(&mut self, index: u32) {
+        let node = &mut self.nodes[index as usize];
+        node.parent = self.free_list;
+        node.children = [NULL_NODE; 2];
+        node.height = FREE_HEIGHT;
+        self.free_list = index;
+    }
+
+    /// The node that, made the sibling of `leaf_aabb`, grows the total half area of the tree the
+    /// least: the new parent's area plus the growth of every ancestor. Branch and bound, depth
+    /// first with the more promising child first: a subtree is skipped when even a perfect fit
+    /// inside it (the leaf's own area plus the growth its ancestors, the subtree's root included,
+    /// must pay) cannot beat the best cost found so far.
+    fn find_best_sibling(&mut self, leaf_aabb: &Aabb) -> u32 {
+        let leaf_area = half_area(leaf_aabb);
+        let root_cost = half_area(&self.nodes[self.root as usize].aabb.union(leaf_aabb));
+        let (mut best, mut best_cost) = (self.root, root_cost);
+        self.insertion_stack.clear();
+        self.insertion_stack.push((self.root, root_cost));
+        while let Some((index, cost)) = self.insertion_stack.pop() {
+            let node = &self.nodes[index as usize];
+            // If the leaf goes below this node, the node and its ancestors grow by this much.
+            let growth_above = cost - half_area(&node.aabb);
+            if node.is_leaf() || leaf_area + growth_above >= best_cost {
+                continue;
+            }
+            let mut children = node.children.map(|child| {
+                let child_aabb = &self.nodes[child as usize].aabb;
+                let child_cost = half_area(&child_aabb.union(leaf_aabb)) + growth_above;
+                let bound_below = child_cost - half_area(child_aabb) + leaf_area;
+                (child, child_cost, bound_below)
+            });
+            for &(child, child_cost, _) in &children {
+                if child_cost < best_cost {
+                    best = child;
+                    best_cost = child_cost;
+                }
+            }
+            // The more promising child goes on top, so it is searched first and tightens the bound.
+            if children[0].2 < children[1].2 {
+                children.swap(0, 1);
+            }
+            for (child, child_cost, bound_below) in children {
+                if bound_below < best_cost {
+                    self.insertion_stack.push((child, child_cost));
+                }
+            }
+        }
+        best
+    }
+
+    fn insert_leaf(&mut self, leaf: u32) {
+        if self.root == NULL_NODE {
+            self.root = leaf;
+            self.nodes[leaf as usize].parent = NULL_NODE;
+            return;
+        }
+        let leaf_aabb = self.nodes[leaf as usize].aabb;
+        let sibling = self.find_best_sibling(&leaf_aabb);
+        let sibling_node = self.nodes[sibling as usize];
+        let old_parent = sibling_node.parent;
+        let new_parent = self.allocate_node(Node {
+            aabb: sibling_node.aabb.union(&leaf_aabb),
+            parent: old_parent,
+            children: [sibling, leaf],
+            user_data: 0,
+            height: sibling_node.height + 1,
+        });
+        self.nodes[sibling as usize].parent = new_parent;
+        self.nodes[leaf as usize].parent = new_parent;
+        if old_parent == NULL_NODE {
+            self.root = new_parent;
+        } else {
+            self.replace_child(old_parent, sibling, new_parent);
+        }
+        // The new parent's box and height are already right, but a tall sibling leaves it
+        // unbalanced.
+        self.balance(new_parent);
+        self.refit_upwards(old_parent);
+    }
+
+    /// Unlinks a leaf: its sibling takes the parent's place and the parent node is freed. The
+    /// leaf's own node stays allocated.
+    fn remove_leaf(&mut self, leaf: u32) {
+        if leaf == self.root {
+            self.root = NULL_NODE;
+            return;
+        }
+        let parent = self.nodes[leaf as usize].parent;
+        let parent_node = self.nodes[parent as usize];
+        let sibling = if parent_node.children[0] == leaf {
+            parent_node.children[1]
+        } else {
+            parent_node.children[0]
+        };
+        let grandparent = parent_node.parent;
+        self.nodes[sibling as usize].parent = grandparent;
+        self.free_node(parent);
+        if grandparent == NULL_NODE {
+            self.root = sibling;
+        } else {
+            self.replace_child(grandparent, parent, sibling);
+            self.refit_upwards(grandparent);
+        }
+    }
+
+    /// Points `parent`'s link to `old_child` at `new_child` instead.
+    fn replace_child(&mut self, parent: u32, old_child: u32, new_child: u32) {
+        let children = &mut self.nodes[parent as usize].children;
+        let side = usize::from(children[1] == old_child);
+        children[side] = new_child;
+    }
+
+    /// Rebalances and refits `index` and each of its ancestors, from the bottom up, stopping at
+    /// the first node whose box and height come out unchanged: nothing above it depends on more.
+    fn refit_upwards(&mut self, mut index: u32) {
+        while index != NULL_NODE {
+            let node = &self.nodes[index as usize];
+            let (old_aabb, old_height) = (node.aabb, node.height);
+            index = self.balance(index);
+            self.refit(index);
+            let node = &self.nodes[index as usize];
+            if node.aabb == old_aabb && node.height == old_height {
+                return;
+            }
+            index = node.parent;
+        }
+    }
+
+    /// Recomputes an internal node's box and height from its children.
+    fn refit(&mut self, index: u32) {
+        let [left, right] = self.nodes[index as usize].children;
+        let (left_node, right_node) = (self.nodes[left as usize], self.nodes[right as usize]);
+        let node = &mut self.nodes[index as usize];
+        node.aabb = left_node.aabb.union(&right_node.aabb);
+        node.height = 1 + left_node.height.max(right_node.height);
+    }
+
+    /// If one child of the internal node `index` is two or more levels taller than the other,
+    /// rotates the taller child up into `index`'s place, then rebalances `index` (now one level
+    /// down) the same way, which sifts the short side down until every node is within one level;
+    /// returns the node now at `index`'s old place. The subtree's height never grows.
+    fn balance(&mut self, index: u32) -> u32 {
+        let [left, right] = self.nodes[index as usize].children;
+        let left_height = self.nodes[left as usize].height;
+        let right_height = self.nodes[right as usize].height;
+        let tall_side = if right_height > left_height + 1 {
+            1
+        } else if left_height > right_height + 1 {
+            0
+        } else {
+            return index;
+        };
+        let new_top = self.rotate_up(index, tall_side);
+        self.balance(index);
+        self.refit(new_top);
+        new_top
+    }
+
+    /// Rotation at `top` whose child on side `tall_side` is the taller by at least two levels: that
+    /// child takes `top`'s place and keeps its taller child, while `top` becomes its other child
+    /// and adopts its shorter child. With equally tall grandchildren, `top` adopts the one that
+    /// makes its box smaller. Returns the tall child, now in `top`'s place.
+    fn rotate_up(&mut self, top: u32, tall_side: usize) -> u32 {
+        let short_side = 1 - tall_side;
+        let top_node = self.nodes[top as usize];
+        let tall = top_node.children[tall_side];
+        let short_aabb = self.nodes[top_node.children[short_side] as usize].aabb;
+        let [first, second] = self.nodes[tall as usize].children;
+        let (first_node, second_node) = (self.nodes[first as usize], self.nodes[second as usize]);
+        let first_moves_down = match first_node.height.cmp(&second_node.height) {
+            std::cmp::Ordering::Less => true,
+            std::cmp::Ordering::Greater => false,
+            std::cmp::Ordering::Equal => {
+                half_area(&short_aabb.union(&first_node.aabb))
+                    < half_area(&short_aabb.union(&second_node.aabb))
+            }
+        };
+        let (kept, adopted) = if first_moves_down {
+            (second, first)
+        } else {
+            (first, second)
+        };
+
+        let parent = top_node.parent;
+        self.nodes[tall as usize].parent = parent;
+        if parent == NULL_NODE {
+            self.root = tall;
+        } else {
+            self.replace_child(parent, top, tall);
+        }
+        self.nodes[tall as usize].children = [top, kept];
+        self.nodes[top as usize].parent = tall;
+        self.nodes[top as usize].children[tall_side] = adopted;
+        self.nodes[adopted as usize].parent = top;
+        self.refit(top);
+        self.refit(tall);
+        tall
+    }
+}
+
+/// The traversal stack of a query: [`INLINE_STACK_DEPTH`] entries on the program stack, then a
+/// heap vector that is only allocated by trees too deep for them.
+struct NodeStack {
+    inline: [u32; INLINE_STACK_DEPTH],
+    inline_len: usize,
+    spill: Vec<u32>,
+}
+
+impl NodeStack {
+    fn new() -> Self {
+        Self {
+            inline: [NULL_NODE; INLINE_STACK_DEPTH],
+            inline_len: 0,
+            spill: Vec::new(),
+        }
+    }
+
+    fn push(&mut self, index: u32) {
+        if self.inline_len < INLINE_STACK_DEPTH {
+            self.inline[self.inline_len] = index;
+            self.inline_len += 1;
+        } else {
+            self.spill.push(index);
+        }
+    }
+
+    fn pop(&mut self) -> Option<u32> {
+        if let Some(index) = self.spill.pop() {
+            return Some(index);
+        }
+        self.inline_len = self.inline_len.checked_sub(1)?;
+        Some(self.inline[self.inline_len])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// SplitMix64: a tiny deterministic generator, enough to scatter boxes.
+    struct Random(u64);
+
+    impl Random {
+        fn next_u64(&mut self) -> u64 {
+            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            z ^ (z >> 31)
+        }
+
+        /// Uniform in `[low, high)`.
+        fn range(&mut self, low: f32, high: f32) -> f32 {
+            let unit = (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32;
+            low + (high - low) * unit
+        }
+
+        fn below(&mut self, bound: usize) -> usize {
+            (self.next_u64() % bound as u64) as usize
+        }
+
+        fn vec3(&mut self, low: f32, high: f32) -> Vec3 {
+            Vec3::new(
+                self.range(low, high),
+                self.range(low, high),
+                self.range(low, high),
+            )
+        }
+
+        fn aabb(&mut self, extent: f32) -> Aabb {
+            Aabb::from_center_half_extents(self.vec3(-extent, extent), self.vec3(0.05, 1.0))
+        }
+    }
+
+    /// The AVL bound on height, `1.44 log2(n + 2)`, with one level of slack.
+    fn max_balanced_height(count: usize) -> u32 {
+        (1.45 * ((count + 2) as f32).log2()).ceil() as u32 + 1
+    }
+
+    fn query_all(tree: &DynamicTree, aabb: &Aabb) -> Vec<ProxyId> {
+        let mut found = Vec::new();
+        tree.query(aabb, |id| {
+            found.push(id);
+            true
+        });
+        found.sort();
+        found
+    }
+
+    #[test]
+    fn empty_tree_has_no_height_and_answers_no_query() {
+        let tree = DynamicTree::new();
+        assert_eq!(tree.height(), 0);
+        assert_eq!(tree.proxy_count(), 0);
+        assert!(query_all(&tree, &Aabb::new(Vec3::splat(-1e9), Vec3::splat(1e9))).is_empty());
+        assert_eq!(tree.validate(), Ok(()));
+    }
+
+    #[test]
+    fn fat_box_is_the_tight_box_grown_by_the_margin() {
+        let mut tree = DynamicTree::new();
+        let tight = Aabb::new(Vec3::new(1.0, 2.0, 3.0), Vec3::new(2.0, 4.0, 6.0));
+        let id = tree.create_proxy(tight, 42);
+        assert_eq!(tree.user_data(id), 42);
+        assert_eq!(tree.fat_aabb(id), fatten(&tight));
+        assert_eq!(tree.fat_aabb(id).min, tight.min - Vec3::splat(AABB_MARGIN));
+    }
+
+    #[test]
+    fn move_proxy_reinserts_only_when_the_tight_box_leaves_the_fat_box() {
+        let mut tree = DynamicTree::new();
+        let tight = Aabb::from_center_half_extents(Vec3::ZERO, Vec3::splat(0.5));
+        let id = tree.create_proxy(tight, 7);
+        tree.create_proxy(Aabb::from_center_half_extents(Vec3::X * 3.0, Vec3::ONE), 8);
+        let fat = tree.fat_aabb(id);
+
+        let inside = Aabb::from_center_half_extents(Vec3::splat(0.05), Vec3::splat(0.5));
+        assert!(!tree.move_proxy(id, inside));
+        assert_eq!(tree.fat_aabb(id), fat);
+
+        let outside = Aabb::from_center_half_extents(Vec3::new(0.3, 0.0, 0.0), Vec3::splat(0.5));
+        assert!(tree.move_proxy(id, outside));
+        assert_eq!(tree.fat_aabb(id), fatten(&outside));
+        assert_eq!(tree.user_data(id), 7);
+        assert_eq!(tree.validate(), Ok(()));
+    }
+
+    #[test]
+    fn query_stops_when_the_callback_says_so() {
+        let mut tree = DynamicTree::new();
+        for index in 0..10 {
+            tree.create_proxy(Aabb::from_center_half_extents(Vec3::ZERO, Vec3::ONE), index);
+        }
+        let mut calls = 0;
+        tree.query(
+            &Aabb::from_center_half_extents(Vec3::ZERO, Vec3::ONE),
+            |_| {
+                calls += 1;
+                calls < 3
+            },
+        );
+        assert_eq!(calls, 3);
+    }
+
+    #[test]
+    fn sorted_insertions_still_give_a_balanced_tree() {
+        let mut tree = DynamicTree::new();
+        for index in 0..4096 {
+            let center = Vec3::new(index as f32 * 2.0, 0.0, 0.0);
+            tree.create_proxy(
+                Aabb::from_center_half_extents(center, Vec3::splat(0.5)),
+                index,
+            );
+        }
+        assert_eq!(tree.validate(), Ok(()));
+        assert!(
+            tree.height() <= max_balanced_height(4096),
+            "height {}",
+            tree.height()
+        );
+    }
+
+    #[test]
+    fn random_creates_moves_and_destroys_keep_the_tree_valid_balanced_and_queries_exact() {
+        let mut random = Random(0x5eed);
+        let mut tree = DynamicTree::new();
+        let mut live: Vec<(ProxyId, u32)> = Vec::new();
+        let mut next_value = 0;
+        for round in 0..40 {
+            for _ in 0..150 {
+                let id = tree.create_proxy(random.aabb(30.0), next_value);
+                live.push((id, next_value));
+                next_value += 1;
+            }
+            for _ in 0..400 {
+                let (id, _) = live[random.below(live.len())];
+                let center = tree.fat_aabb(id).center() + random.vec3(-0.3, 0.3);
+                let tight = Aabb::from_center_half_extents(center, random.vec3(0.05, 1.0));
+                let moved = tree.move_proxy(id, tight);
+                assert!(contains(&tree.fat_aabb(id), &tight));
+                assert_eq!(moved, tree.fat_aabb(id) == fatten(&tight));
+            }
+            let removals = if round % 4 == 3 { 500 } else { 60 };
+            for _ in 0..removals.min(live.len()) {
+                let (id, _) = live.swap_remove(random.below(live.len()));
+                tree.destroy_proxy(id);
+            }
+            assert_eq!(tree.validate(), Ok(()));
+            assert_eq!(tree.proxy_count(), live.len());
+            assert!(
+                tree.height() <= max_balanced_height(live.len()),
+                "height {} for {} proxies",
+                tree.height(),
+                live.len()
+            );
+            for &(id, value) in &live {
+                assert_eq!(tree.user_data(id), value);
+            }
+            for _ in 0..20 {
+                let probe = random.aabb(30.0);
+                let mut expected: Vec<ProxyId> = live
+                    .iter()
+                    .map(|&(id, _)| id)
+                    .filter(|&id| tree.fat_aabb(id).overlaps(&probe))
+                    .collect();
+                expected.sort();
+                assert_eq!(query_all(&tree, &probe), expected);
+            }
+        }
+        for (id, _) in live.drain(..) {
+            tree.destroy_proxy(id);
+        }
+        assert_eq!(tree.validate(), Ok(()));
+        assert_eq!(tree.height(), 0);
+    }
+
+    #[test]
+    fn node_stack_spills_past_its_inline_depth_and_stays_last_in_first_out() {
+        let mut stack = NodeStack::new();
+        let count = INLINE_STACK_DEPTH as u32 + 10;
+        for index in 0..count {
+            stack.push(index);
+        }
+        for index in (0..count).rev() {
+            assert_eq!(stack.pop(), Some(index));
+        }
+        assert_eq!(stack.pop(), None);
+    }
+}
