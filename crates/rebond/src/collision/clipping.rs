@@ -1,0 +1,632 @@
+//! Clipping and point reduction shared by the contact builders that rest a polygon or segment on a
+//! face: box and hull faces, capsule and cylinder sides.
+//!
+//! A face contact takes the *incident* feature of one shape (a polygon or a segment), cuts away
+//! what lies outside the *reference* face of the other shape (Sutherland–Hodgman against the
+//! reference polygon's side planes), measures what is left against the reference plane, and keeps
+//! at most [`MAX_MANIFOLD_POINTS`] well-spread points. Every clipped point carries a
+//! [`ClipFeature`] naming how it was made, from which callers build stable contact ids.
+
+use crate::collision::manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
+use crate::math::Vec3;
+
+/// Most vertices read from an incident or reference polygon. Longer inputs are cut to their first
+/// `MAX_POLYGON_VERTICES` vertices, which still span a convex polygon inside the original one, so
+/// the clipped points stay on the true surfaces (callers with larger faces pass an evenly spaced
+/// subset instead, which covers the face better).
+pub const MAX_POLYGON_VERTICES: usize = 32;
+
+/// Capacity of a clipped polygon: two convex polygons of `n` and `m` vertices intersect in at most
+/// `n + m` vertices, so two inputs within [`MAX_POLYGON_VERTICES`] never overflow it.
+pub const MAX_CLIP_VERTICES: usize = 2 * MAX_POLYGON_VERTICES;
+
+/// How far outside a side plane (metres) a vertex may lie and still count as inside. A vertex
+/// sitting on a side (two equal boxes stacked) then stays that vertex, with its id, instead of
+/// flickering between "vertex" and "two crossings" from round-off. Cuts are made on the exact
+/// plane, so only such vertices stick out of the reference face, by at most this much.
+pub const SIDE_PLANE_SLOP: f32 = 1.0e-4;
+
+/// Below this fraction of the squared distance between the first two chosen points, a triangle's
+/// doubled area counts as zero when [`reduce_contacts`] picks the third and fourth points: a point
+/// that close to the line through the others adds nothing to the support polygon.
+const MIN_AREA_FRACTION: f32 = 1.0e-3;
+
+/// Which features of the incident and reference polygons made a clipped point. Indices are
+/// positions in the polygons as passed to [`clip_polygon`] or [`clip_segment`]: incident vertex
+/// `i`, incident edge `i` from vertex `i` to vertex `i + 1`, side `j` along the reference edge from
+/// reference vertex `j` to vertex `j + 1`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ClipFeature {
+    /// An incident vertex that lies inside every side plane.
+    IncidentVertex(u8),
+    /// Where an incident edge crosses a side plane.
+    EdgeCrossing {
+        /// Incident edge index.
+        edge: u8,
+        /// Side plane index.
+        side: u8,
+    },
+    /// Where two side planes meet on the incident polygon: for neighbouring sides, a reference
+    /// vertex seen through the incident face. `first` is the side clipped earlier.
+    SideCorner {
+        /// The side clipped first.
+        first: u8,
+        /// The side clipped second.
+        second: u8,
+    },
+}
+
+impl ClipFeature {
+    /// A 16-bit code of the feature, distinct for distinct features while every index stays below
+    /// 128 (always true for polygons within [`MAX_POLYGON_VERTICES`]): two bits of kind, then two
+    /// 7-bit indices.
+    pub fn key(self) -> u16 {
+        let (kind, first, second) = match self {
+            ClipFeature::IncidentVertex(vertex) => (0, vertex, 0),
+            ClipFeature::EdgeCrossing { edge, side } => (1, edge, side),
+            ClipFeature::SideCorner { first, second } => (2, first, second),
+        };
+        (kind << 14) | (u16::from(first & 0x7F) << 7) | u16::from(second & 0x7F)
+    }
+}
+
+/// A point of a clipped polygon or segment and the features that made it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClipVertex {
+    /// Position, in the frame the inputs were given in (world, for the narrow phase).
+    pub position: Vec3,
+    /// How the point was made.
+    pub feature: ClipFeature,
+}
+
+/// The line a polygon edge runs along, so that a later cut of that edge can be named.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Along {
+    /// Part of incident edge `i`.
+    IncidentEdge(u8),
+    /// Lies on side plane `j` (made when side `j` cut the polygon).
+    Side(u8),
+}
+
+/// A convex polygon being clipped: up to [`MAX_CLIP_VERTICES`] tagged vertices in order, with the
+/// line each edge runs along. Lives on the stack.
+#[derive(Debug, Clone, Copy)]
+pub struct ClipPolygon {
+    vertices: [ClipVertex; MAX_CLIP_VERTICES],
+    /// `incoming[k]`: the line of the edge from vertex `k − 1` to vertex `k`.
+    incoming: [Along; MAX_CLIP_VERTICES],
+    len: usize,
+}
+
+impl Default for ClipPolygon {
+    fn default() -> Self {
+        Self {
+            vertices: [ClipVertex {
+                position: Vec3::ZERO,
+                feature: ClipFeature::IncidentVertex(0),
+            }; MAX_CLIP_VERTICES],
+            incoming: [Along::IncidentEdge(0); MAX_CLIP_VERTICES],
+            len: 0,
+        }
+    }
+}
+
+impl ClipPolygon {
+    /// The vertices, in the incident polygon's order.
+    pub fn vertices(&self) -> &[ClipVertex] {
+        &self.vertices[..self.len]
+    }
+
+    /// Number of vertices.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether clipping left nothing.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The incident polygon itself: vertex `i` tagged [`ClipFeature::IncidentVertex`]`(i)`.
+    fn from_incident(points: &[Vec3]) -> Self {
+        let points = &points[..points.len().min(MAX_POLYGON_VERTICES)];
+        let mut polygon = Self::default();
+        for (index, &position) in points.iter().enumerate() {
+            let previous = (index + points.len() - 1) % points.len();
+            polygon.push(
+                ClipVertex {
+                    position,
+                    feature: ClipFeature::IncidentVertex(index as u8),
+                },
+                Along::IncidentEdge(previous as u8),
+            );
+        }
+        polygon
+    }
+
+    /// Appends a vertex reached along `incoming`; past the capacity the vertex is dropped, which
+    /// leaves a convex polygon inside the true one.
+    fn push(&mut self, vertex: ClipVertex, incoming: Along) {
+        if self.len < MAX_CLIP_VERTICES {
+            self.vertices[self.len] = vertex;
+            self.incoming[self.len] = incoming;
+            self.len += 1;
+        }
+    }
+}
+
+/// A side plane of the reference polygon: `normal · p − offset` is how far `p` lies outside it.
+#[derive(Debug, Clone, Copy)]
+struct SidePlane {
+    normal: Vec3,
+    offset: f32,
+}
+
+impl SidePlane {
+    /// The plane through reference edge `start → end`, facing out of a polygon that winds
+    /// counter-clockwise about `face_normal`. A zero-length edge gives a plane everything is on.
+    fn new(start: Vec3, end: Vec3, face_normal: Vec3) -> Self {
+        let normal = (end - start).cross(face_normal).normalize_or_zero();
+        Self {
+            normal,
+            offset: normal.dot(start),
+        }
+    }
+
+    fn distance(&self, point: Vec3) -> f32 {
+        self.normal.dot(point) - self.offset
+    }
+}
+
+/// The side planes of `reference` (its first [`MAX_POLYGON_VERTICES`] vertices), in order.
+fn side_planes(reference: &[Vec3], normal: Vec3) -> impl Iterator<Item = (u8, SidePlane)> + '_ {
+    let reference = &reference[..reference.len().min(MAX_POLYGON_VERTICES)];
+    reference.iter().enumerate().map(move |(index, &start)| {
+        let end = reference[(index + 1) % reference.len()];
+        (index as u8, SidePlane::new(start, end, normal))
+    })
+}
+
+/// The point where the segment `from → to` crosses a plane, given their distances to it: one
+/// negative, the other above [`SIDE_PLANE_SLOP`], so the denominator is never zero.
+fn crossing(from: Vec3, to: Vec3, from_distance: f32, to_distance: f32) -> Vec3 {
+    let t = from_distance / (from_distance - to_distance);
+    from + (to - from) * t
+}
+
+/// Cuts `polygon` by one side plane (Sutherland–Hodgman), writing the part inside to `out`. A
+/// vertex counts as inside up to [`SIDE_PLANE_SLOP`] out; an edge leaving or entering at such a
+/// vertex is not cut, since its crossing of the exact plane would lie behind that vertex.
+fn clip_by_plane(polygon: &ClipPolygon, side: u8, plane: &SidePlane, out: &mut ClipPolygon) {
+    out.len = 0;
+    let count = polygon.len;
+    for current_index in 0..count {
+        let previous = polygon.vertices[(current_index + count - 1) % count];
+        let current = polygon.vertices[current_index];
+        let edge_line = polygon.incoming[current_index];
+        let previous_distance = plane.distance(previous.position);
+        let current_distance = plane.distance(current.position);
+        let cut = |distance_inside: f32| {
+            (distance_inside < 0.0).then(|| ClipVertex {
+                position: crossing(
+                    previous.position,
+                    current.position,
+                    previous_distance,
+                    current_distance,
+                ),
+                feature: match edge_line {
+                    Along::IncidentEdge(edge) => ClipFeature::EdgeCrossing { edge, side },
+                    Along::Side(first) => ClipFeature::SideCorner {
+                        first,
+                        second: side,
+                    },
+                },
+            })
+        };
+        match (
+            previous_distance <= SIDE_PLANE_SLOP,
+            current_distance <= SIDE_PLANE_SLOP,
+        ) {
+            (true, true) => out.push(current, edge_line),
+            // Leaving: the polygon now runs along this side to where it comes back in.
+            (true, false) => {
+                if let Some(exit) = cut(previous_distance) {
+                    out.push(exit, edge_line);
+                }
+            }
+            (false, true) => match cut(current_distance) {
+                Some(entry) => {
+                    out.push(entry, Along::Side(side));
+                    out.push(current, edge_line);
+                }
+                None => out.push(current, Along::Side(side)),
+            },
+            (false, false) => {}
+        }
+    }
+}
+
+/// Clips the convex `incident` polygon against the side planes of the convex `reference` polygon:
+/// what is left is the part of `incident` whose projection along `normal` falls inside
+/// `reference` (vertices up to [`SIDE_PLANE_SLOP`] outside a side are kept as they are).
+///
+/// - `incident`: the vertices in order around the polygon, either winding.
+/// - `reference`: the vertices counter-clockwise seen from the tip of `normal` (the usual
+///   outward-facing order of a face). Three or more vertices; fewer clip nothing useful.
+/// - `normal`: the reference face's unit normal.
+///
+/// Each polygon is read up to [`MAX_POLYGON_VERTICES`] vertices. The points keep the
+/// incident order and are tagged with [`ClipFeature`]s indexed by position in the inputs.
+pub fn clip_polygon(incident: &[Vec3], reference: &[Vec3], normal: Vec3) -> ClipPolygon {
+    // Two buffers used in turn: each side plane reads one and writes the other.
+    let mut buffers = [ClipPolygon::from_incident(incident), ClipPolygon::default()];
+    let mut current = 0;
+    for (side, plane) in side_planes(reference, normal) {
+        if buffers[current].is_empty() {
+            break;
+        }
+        let [first, second] = &mut buffers;
+        let (from, to) = if current == 0 {
+            (first, second)
+        } else {
+            (second, first)
+        };
+        clip_by_plane(from, side, &plane, to);
+        current = 1 - current;
+    }
+    let [first, second] = buffers;
+    if current == 0 {
+        first
+    } else {
+        second
+    }
+}
+
+/// Clips the segment `[start, end]` against the side planes of `reference` (same conventions as
+/// [`clip_polygon`]): `None` when no part of it projects inside the reference polygon, otherwise
+/// its two clipped ends, tagged as incident vertex 0 and 1 or as crossings of incident edge 0.
+/// An end up to [`SIDE_PLANE_SLOP`] outside a side counts as inside. A segment lying inside
+/// gives its two ends; a point (`start == end`) inside gives it twice.
+pub fn clip_segment(
+    start: Vec3,
+    end: Vec3,
+    reference: &[Vec3],
+    normal: Vec3,
+) -> Option<[ClipVertex; 2]> {
+    let (mut enter, mut exit) = (0.0_f32, 1.0_f32);
+    let mut enter_feature = ClipFeature::IncidentVertex(0);
+    let mut exit_feature = ClipFeature::IncidentVertex(1);
+    for (side, plane) in side_planes(reference, normal) {
+        let start_distance = plane.distance(start);
+        let end_distance = plane.distance(end);
+        let crossing_feature = ClipFeature::EdgeCrossing { edge: 0, side };
+        // The crossing of the exact plane; clamped, as an end within the slop band is kept.
+        let t = || (start_distance / (start_distance - end_distance)).clamp(0.0, 1.0);
+        match (
+            start_distance <= SIDE_PLANE_SLOP,
+            end_distance <= SIDE_PLANE_SLOP,
+        ) {
+            (true, true) => {}
+            (false, false) => return None,
+            (false, true) => {
+                let t = t();
+                if t > enter {
+                    enter = t;
+                    enter_feature = crossing_feature;
+                }
+            }
+            (true, false) => {
+                let t = t();
+                if t < exit {
+                    exit = t;
+                    exit_feature = crossing_feature;
+                }
+            }
+        }
+    }
+    if enter > exit {
+        return None;
+    }
+    let along = end - start;
+    Some([
+        ClipVertex {
+            position: start + along * enter,
+            feature: enter_feature,
+        },
+        ClipVertex {
+            position: start + along * exit,
+            feature: exit_feature,
+        },
+    ])
+}
+
+/// Twice the area of triangle `(a, b, c)` projected on the plane of `normal`, positive when it
+/// winds counter-clockwise about `normal`.
+fn signed_double_area(a: Vec3, b: Vec3, c: Vec3, normal: Vec3) -> f32 {
+    (b - a).cross(c - a).dot(normal)
+}
+
+/// Builds a manifold with `normal` from `candidates`, keeping all of them when there are at most
+/// [`MAX_MANIFOLD_POINTS`], else four that hold the contact best: the deepest point (it must be
+/// resolved), the point farthest from it, the point making the largest triangle with those two,
+/// and the point farthest outside that triangle (the largest area added). Points too close to the
+/// line or triangle already chosen are not added, so a manifold of a thin patch may have two or
+/// three points. The order is the order of choice.
+pub fn reduce_contacts(normal: Vec3, candidates: &[ContactPoint]) -> Manifold {
+    let mut manifold = Manifold::new(normal);
+    if candidates.len() <= MAX_MANIFOLD_POINTS {
+        for &candidate in candidates {
+            manifold.push(candidate);
+        }
+        return manifold;
+    }
+
+    let deepest = candidates
+        .iter()
+        .enumerate()
+        .min_by(|(_, a), (_, b)| a.separation.total_cmp(&b.separation))
+        .map_or(0, |(index, _)| index);
+    let first = candidates[deepest];
+    manifold.push(first);
+
+    let farthest = candidates
+        .iter()
+        .map(|candidate| candidate.position.distance_squared(first.position))
+        .enumerate()
+        .max_by(|(_, a), (_, b)| a.total_cmp(b));
+    let Some((farthest, span_squared)) = farthest else {
+        return manifold;
+    };
+    if span_squared <= 0.0 {
+        return manifold;
+    }
+    let second = candidates[farthest];
+    manifold.push(second);
+    let min_double_area = MIN_AREA_FRACTION * span_squared;
+
+    let widest = candidates
+        .iter()
+        .map(|candidate| {
+            signed_double_area(first.position, second.position, candidate.position, normal)
+        })
+        .enumerate()
+        .max_by(|(_, a), (_, b)| a.abs().total_cmp(&b.abs()));
+    let Some((widest, widest_area)) = widest else {
+        return manifold;
+    };
+    if widest_area.abs() <= min_double_area {
+        return manifold;
+    }
+    let third = candidates[widest];
+    manifold.push(third);
+
+    // With the triangle wound counter-clockwise, a point outside edge (p, q) has a negative
+    // area with it; the most negative is the point that adds the most area.
+    let winding = widest_area.signum();
+    let triangle = [first.position, second.position, third.position];
+    let outside = candidates
+        .iter()
+        .map(|candidate| {
+            (0..3)
+                .map(|edge| {
+                    winding
+                        * signed_double_area(
+                            triangle[edge],
+                            triangle[(edge + 1) % 3],
+                            candidate.position,
+                            normal,
+                        )
+                })
+                .fold(f32::INFINITY, f32::min)
+        })
+        .enumerate()
+        .min_by(|(_, a), (_, b)| a.total_cmp(b));
+    if let Some((fourth, area)) = outside {
+        if area < -min_double_area {
+            manifold.push(candidates[fourth]);
+        }
+    }
+    manifold
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The square `[-1, 1]²` at height 0, counter-clockwise about +Z.
+    const SQUARE: [Vec3; 4] = [
+        Vec3::new(-1.0, -1.0, 0.0),
+        Vec3::new(1.0, -1.0, 0.0),
+        Vec3::new(1.0, 1.0, 0.0),
+        Vec3::new(-1.0, 1.0, 0.0),
+    ];
+
+    fn contact(x: f32, y: f32, separation: f32, id: u32) -> ContactPoint {
+        ContactPoint {
+            position: Vec3::new(x, y, 0.0),
+            separation,
+            id,
+        }
+    }
+
+    #[test]
+    fn polygon_inside_is_unchanged() {
+        let incident: Vec<Vec3> = SQUARE.iter().map(|p| *p * 0.5 + Vec3::Z).collect();
+        let clipped = clip_polygon(&incident, &SQUARE, Vec3::Z);
+        assert_eq!(clipped.len(), 4);
+        for (index, vertex) in clipped.vertices().iter().enumerate() {
+            assert_eq!(vertex.position, incident[index]);
+            assert_eq!(vertex.feature, ClipFeature::IncidentVertex(index as u8));
+        }
+    }
+
+    #[test]
+    fn rotated_square_is_cut_to_an_octagon() {
+        // A square rotated 45° whose corners stick out past each side of the reference.
+        let radius = 1.3;
+        let incident: Vec<Vec3> = (0..4)
+            .map(|k| {
+                let angle = std::f32::consts::FRAC_PI_2 * k as f32;
+                Vec3::new(radius * angle.cos(), radius * angle.sin(), -0.2)
+            })
+            .collect();
+        let clipped = clip_polygon(&incident, &SQUARE, Vec3::Z);
+        assert_eq!(clipped.len(), 8);
+        let mut keys: Vec<u16> = clipped.vertices().iter().map(|v| v.feature.key()).collect();
+        for vertex in clipped.vertices() {
+            assert!(matches!(vertex.feature, ClipFeature::EdgeCrossing { .. }));
+            let p = vertex.position;
+            assert!(p.x.abs() <= 1.0 + 1e-6);
+            assert!(p.y.abs() <= 1.0 + 1e-6);
+            assert!((p.x.abs() + p.y.abs() - radius).abs() < 1e-5);
+        }
+        keys.sort_unstable();
+        keys.dedup();
+        assert_eq!(keys.len(), 8, "ids must be distinct");
+    }
+
+    #[test]
+    fn big_polygon_keeps_the_reference_corners() {
+        let incident: Vec<Vec3> = SQUARE.iter().map(|p| *p * 3.0).collect();
+        let clipped = clip_polygon(&incident, &SQUARE, Vec3::Z);
+        assert_eq!(clipped.len(), 4);
+        for vertex in clipped.vertices() {
+            assert!(matches!(vertex.feature, ClipFeature::SideCorner { .. }));
+            let corner = vertex.position.abs();
+            assert!((corner - Vec3::new(1.0, 1.0, 0.0)).abs().max_element() <= 1e-6);
+        }
+    }
+
+    #[test]
+    fn disjoint_polygon_vanishes_and_clockwise_reference_clips_everything() {
+        let incident: Vec<Vec3> = SQUARE.iter().map(|p| *p + Vec3::X * 5.0).collect();
+        assert!(clip_polygon(&incident, &SQUARE, Vec3::Z).is_empty());
+        let inside: Vec<Vec3> = SQUARE.iter().map(|p| *p * 0.5).collect();
+        assert!(clip_polygon(&inside, &SQUARE, -Vec3::Z).is_empty());
+    }
+
+    #[test]
+    fn vertices_on_the_sides_keep_their_ids_through_round_off() {
+        for nudge in [Vec3::ZERO, Vec3::X * 5e-5, Vec3::new(-3e-5, 8e-5, 0.0)] {
+            let incident: Vec<Vec3> = SQUARE.iter().map(|p| *p + nudge - Vec3::Z).collect();
+            let clipped = clip_polygon(&incident, &SQUARE, Vec3::Z);
+            let features: Vec<ClipFeature> = clipped.vertices().iter().map(|v| v.feature).collect();
+            assert_eq!(
+                features,
+                (0..4).map(ClipFeature::IncidentVertex).collect::<Vec<_>>()
+            );
+        }
+        // Past the slop, the overhanging corners are cut exactly at the sides.
+        let incident: Vec<Vec3> = SQUARE.iter().map(|p| *p + Vec3::X * 1e-3).collect();
+        let clipped = clip_polygon(&incident, &SQUARE, Vec3::Z);
+        assert_eq!(clipped.len(), 4);
+        for vertex in clipped.vertices() {
+            assert!(vertex.position.x <= 1.0 + 1e-6);
+        }
+    }
+
+    #[test]
+    fn segment_is_cut_at_the_sides() {
+        let clipped = clip_segment(
+            Vec3::new(-3.0, 0.5, 1.0),
+            Vec3::new(0.5, 0.5, 1.0),
+            &SQUARE,
+            Vec3::Z,
+        );
+        let [enter, exit] = clipped.expect("the segment crosses the square");
+        assert!((enter.position - Vec3::new(-1.0, 0.5, 1.0)).length() < 1e-6);
+        assert_eq!(
+            enter.feature,
+            ClipFeature::EdgeCrossing { edge: 0, side: 3 }
+        );
+        assert_eq!(exit.position, Vec3::new(0.5, 0.5, 1.0));
+        assert_eq!(exit.feature, ClipFeature::IncidentVertex(1));
+        assert!(clip_segment(
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(3.0, 0.0, 0.0),
+            &SQUARE,
+            Vec3::Z
+        )
+        .is_none());
+        // Crosses two sides' outer regions without entering the square.
+        assert!(clip_segment(
+            Vec3::new(0.0, 3.0, 0.0),
+            Vec3::new(3.0, 0.0, 0.0),
+            &SQUARE,
+            Vec3::Z
+        )
+        .is_none());
+    }
+
+    #[test]
+    fn degenerate_inputs_do_not_panic() {
+        let point = [Vec3::new(0.2, 0.1, 0.0)];
+        assert_eq!(clip_polygon(&point, &SQUARE, Vec3::Z).len(), 1);
+        assert!(clip_polygon(&[], &SQUARE, Vec3::Z).is_empty());
+        let same = [Vec3::ONE; 3];
+        let clipped = clip_polygon(&SQUARE, &same, Vec3::Z);
+        assert_eq!(clipped.len(), 4);
+        assert!(clip_segment(Vec3::ZERO, Vec3::ZERO, &SQUARE, Vec3::Z).is_some());
+        assert!(reduce_contacts(Vec3::Z, &[]).is_empty());
+        let coincident = [contact(0.0, 0.0, -0.1, 1); 6];
+        assert_eq!(reduce_contacts(Vec3::Z, &coincident).len(), 1);
+    }
+
+    #[test]
+    fn reduction_keeps_the_deepest_and_the_widest() {
+        // An octagon of points with one deep point; the reduction keeps four spread points,
+        // the deepest first.
+        let candidates: Vec<ContactPoint> = (0..8)
+            .map(|k| {
+                let angle = std::f32::consts::FRAC_PI_4 * k as f32;
+                let separation = if k == 3 { -0.05 } else { -0.01 };
+                contact(angle.cos(), angle.sin(), separation, k)
+            })
+            .collect();
+        let manifold = reduce_contacts(Vec3::Z, &candidates);
+        assert_eq!(manifold.len(), 4);
+        let ids: Vec<u32> = manifold.points().iter().map(|p| p.id).collect();
+        assert_eq!(ids[0], 3);
+        assert_eq!(ids[1], 7, "the opposite point is farthest");
+        // The other two are on either side of the diameter 3–7, one each.
+        let sides: Vec<f32> = ids[2..]
+            .iter()
+            .map(|&id| {
+                let p = candidates[id as usize].position;
+                signed_double_area(candidates[3].position, candidates[7].position, p, Vec3::Z)
+            })
+            .collect();
+        assert!(sides[0] * sides[1] < 0.0);
+    }
+
+    #[test]
+    fn reduction_of_collinear_points_keeps_two() {
+        let candidates: Vec<ContactPoint> = (0..6)
+            .map(|k| contact(k as f32 * 0.1, 0.0, -0.01, k))
+            .collect();
+        let manifold = reduce_contacts(Vec3::Z, &candidates);
+        assert_eq!(manifold.len(), 2);
+    }
+
+    #[test]
+    fn keys_are_distinct() {
+        let mut keys = Vec::new();
+        for a in 0..MAX_POLYGON_VERTICES as u8 {
+            keys.push(ClipFeature::IncidentVertex(a).key());
+            for b in 0..MAX_POLYGON_VERTICES as u8 {
+                keys.push(ClipFeature::EdgeCrossing { edge: a, side: b }.key());
+                keys.push(
+                    ClipFeature::SideCorner {
+                        first: a,
+                        second: b,
+                    }
+                    .key(),
+                );
+            }
+        }
+        let total = keys.len();
+        keys.sort_unstable();
+        keys.dedup();
+        assert_eq!(keys.len(), total);
+    }
+}

@@ -1,0 +1,762 @@
+//! Contact manifolds between convex polyhedra (boxes and convex hulls) by the separating axis
+//! test and clipping.
+//!
+//! The candidate axes are the face normals of A, those of B, and the cross products of an edge
+//! of A with an edge of B, kept only when the two edges' arcs cross on the Gauss map (the pair
+//! builds a face of the Minkowski difference; other pairs cannot give the deepest axis). If an
+//! axis separates the shapes by more than the margin there is no contact. Otherwise the axis of
+//! least overlap, with a bias toward faces and toward A (see [`collide_polyhedra`]), gives either
+//! a face contact (the other shape's most anti-parallel face clipped against the reference face,
+//! see [`crate::collision::clipping`]) or an edge contact (one point between the two edges).
+
+use crate::collision::clipping::{
+    clip_polygon, reduce_contacts, ClipFeature, MAX_CLIP_VERTICES, MAX_POLYGON_VERTICES,
+};
+use crate::collision::manifold::{ContactPoint, Manifold};
+use crate::math::{Mat3, Pose, Vec3};
+use crate::shape::{ConvexHull, Cuboid, Shape};
+
+/// B's best face replaces A's as the reference only when its separation is larger by this
+/// fraction of A's separation (in absolute value) plus [`ABSOLUTE_TOLERANCE`].
+const FACE_RELATIVE_TOLERANCE: f32 = 0.05;
+
+/// An edge pair replaces the chosen reference face only when its separation is larger by this
+/// fraction of the face's separation (in absolute value) plus [`ABSOLUTE_TOLERANCE`]: face
+/// contacts give several points and rest better.
+const EDGE_RELATIVE_TOLERANCE: f32 = 0.1;
+
+/// Absolute part of the axis-choice tolerances, metres.
+const ABSOLUTE_TOLERANCE: f32 = 5.0e-4;
+
+/// Edge pairs whose directions make an angle with a sine below this are treated as parallel and
+/// skipped: their cross product is too short to be a reliable axis, and the faces around such
+/// edges already cover those directions.
+const PARALLEL_SINE: f32 = 1.0e-3;
+
+/// How many of B's edges the edge query moves into A's frame at a time (a stack buffer).
+const EDGE_CHUNK: usize = 32;
+
+/// Squared length below which an edge counts as a point when closest points are computed, m².
+const DEGENERATE_EDGE_SQUARED: f32 = 1.0e-12;
+
+/// Box vertex `i` is `(±hx, ±hy, ±hz)` with the sign of x from bit 0 of `i`, y from bit 1 and z
+/// from bit 2 (set = positive).
+const BOX_VERTEX_COUNT: usize = 8;
+
+/// Box face `f` has normal `+axis` for even `f` and `−axis` for odd `f`, with `axis = f / 2`
+/// (0 = x, 1 = y, 2 = z). Vertex loops are counter-clockwise seen from outside.
+const BOX_FACE_LOOPS: [[u8; 4]; 6] = [
+    [1, 3, 7, 5],
+    [0, 4, 6, 2],
+    [2, 6, 7, 3],
+    [0, 1, 5, 4],
+    [4, 5, 7, 6],
+    [0, 2, 3, 1],
+];
+
+/// Box edges: the two vertices, then the two faces that meet there.
+const BOX_EDGES: [([u8; 2], [u8; 2]); 12] = [
+    ([0, 1], [3, 5]),
+    ([2, 3], [2, 5]),
+    ([4, 5], [3, 4]),
+    ([6, 7], [2, 4]),
+    ([0, 2], [1, 5]),
+    ([1, 3], [0, 5]),
+    ([4, 6], [1, 4]),
+    ([5, 7], [0, 4]),
+    ([0, 4], [1, 3]),
+    ([1, 5], [0, 3]),
+    ([2, 6], [1, 2]),
+    ([3, 7], [0, 2]),
+];
+
+/// A face plane in the polyhedron's frame: `normal · p = offset` on the face, `normal` unit and
+/// pointing out.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FacePlane {
+    /// Unit outward normal.
+    pub normal: Vec3,
+    /// Signed distance of the plane from the origin along `normal`.
+    pub offset: f32,
+}
+
+/// An edge in the polyhedron's frame, with the outward normals of the two faces that meet there
+/// (the ends of the edge's arc on the Gauss map).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PolyhedronEdge {
+    /// First end.
+    pub start: Vec3,
+    /// Second end.
+    pub end: Vec3,
+    /// Unit outward normals of the two adjacent faces.
+    pub face_normals: [Vec3; 2],
+}
+
+impl PolyhedronEdge {
+    /// `end − start`.
+    pub fn direction(&self) -> Vec3 {
+        self.end - self.start
+    }
+}
+
+/// What a polyhedron's vertices, faces and edges are read from.
+#[derive(Debug, Clone, Copy)]
+enum Topology<'a> {
+    /// A box: fixed topology scaled by the half extents.
+    Cuboid(Vec3),
+    /// A convex hull, whose indices its builder guarantees.
+    Hull(&'a ConvexHull),
+}
+
+/// A convex polyhedron in its local frame: vertices, faces (planes and vertex loops) and edges.
+/// Borrows a hull's data; a box needs no storage.
+#[derive(Debug, Clone, Copy)]
+pub struct Polyhedron<'a> {
+    topology: Topology<'a>,
+}
+
+impl<'a> Polyhedron<'a> {
+    /// The polyhedron of a box.
+    pub fn cuboid(cuboid: &Cuboid) -> Self {
+        Self {
+            topology: Topology::Cuboid(cuboid.half_extents()),
+        }
+    }
+
+    /// The polyhedron of a convex hull.
+    pub fn hull(hull: &'a ConvexHull) -> Self {
+        Self {
+            topology: Topology::Hull(hull),
+        }
+    }
+
+    /// A box or a hull as a polyhedron; `None` for any other shape.
+    pub fn from_shape(shape: &'a Shape) -> Option<Self> {
+        match shape {
+            Shape::Cuboid(cuboid) => Some(Self::cuboid(cuboid)),
+            Shape::ConvexHull(hull) => Some(Self::hull(hull)),
+            _ => None,
+        }
+    }
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        match self.topology {
+            Topology::Cuboid(_) => BOX_VERTEX_COUNT,
+            Topology::Hull(hull) => hull.vertices().len(),
+        }
+    }
+
+    /// Vertex `index` (below [`Polyhedron::vertex_count`]).
+    pub fn vertex(&self, index: usize) -> Vec3 {
+        match self.topology {
+            Topology::Cuboid(half_extents) => box_vertex(half_extents, index),
+            Topology::Hull(hull) => hull.vertices()[index],
+        }
+    }
+
+    /// Number of faces.
+    pub fn face_count(&self) -> usize {
+        match self.topology {
+            Topology::Cuboid(_) => BOX_FACE_LOOPS.len(),
+            Topology::Hull(hull) => hull.faces().len(),
+        }
+    }
+
+    /// The plane of face `index` (below [`Polyhedron::face_count`]).
+    pub fn face_plane(&self, index: usize) -> FacePlane {
+        match self.topology {
+            Topology::Cuboid(half_extents) => {
+                let axis = index / 2;
+                let sign = if index % 2 == 0 { 1.0 } else { -1.0 };
+                FacePlane {
+                    normal: Vec3::AXES[axis] * sign,
+                    offset: half_extents[axis],
+                }
+            }
+            Topology::Hull(hull) => {
+                let face = &hull.faces()[index];
+                FacePlane {
+                    normal: face.normal,
+                    offset: face.offset,
+                }
+            }
+        }
+    }
+
+    /// Number of vertices around face `face`.
+    pub fn face_vertex_count(&self, face: usize) -> usize {
+        match self.topology {
+            Topology::Cuboid(_) => BOX_FACE_LOOPS[face].len(),
+            Topology::Hull(hull) => hull.faces()[face].vertices.len(),
+        }
+    }
+
+    /// Vertex `corner` of face `face`, counting counter-clockwise seen from outside.
+    pub fn face_vertex(&self, face: usize, corner: usize) -> Vec3 {
+        match self.topology {
+            Topology::Cuboid(half_extents) => {
+                box_vertex(half_extents, usize::from(BOX_FACE_LOOPS[face][corner]))
+            }
+            Topology::Hull(hull) => hull.vertices()[hull.faces()[face].vertices[corner] as usize],
+        }
+    }
+
+    /// Number of edges.
+    pub fn edge_count(&self) -> usize {
+        match self.topology {
+            Topology::Cuboid(_) => BOX_EDGES.len(),
+            Topology::Hull(hull) => hull.edges().len(),
+        }
+    }
+
+    /// Edge `index` (below [`Polyhedron::edge_count`]).
+    pub fn edge(&self, index: usize) -> PolyhedronEdge {
+        let (ends, faces) = match self.topology {
+            Topology::Cuboid(_) => {
+                let (ends, faces) = BOX_EDGES[index];
+                (ends.map(usize::from), faces.map(usize::from))
+            }
+            Topology::Hull(hull) => {
+                let edge = hull.edges()[index];
+                (
+                    edge.vertices.map(|vertex| vertex as usize),
+                    edge.faces.map(|face| face as usize),
+                )
+            }
+        };
+        PolyhedronEdge {
+            start: self.vertex(ends[0]),
+            end: self.vertex(ends[1]),
+            face_normals: faces.map(|face| self.face_plane(face).normal),
+        }
+    }
+
+    /// The vertex farthest along `direction` (a box picks the positive side on a zero
+    /// component; a hull the lowest index among equally far vertices).
+    pub fn support(&self, direction: Vec3) -> Vec3 {
+        match self.topology {
+            Topology::Cuboid(half_extents) => Vec3::ONE.copysign(direction) * half_extents,
+            Topology::Hull(hull) => hull.support(direction),
+        }
+    }
+
+    /// The loop of face `face` mapped by `frame` into `out`, returning how many vertices were
+    /// written. A loop longer than [`MAX_POLYGON_VERTICES`] is read at evenly spaced corners,
+    /// which spans a convex polygon inside the face.
+    fn face_loop(
+        &self,
+        face: usize,
+        frame: &Frame,
+        out: &mut [Vec3; MAX_POLYGON_VERTICES],
+    ) -> usize {
+        let total = self.face_vertex_count(face);
+        let count = total.min(MAX_POLYGON_VERTICES);
+        for (slot, corner) in out.iter_mut().zip(0..count) {
+            *slot = frame.point(self.face_vertex(face, corner * total / count));
+        }
+        count
+    }
+}
+
+/// Box vertex `index` as laid out in [`BOX_VERTEX_COUNT`].
+fn box_vertex(half_extents: Vec3, index: usize) -> Vec3 {
+    let sign = |bit: usize| if index & bit != 0 { 1.0 } else { -1.0 };
+    Vec3::new(sign(1), sign(2), sign(4)) * half_extents
+}
+
+/// A rigid transform as a rotation matrix and a translation: `rotation · p + translation`.
+#[derive(Debug, Clone, Copy)]
+struct Frame {
+    rotation: Mat3,
+    translation: Vec3,
+}
+
+impl Frame {
+    fn from_pose(pose: &Pose) -> Self {
+        Self {
+            rotation: Mat3::from_quat(pose.rotation),
+            translation: pose.position,
+        }
+    }
+
+    /// The pose of `inner`'s frame seen from `outer`'s frame.
+    fn relative(outer: &Pose, inner: &Pose) -> Self {
+        let inverse = outer.rotation.inverse();
+        Self {
+            rotation: Mat3::from_quat(inverse * inner.rotation),
+            translation: inverse * (inner.position - outer.position),
+        }
+    }
+
+    fn point(&self, point: Vec3) -> Vec3 {
+        self.rotation * point + self.translation
+    }
+
+    fn vector(&self, vector: Vec3) -> Vec3 {
+        self.rotation * vector
+    }
+
+    /// The inverse rotation applied to `vector` (`Rᵀ · v`).
+    fn inverse_vector(&self, vector: Vec3) -> Vec3 {
+        Vec3::new(
+            self.rotation.x_axis.dot(vector),
+            self.rotation.y_axis.dot(vector),
+            self.rotation.z_axis.dot(vector),
+        )
+    }
+}
+
+/// A face of one polyhedron and how far the other lies beyond its plane (negative: how deep it
+/// reaches in), measured at the other's vertex deepest along the face's inward normal.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct FaceAxis {
+    face: usize,
+    separation: f32,
+}
+
+/// An edge of A and an edge of B, their axis in A's frame pointing from A to B, and the
+/// separation of the two edges along it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct EdgeAxis {
+    edge_a: usize,
+    edge_b: usize,
+    axis: Vec3,
+    separation: f32,
+}
+
+/// The face of `reference` beyond whose plane `other` (placed in the reference frame by
+/// `other_in_reference`) lies farthest, or reaches in least.
+fn best_face_axis(
+    reference: &Polyhedron,
+    other: &Polyhedron,
+    other_in_reference: &Frame,
+) -> FaceAxis {
+    let mut best = FaceAxis {
+        face: 0,
+        separation: f32::NEG_INFINITY,
+    };
+    for face in 0..reference.face_count() {
+        let plane = reference.face_plane(face);
+        let inward = other_in_reference.inverse_vector(-plane.normal);
+        let deepest = other_in_reference.point(other.support(inward));
+        let separation = plane.normal.dot(deepest) - plane.offset;
+        if separation > best.separation {
+            best = FaceAxis { face, separation };
+        }
+    }
+    best
+}
+
+/// An edge of B placed in A's frame, with its face normals negated: its arc on the Gauss map of
+/// the Minkowski difference A − B.
+#[derive(Debug, Clone, Copy, Default)]
+struct MovedEdge {
+    start: Vec3,
+    direction: Vec3,
+    negated_normals: [Vec3; 2],
+}
+
+/// Over the edge pairs that build a face of the Minkowski difference A − B, the largest
+/// separation along their cross product, computed in A's frame (`b_in_a` places B there). B's
+/// edges are moved into A's frame [`EDGE_CHUNK`] at a time, on the stack.
+fn best_edge_axis(a: &Polyhedron, b: &Polyhedron, b_in_a: &Frame) -> Option<EdgeAxis> {
+    let mut best: Option<EdgeAxis> = None;
+    let mut chunk = [MovedEdge::default(); EDGE_CHUNK];
+    for chunk_start in (0..b.edge_count()).step_by(EDGE_CHUNK) {
+        let chunk_len = (b.edge_count() - chunk_start).min(EDGE_CHUNK);
+        for (offset, slot) in chunk[..chunk_len].iter_mut().enumerate() {
+            let local = b.edge(chunk_start + offset);
+            *slot = MovedEdge {
+                start: b_in_a.point(local.start),
+                direction: b_in_a.vector(local.direction()),
+                negated_normals: local.face_normals.map(|normal| -b_in_a.vector(normal)),
+            };
+        }
+        for edge_a in 0..a.edge_count() {
+            let edge = a.edge(edge_a);
+            for (offset, moved) in chunk[..chunk_len].iter().enumerate() {
+                let Some((axis, separation)) = edge_pair_axis(&edge, moved) else {
+                    continue;
+                };
+                if best.is_none_or(|best| separation > best.separation) {
+                    best = Some(EdgeAxis {
+                        edge_a,
+                        edge_b: chunk_start + offset,
+                        axis,
+                        separation,
+                    });
+                }
+            }
+        }
+    }
+    best
+}
+
+/// The axis of an edge of A and an edge of B (both in A's frame), pointing from A to B, with the
+/// separation along it; `None` unless the pair builds a face of the Minkowski difference.
+///
+/// Edge A's arc on the Gauss map runs between its face normals `n₁, n₂`; edge B's, negated for
+/// the difference, between `−m₁, −m₂`. The arcs cross when each one's ends lie on opposite
+/// sides of the other's great circle (whose plane normal is the edge direction), and the two
+/// crossings of the great circles are the same point: the axis `±(eA × eB)` that lies on A's arc
+/// (positive on `n₁ + n₂`) must also lie on B's (positive on `−m₁ − m₂`). Then A's edge is A's
+/// support along the axis and B's edge is B's support against it.
+fn edge_pair_axis(edge: &PolyhedronEdge, moved: &MovedEdge) -> Option<(Vec3, f32)> {
+    let a_direction = edge.direction();
+    let [n1, n2] = edge.face_normals;
+    let [m1, m2] = moved.negated_normals;
+    if m1.dot(a_direction) * m2.dot(a_direction) >= 0.0
+        || n1.dot(moved.direction) * n2.dot(moved.direction) >= 0.0
+    {
+        return None;
+    }
+    let mut axis = a_direction.cross(moved.direction);
+    let length_squared = axis.length_squared();
+    let parallel_limit = PARALLEL_SINE
+        * PARALLEL_SINE
+        * a_direction.length_squared()
+        * moved.direction.length_squared();
+    // Written so that a NaN (from overflow on absurdly large shapes) also rejects the pair.
+    let crosses = length_squared > parallel_limit;
+    if !crosses {
+        return None;
+    }
+    if axis.dot(n1 + n2) < 0.0 {
+        axis = -axis;
+    }
+    if axis.dot(m1 + m2) <= 0.0 {
+        return None;
+    }
+    let axis = axis / length_squared.sqrt();
+    Some((axis, axis.dot(moved.start - edge.start)))
+}
+
+/// An axis the contact can be built on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum ContactAxis {
+    /// A face of A is the reference.
+    FaceOfA(FaceAxis),
+    /// A face of B is the reference.
+    FaceOfB(FaceAxis),
+    /// An edge of A against an edge of B.
+    Edges(EdgeAxis),
+}
+
+impl ContactAxis {
+    fn separation(&self) -> f32 {
+        match self {
+            ContactAxis::FaceOfA(face) | ContactAxis::FaceOfB(face) => face.separation,
+            ContactAxis::Edges(edge) => edge.separation,
+        }
+    }
+}
+
+/// Whether `candidate` beats `incumbent` by more than the tolerance `relative · |incumbent| +`
+/// [`ABSOLUTE_TOLERANCE`].
+fn clearly_larger(candidate: f32, incumbent: f32, relative: f32) -> bool {
+    candidate > incumbent + relative * incumbent.abs() + ABSOLUTE_TOLERANCE
+}
+
+/// The contact manifold between polyhedra `a` at `pose_a` and `b` at `pose_b`, with the normal
+/// pointing from A to B; `None` when they are apart by more than `margin` metres along some axis,
+/// when no contact point lies within `margin` (possible only while they are apart), or when
+/// either has no face.
+///
+/// The axis of least overlap is chosen with a bias so that the choice holds still while bodies
+/// jiggle: B's best face is the reference only if its separation beats A's by 5 % (of A's, in
+/// absolute value) plus 0.5 mm, and the best edge pair is used instead of that face only if its
+/// separation beats the face's by 10 % plus 0.5 mm. The chosen axis thus trails the true
+/// least-overlap axis by at most one of these tolerances; should it give no point, the true
+/// axis makes the contact.
+///
+/// Face contact: the reference face's side planes clip the incident face (the other body's face
+/// most anti-parallel to the reference normal); points whose separation from the reference plane
+/// is at most `margin` are kept and reduced to four ([`reduce_contacts`]). Each point sits halfway
+/// between the incident point and its projection on the reference plane. Its id packs, from the
+/// top bit down: 0, whether B holds the reference face, the reference and incident face indices
+/// (7 bits each, wrapping) and the [`ClipFeature::key`] of the clipped point.
+///
+/// Edge contact: one point halfway between the closest points of the two edges; its id is 1 in
+/// the top bit, then 15 bits of A's edge index and 16 bits of B's (wrapping).
+pub fn collide_polyhedra(
+    a: &Polyhedron,
+    pose_a: &Pose,
+    b: &Polyhedron,
+    pose_b: &Pose,
+    margin: f32,
+) -> Option<Manifold> {
+    if a.face_count() == 0 || b.face_count() == 0 {
+        return None;
+    }
+    let b_in_a = Frame::relative(pose_a, pose_b);
+    let a_in_b = Frame::relative(pose_b, pose_a);
+
+    let face_a = best_face_axis(a, b, &b_in_a);
+    if face_a.separation > margin {
+        return None;
+    }
+    let face_b = best_face_axis(b, a, &a_in_b);
+    if face_b.separation > margin {
+        return None;
+    }
+    let edge = best_edge_axis(a, b, &b_in_a);
+    if edge.is_some_and(|edge| edge.separation > margin) {
+        return None;
+    }
+
+    let world_a = Frame::from_pose(pose_a);
+    let world_b = Frame::from_pose(pose_b);
+    let face = if clearly_larger(
+        face_b.separation,
+        face_a.separation,
+        FACE_RELATIVE_TOLERANCE,
+    ) {
+        ContactAxis::FaceOfB(face_b)
+    } else {
+        ContactAxis::FaceOfA(face_a)
+    };
+    let chosen = match edge {
+        Some(edge)
+            if clearly_larger(edge.separation, face.separation(), EDGE_RELATIVE_TOLERANCE) =>
+        {
+            ContactAxis::Edges(edge)
+        }
+        _ => face,
+    };
+    let mut best = ContactAxis::FaceOfA(face_a);
+    for candidate in
+        std::iter::once(ContactAxis::FaceOfB(face_b)).chain(edge.map(ContactAxis::Edges))
+    {
+        if candidate.separation() > best.separation() {
+            best = candidate;
+        }
+    }
+
+    let contact = |axis: ContactAxis| match axis {
+        ContactAxis::FaceOfA(face) => {
+            face_contact(a, &world_a, face.face, b, &world_b, false, margin)
+        }
+        ContactAxis::FaceOfB(face) => {
+            face_contact(b, &world_b, face.face, a, &world_a, true, margin)
+        }
+        ContactAxis::Edges(edge) => edge_contact(a, &world_a, b, &world_b, &edge, margin),
+    };
+    // The axis kept by the bias may clip to nothing where it trails the best one (two edges
+    // crossing near a corner, outside the kept face's side planes): the best axis then makes
+    // the contact.
+    contact(chosen).or_else(|| if best == chosen { None } else { contact(best) })
+}
+
+/// Clips the incident face of `incident` against face `reference_face` of `reference` (both
+/// placed in the world by their frames). `reference_is_b` says which side of the manifold the
+/// reference is on.
+fn face_contact(
+    reference: &Polyhedron,
+    reference_frame: &Frame,
+    reference_face: usize,
+    incident: &Polyhedron,
+    incident_frame: &Frame,
+    reference_is_b: bool,
+    margin: f32,
+) -> Option<Manifold> {
+    let plane = reference.face_plane(reference_face);
+    let normal = reference_frame.vector(plane.normal);
+    let offset = plane.offset + normal.dot(reference_frame.translation);
+
+    let toward_incident = incident_frame.inverse_vector(normal);
+    let mut incident_face = 0;
+    let mut most_opposed = f32::INFINITY;
+    for face in 0..incident.face_count() {
+        let alignment = incident.face_plane(face).normal.dot(toward_incident);
+        if alignment < most_opposed {
+            most_opposed = alignment;
+            incident_face = face;
+        }
+    }
+
+    let mut incident_loop = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+    let incident_count = incident.face_loop(incident_face, incident_frame, &mut incident_loop);
+    let mut reference_loop = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+    let reference_count = reference.face_loop(reference_face, reference_frame, &mut reference_loop);
+    let clipped = clip_polygon(
+        &incident_loop[..incident_count],
+        &reference_loop[..reference_count],
+        normal,
+    );
+
+    let mut candidates = [ContactPoint::default(); MAX_CLIP_VERTICES];
+    let mut count = 0;
+    for vertex in clipped.vertices() {
+        let separation = normal.dot(vertex.position) - offset;
+        if separation <= margin {
+            candidates[count] = ContactPoint {
+                position: vertex.position - normal * (0.5 * separation),
+                separation,
+                id: face_contact_id(
+                    reference_is_b,
+                    reference_face,
+                    incident_face,
+                    vertex.feature,
+                ),
+            };
+            count += 1;
+        }
+    }
+    if count == 0 {
+        return None;
+    }
+    let manifold_normal = if reference_is_b { -normal } else { normal };
+    Some(reduce_contacts(manifold_normal, &candidates[..count]))
+}
+
+/// The id of a face-contact point; layout in [`collide_polyhedra`].
+fn face_contact_id(
+    reference_is_b: bool,
+    reference_face: usize,
+    incident_face: usize,
+    feature: ClipFeature,
+) -> u32 {
+    (u32::from(reference_is_b) << 30)
+        | ((reference_face as u32 & 0x7F) << 23)
+        | ((incident_face as u32 & 0x7F) << 16)
+        | u32::from(feature.key())
+}
+
+/// One point between edge `edge.edge_a` of A and `edge.edge_b` of B.
+fn edge_contact(
+    a: &Polyhedron,
+    world_a: &Frame,
+    b: &Polyhedron,
+    world_b: &Frame,
+    edge: &EdgeAxis,
+    margin: f32,
+) -> Option<Manifold> {
+    let edge_a = a.edge(edge.edge_a);
+    let edge_b = b.edge(edge.edge_b);
+    let (on_a, on_b) = closest_points_between_segments(
+        world_a.point(edge_a.start),
+        world_a.point(edge_a.end),
+        world_b.point(edge_b.start),
+        world_b.point(edge_b.end),
+    );
+    let normal = world_a.vector(edge.axis);
+    let separation = normal.dot(on_b - on_a);
+    let within_margin = separation <= margin;
+    if !within_margin {
+        return None;
+    }
+    let mut manifold = Manifold::new(normal);
+    manifold.push(ContactPoint {
+        position: 0.5 * (on_a + on_b),
+        separation,
+        id: (1 << 31) | ((edge.edge_a as u32 & 0x7FFF) << 16) | (edge.edge_b as u32 & 0xFFFF),
+    });
+    Some(manifold)
+}
+
+/// The closest points of segments `[p0, p1]` and `[q0, q1]`: minimise `|p(s) − q(t)|²` over
+/// `s, t ∈ [0, 1]`, solving the 2×2 normal equations when the segments are not parallel, then
+/// clamping one parameter and re-solving the other. A segment shorter than 1 µm is a point.
+fn closest_points_between_segments(p0: Vec3, p1: Vec3, q0: Vec3, q1: Vec3) -> (Vec3, Vec3) {
+    let p_direction = p1 - p0;
+    let q_direction = q1 - q0;
+    let offset = p0 - q0;
+    let p_squared = p_direction.length_squared();
+    let q_squared = q_direction.length_squared();
+    let q_offset = q_direction.dot(offset);
+    let p_is_point = p_squared <= DEGENERATE_EDGE_SQUARED;
+    let q_is_point = q_squared <= DEGENERATE_EDGE_SQUARED;
+
+    let (s, t) = match (p_is_point, q_is_point) {
+        (true, true) => (0.0, 0.0),
+        (true, false) => (0.0, (q_offset / q_squared).clamp(0.0, 1.0)),
+        (false, true) => (
+            0.0_f32.max(-p_direction.dot(offset) / p_squared).min(1.0),
+            0.0,
+        ),
+        (false, false) => {
+            let p_offset = p_direction.dot(offset);
+            let cross = p_direction.dot(q_direction);
+            let determinant = p_squared * q_squared - cross * cross;
+            let s = if determinant > 0.0 {
+                ((cross * q_offset - p_offset * q_squared) / determinant).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let t = (cross * s + q_offset) / q_squared;
+            if t < 0.0 {
+                ((-p_offset / p_squared).clamp(0.0, 1.0), 0.0)
+            } else if t > 1.0 {
+                (((cross - p_offset) / p_squared).clamp(0.0, 1.0), 1.0)
+            } else {
+                (s, t)
+            }
+        }
+    };
+    (p0 + p_direction * s, q0 + q_direction * t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit_box() -> Cuboid {
+        Cuboid::new(Vec3::new(0.5, 1.0, 1.5)).expect("valid box")
+    }
+
+    #[test]
+    fn box_topology_is_consistent() {
+        let cuboid = unit_box();
+        let polyhedron = Polyhedron::cuboid(&cuboid);
+        for face in 0..polyhedron.face_count() {
+            let plane = polyhedron.face_plane(face);
+            let count = polyhedron.face_vertex_count(face);
+            for corner in 0..count {
+                let here = polyhedron.face_vertex(face, corner);
+                let next = polyhedron.face_vertex(face, (corner + 1) % count);
+                let after = polyhedron.face_vertex(face, (corner + 2) % count);
+                assert!((plane.normal.dot(here) - plane.offset).abs() < 1e-6);
+                assert!(
+                    (next - here).cross(after - next).dot(plane.normal) > 0.0,
+                    "CCW loop"
+                );
+            }
+        }
+        for index in 0..polyhedron.edge_count() {
+            let edge = polyhedron.edge(index);
+            for normal in edge.face_normals {
+                assert!(normal.dot(edge.direction()).abs() < 1e-6);
+                let offset = normal.dot(edge.start);
+                assert!((normal.dot(edge.end) - offset).abs() < 1e-6);
+                assert!((offset - cuboid.support(normal).dot(normal)).abs() < 1e-6);
+            }
+            assert!(edge.face_normals[0].dot(edge.face_normals[1]).abs() < 1e-6);
+        }
+        for index in 0..polyhedron.vertex_count() {
+            let vertex = polyhedron.vertex(index);
+            assert_eq!(cuboid.support(vertex), vertex);
+        }
+    }
+
+    #[test]
+    fn closest_points_of_segments() {
+        let (p, q) = closest_points_between_segments(
+            Vec3::new(-1.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.5, 1.0, -1.0),
+            Vec3::new(0.5, 1.0, 1.0),
+        );
+        assert!((p - Vec3::new(0.5, 0.0, 0.0)).length() < 1e-6);
+        assert!((q - Vec3::new(0.5, 1.0, 0.0)).length() < 1e-6);
+        // Parallel and degenerate inputs stay finite.
+        let (p, q) =
+            closest_points_between_segments(Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Y + Vec3::X);
+        assert!(p.is_finite() && q.is_finite());
+        assert!(((q - p).length() - 1.0).abs() < 1e-6);
+        let (p, q) = closest_points_between_segments(Vec3::ZERO, Vec3::ZERO, Vec3::Y, Vec3::Y);
+        assert_eq!((p, q), (Vec3::ZERO, Vec3::Y));
+        let (p, q) = closest_points_between_segments(Vec3::ZERO, Vec3::ZERO, -Vec3::X, Vec3::X);
+        assert_eq!((p, q), (Vec3::ZERO, Vec3::ZERO));
+    }
+}
