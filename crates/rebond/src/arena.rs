@@ -96,6 +96,22 @@ impl<T> Arena<T> {
             .and_then(|slot| slot.item.as_mut())
     }
 
+    /// The live item in storage slot `slot`, with its handle.
+    pub fn at_slot(&self, slot: usize) -> Option<(ArenaIndex, &T)> {
+        let entry = self.slots.get(slot)?;
+        let item = entry.item.as_ref()?;
+        let index = ArenaIndex {
+            index: slot as u32,
+            generation: entry.generation,
+        };
+        Some((index, item))
+    }
+
+    /// The live item in storage slot `slot`, mutably.
+    pub fn at_slot_mut(&mut self, slot: usize) -> Option<&mut T> {
+        self.slots.get_mut(slot)?.item.as_mut()
+    }
+
     /// Number of live items.
     pub fn len(&self) -> usize {
         self.len

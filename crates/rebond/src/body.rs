@@ -4,6 +4,7 @@
 //! the body origin (what users place and read) is derived from it.
 
 use crate::arena::ArenaIndex;
+use crate::collision::broad_phase::ProxyHandle;
 use crate::error::{
     check_finite_vector, check_non_negative, check_positive, check_range, Error, ErrorKind, Result,
 };
@@ -215,6 +216,14 @@ pub struct RigidBody {
     pub(crate) restitution: f32,
     pub(crate) can_sleep: bool,
     pub(crate) sleeping: bool,
+    /// How long the body has been still, seconds (see [`crate::island`]).
+    pub(crate) sleep_time: f32,
+    /// The island the body fell asleep with (its root slot); the whole group wakes together.
+    pub(crate) sleep_group: Option<usize>,
+    /// Distance from the centre of mass to the farthest corner of the local bounding box, m.
+    pub(crate) max_extent: f32,
+    /// The body's entry in the broad phase, set when it joins a world.
+    pub(crate) proxy: Option<ProxyHandle>,
 }
 
 impl RigidBody {
@@ -271,6 +280,10 @@ impl RigidBody {
             restitution: desc.restitution,
             can_sleep: desc.can_sleep,
             sleeping: false,
+            sleep_time: 0.0,
+            sleep_group: None,
+            max_extent: 0.0,
+            proxy: None,
         };
         if let Some((properties, inverse_inertia)) = mass_properties {
             body.mass = properties.mass;
@@ -279,6 +292,11 @@ impl RigidBody {
             body.local_inertia = properties.inertia;
             body.local_inverse_inertia = inverse_inertia;
         }
+        let local_bounds = body.shape.aabb(&Pose::IDENTITY);
+        body.max_extent = (local_bounds.min - body.local_center_of_mass)
+            .abs()
+            .max((local_bounds.max - body.local_center_of_mass).abs())
+            .length();
         body.set_origin_pose(Pose::new(desc.position, rotation));
         Ok(body)
     }
@@ -414,6 +432,23 @@ impl RigidBody {
         self.shape.aabb(&self.pose())
     }
 
+    /// The bounding box grown to hold the body wherever its current velocities carry it within
+    /// `dt` seconds: shifted along `v dt`, and grown by `|ω| r_max dt` for the turning.
+    pub fn swept_aabb(&self, dt: f32) -> Aabb {
+        let bounds = self.aabb();
+        let travel = self.linear_velocity * dt;
+        let turn = Vec3::splat(self.angular_velocity.length() * self.max_extent * dt);
+        Aabb::new(
+            bounds.min.min(bounds.min + travel) - turn,
+            bounds.max.max(bounds.max + travel) + turn,
+        )
+    }
+
+    /// Upper bound of how fast any point of the body moves, m/s: `|v| + |ω| r_max`.
+    pub fn max_point_speed(&self) -> f32 {
+        self.linear_velocity.length() + self.max_extent * self.angular_velocity.length()
+    }
+
     /// Moves the body origin to `position` (finite), keeping its rotation and velocities.
     pub fn set_position(&mut self, position: Vec3) -> Result<()> {
         check_finite_vector("position", position)?;
@@ -541,9 +576,22 @@ impl RigidBody {
         Ok(())
     }
 
-    /// Wakes the body if it sleeps.
+    /// Wakes the body if it sleeps; the rest of its sleeping group wakes at the next step.
     pub fn wake(&mut self) {
         self.sleeping = false;
+        self.sleep_time = 0.0;
+    }
+
+    /// Whether the body is awake and moves this step: an awake dynamic body, or a kinematic one
+    /// with a velocity. Only movers need fresh contacts and can wake sleeping bodies.
+    pub(crate) fn is_awake_mover(&self) -> bool {
+        match self.body_type {
+            BodyType::Dynamic => !self.sleeping,
+            BodyType::Kinematic => {
+                self.linear_velocity != Vec3::ZERO || self.angular_velocity != Vec3::ZERO
+            }
+            BodyType::Static => false,
+        }
     }
 
     pub(crate) fn is_dynamic(&self) -> bool {

@@ -1,8 +1,8 @@
 //! Time integration of body velocities and poses by semi-implicit (symplectic) Euler:
 //! velocities first from forces, then positions from the new velocities.
 
-use crate::body::{BodyType, RigidBody};
-use crate::math::{skew, Quat, Vec3};
+use crate::math::{rotate_tensor, skew, Quat, Vec3};
+use crate::solver::SolverBody;
 
 /// Largest rotation of a body in one substep, radians: a quarter turn.
 pub(crate) const MAX_ROTATION_PER_SUBSTEP: f32 = 0.25 * std::f32::consts::PI;
@@ -21,16 +21,15 @@ pub(crate) struct SpeedLimits {
 /// gyroscopic step and `ω ← ω / (1 + h·c_ang)`, each then held to its speed limit. Static and
 /// kinematic bodies are left alone.
 pub(crate) fn integrate_velocities(
-    body: &mut RigidBody,
+    body: &mut SolverBody,
     gravity: Vec3,
     h: f32,
     limits: SpeedLimits,
 ) {
-    if !body.is_dynamic() {
+    if !body.is_dynamic {
         return;
     }
-    let force = body.force + body.constant_force;
-    let torque = body.torque + body.constant_torque;
+    let (force, torque) = (body.force, body.torque);
     let linear = body.linear_velocity + h * (gravity + body.inverse_mass * force);
     let angular = body.angular_velocity + h * (body.world_inverse_inertia * torque);
     let angular = implicit_gyroscopic_step(body, angular, h);
@@ -49,7 +48,7 @@ pub(crate) fn integrate_velocities(
 /// second order, as Box3D does for its (backward-Euler) form: `f = h ω × I ω`,
 /// `J = I + ½ h [ω]ₓ I − h [I ω]ₓ`, `ω' = ω − J⁻¹ f`. Unlike the explicit term
 /// `−h I⁻¹ (ω × I ω)` it never adds energy, and unlike backward Euler it does not bleed momentum.
-fn implicit_gyroscopic_step(body: &RigidBody, world_angular_velocity: Vec3, h: f32) -> Vec3 {
+fn implicit_gyroscopic_step(body: &SolverBody, world_angular_velocity: Vec3, h: f32) -> Vec3 {
     let inertia = body.local_inertia;
     let omega = body.rotation.inverse() * world_angular_velocity;
     let momentum = inertia * omega;
@@ -65,10 +64,7 @@ fn implicit_gyroscopic_step(body: &RigidBody, world_angular_velocity: Vec3, h: f
 /// Advances the pose of a dynamic or kinematic body by one substep: `c ← c + h v`,
 /// `q ← normalise(q + ½ h (ω, 0) q)` (the Cayley rotation by `h ω`), then refreshes the world
 /// inverse inertia.
-pub(crate) fn integrate_pose(body: &mut RigidBody, h: f32) {
-    if body.body_type == BodyType::Static {
-        return;
-    }
+pub(crate) fn integrate_pose(body: &mut SolverBody, h: f32) {
     body.center_of_mass += h * body.linear_velocity;
     let spin = Quat::from_xyzw(
         body.angular_velocity.x,
@@ -77,5 +73,5 @@ pub(crate) fn integrate_pose(body: &mut RigidBody, h: f32) {
         0.0,
     ) * body.rotation;
     body.rotation = (body.rotation + spin * (0.5 * h)).normalize();
-    body.update_world_inverse_inertia();
+    body.world_inverse_inertia = rotate_tensor(body.rotation, body.local_inverse_inertia);
 }

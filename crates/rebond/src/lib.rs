@@ -8,9 +8,11 @@ pub mod body;
 pub mod collision;
 pub mod error;
 mod integration;
+pub mod island;
 pub mod mass;
 pub mod math;
 pub mod shape;
+pub mod solver;
 pub mod world;
 
 pub use body::{BodyDesc, BodyHandle, BodyType, RigidBody};

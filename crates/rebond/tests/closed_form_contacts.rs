@@ -26,7 +26,11 @@ fn assert_single(manifold: Option<Manifold>, normal: Vec3, separation: f32, posi
     assert_eq!(manifold.len(), 1);
     assert_vec(manifold.normal, normal);
     let point = manifold.points()[0];
-    assert!((point.separation - separation).abs() <= TOLERANCE, "separation {}", point.separation);
+    assert!(
+        (point.separation - separation).abs() <= TOLERANCE,
+        "separation {}",
+        point.separation
+    );
     assert_vec(point.position, position);
 }
 
@@ -67,13 +71,22 @@ fn sphere_capsule_against_the_side_and_the_cap() {
     let margin = SPECULATIVE_DISTANCE;
     // Beside the capsule's middle: the capsule axis is Y, the sphere at x = 0.7.
     assert_single(
-        sphere_capsule(&sphere, &at(0.7, 0.3, 0.0), &capsule, &at(0.0, 0.0, 0.0), margin),
+        sphere_capsule(
+            &sphere,
+            &at(0.7, 0.3, 0.0),
+            &capsule,
+            &at(0.0, 0.0, 0.0),
+            margin,
+        ),
         -Vec3::X,
         -0.05,
         Vec3::new(0.225, 0.3, 0.0),
     );
     // Above the top cap, capsule lying along X after a quarter turn about Z.
-    let lying = Pose::new(Vec3::ZERO, Quat::from_rotation_z(std::f32::consts::FRAC_PI_2));
+    let lying = Pose::new(
+        Vec3::ZERO,
+        Quat::from_rotation_z(std::f32::consts::FRAC_PI_2),
+    );
     assert_single(
         sphere_capsule(&sphere, &at(1.5, 0.0, 0.0), &capsule, &lying, margin),
         -Vec3::X,
@@ -115,7 +128,10 @@ fn crossing_capsules_touch_at_one_point_and_parallel_ones_at_two() {
     assert_vec(manifold.normal, Vec3::Y);
     let mut xs: Vec<f32> = manifold.points().iter().map(|p| p.position.x).collect();
     xs.sort_by(f32::total_cmp);
-    assert!((xs[0] + 0.5).abs() <= TOLERANCE && (xs[1] - 1.0).abs() <= TOLERANCE, "{xs:?}");
+    assert!(
+        (xs[0] + 0.5).abs() <= TOLERANCE && (xs[1] - 1.0).abs() <= TOLERANCE,
+        "{xs:?}"
+    );
     for point in manifold.points() {
         assert!((point.separation + 0.05).abs() <= TOLERANCE);
         assert!((point.position.y - 0.475).abs() <= TOLERANCE);
@@ -140,7 +156,13 @@ fn sphere_box_face_edge_corner_and_inside() {
     let direction = Vec3::new(1.0, 1.0, 0.0).normalize();
     let center = edge + direction * 0.51;
     assert_single(
-        sphere_box(&sphere, &Pose::from_position(center), &cube, &origin, margin),
+        sphere_box(
+            &sphere,
+            &Pose::from_position(center),
+            &cube,
+            &origin,
+            margin,
+        ),
         -direction,
         0.01,
         edge + direction * 0.005,
@@ -153,7 +175,10 @@ fn sphere_box_face_edge_corner_and_inside() {
         Vec3::new(0.0, 0.15, 1.0),
     );
     // A rotated box: a quarter turn about Y swaps its X and Z extents.
-    let turned = Pose::new(Vec3::ZERO, Quat::from_rotation_y(std::f32::consts::FRAC_PI_2));
+    let turned = Pose::new(
+        Vec3::ZERO,
+        Quat::from_rotation_y(std::f32::consts::FRAC_PI_2),
+    );
     assert_single(
         sphere_box(&sphere, &at(2.4, 0.0, 0.0), &cube, &turned, margin),
         -Vec3::X,

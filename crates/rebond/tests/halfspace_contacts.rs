@@ -14,7 +14,13 @@ fn ground() -> Halfspace {
 }
 
 fn collide(shape: &Shape, pose: Pose) -> Option<Manifold> {
-    collide_halfspace(&ground(), &Pose::IDENTITY, shape, &pose, SPECULATIVE_DISTANCE)
+    collide_halfspace(
+        &ground(),
+        &Pose::IDENTITY,
+        shape,
+        &pose,
+        SPECULATIVE_DISTANCE,
+    )
 }
 
 fn assert_points(manifold: &Manifold, count: usize, separation: f32) {
@@ -97,7 +103,10 @@ fn hull_of_a_cube_rests_like_the_box() {
 #[test]
 fn tilted_plane_measures_along_its_normal() {
     let normal = Vec3::new(1.0, 1.0, 0.0).normalize();
-    let tilt = Pose::new(Vec3::new(0.0, 1.0, 0.0), Quat::from_rotation_arc(Vec3::Y, normal));
+    let tilt = Pose::new(
+        Vec3::new(0.0, 1.0, 0.0),
+        Quat::from_rotation_arc(Vec3::Y, normal),
+    );
     let sphere = Shape::sphere(1.0).unwrap();
     let center = tilt.position + normal * 0.9;
     let manifold = collide_halfspace(

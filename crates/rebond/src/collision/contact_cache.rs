@@ -3,6 +3,7 @@
 
 use super::manifold::{Manifold, MAX_MANIFOLD_POINTS};
 use crate::body::BodyHandle;
+use crate::math::Vec3;
 
 /// Names one contact: the two bodies (A before B) and the compound children involved (0 for a
 /// shape that is not a compound). Ordered, so contacts sort deterministically.
@@ -18,24 +19,20 @@ pub struct ContactKey {
     pub child_b: u32,
 }
 
-/// Impulses accumulated at one contact point over a step, N·s.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct PointImpulse {
-    /// Along the manifold normal; never negative (a contact only pushes).
-    pub normal: f32,
-    /// Along the two tangent directions.
-    pub tangent: [f32; 2],
-}
-
-/// One manifold between two bodies with the impulses of its points.
+/// One manifold between two bodies with the impulses the solver accumulated on it, N·s.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Contact {
     /// Which bodies and children touch.
     pub key: ContactKey,
     /// The geometry from the narrow phase.
     pub manifold: Manifold,
-    /// `impulses[i]` belongs to `manifold.points()[i]`.
-    pub impulses: [PointImpulse; MAX_MANIFOLD_POINTS],
+    /// `normal_impulses[i]` belongs to `manifold.points()[i]`; never negative.
+    pub normal_impulses: [f32; MAX_MANIFOLD_POINTS],
+    /// Friction impulse of the whole manifold, a world vector in the contact plane (kept as a
+    /// vector so it survives a change of the solver's tangent basis).
+    pub friction_impulse: Vec3,
+    /// Angular friction impulse about the normal, N·m·s.
+    pub twist_impulse: f32,
 }
 
 /// This step's contacts, sorted by key, and last step's, kept to warm-start from.
@@ -58,12 +55,28 @@ impl ContactCache {
         self.current.push(Contact {
             key,
             manifold,
-            impulses: [PointImpulse::default(); MAX_MANIFOLD_POINTS],
+            normal_impulses: [0.0; MAX_MANIFOLD_POINTS],
+            friction_impulse: Vec3::ZERO,
+            twist_impulse: 0.0,
         });
     }
 
-    /// Sorts this step's contacts by key and gives each point the impulses of the previous
-    /// step's point with the same key and feature id; unmatched points start from zero.
+    /// Keeps last step's contacts between `body_a` and `body_b` unchanged, impulses included:
+    /// for pairs of bodies that did not move (asleep, or asleep against static), whose contacts
+    /// must be ready the moment they wake.
+    pub fn keep_previous(&mut self, body_a: BodyHandle, body_b: BodyHandle) {
+        let start = self
+            .previous
+            .partition_point(|contact| (contact.key.body_a, contact.key.body_b) < (body_a, body_b));
+        let kept = self.previous[start..]
+            .iter()
+            .take_while(|contact| contact.key.body_a == body_a && contact.key.body_b == body_b);
+        self.current.extend(kept);
+    }
+
+    /// Sorts this step's contacts by key and gives each point the normal impulse of the previous
+    /// step's point with the same key and feature id (unmatched points start from zero), and
+    /// each contact the friction and twist impulses of the previous contact with its key.
     pub fn finish_step(&mut self) {
         self.current.sort_unstable_by_key(|contact| contact.key);
         let mut previous = self.previous.iter().peekable();
@@ -72,14 +85,16 @@ impl ContactCache {
             let Some(old) = previous.next_if(|old| old.key == contact.key) else {
                 continue;
             };
+            contact.friction_impulse = old.friction_impulse;
+            contact.twist_impulse = old.twist_impulse;
             for (point, impulse) in contact
                 .manifold
                 .points()
                 .iter()
-                .zip(contact.impulses.iter_mut())
+                .zip(contact.normal_impulses.iter_mut())
             {
                 if let Some(index) = old.manifold.points().iter().position(|p| p.id == point.id) {
-                    *impulse = old.impulses[index];
+                    *impulse = old.normal_impulses[index];
                 }
             }
         }
@@ -107,7 +122,6 @@ mod tests {
     use super::*;
     use crate::arena::Arena;
     use crate::collision::manifold::ContactPoint;
-    use crate::math::Vec3;
 
     fn handles() -> (BodyHandle, BodyHandle, BodyHandle) {
         let mut arena = Arena::default();
@@ -148,11 +162,15 @@ mod tests {
         cache.push(key(ground, box_one), manifold(&[1, 2, 3, 4]));
         cache.finish_step();
         assert_eq!(cache.contacts()[0].key, key(ground, box_one));
-        for (index, impulse) in cache.contacts_mut()[0].impulses.iter_mut().enumerate() {
-            impulse.normal = index as f32 + 1.0;
-            impulse.tangent = [0.5, -0.5];
+        for (index, impulse) in cache.contacts_mut()[0]
+            .normal_impulses
+            .iter_mut()
+            .enumerate()
+        {
+            *impulse = index as f32 + 1.0;
         }
-        cache.contacts_mut()[1].impulses[0].normal = 9.0;
+        cache.contacts_mut()[0].friction_impulse = Vec3::new(0.5, 0.0, -0.5);
+        cache.contacts_mut()[1].normal_impulses[0] = 9.0;
 
         cache.begin_step();
         cache.push(key(ground, box_one), manifold(&[4, 2, 7]));
@@ -160,11 +178,10 @@ mod tests {
         cache.finish_step();
         let contacts = cache.contacts();
         assert_eq!(contacts.len(), 2);
-        let normals: Vec<f32> = contacts[0].impulses[..3].iter().map(|i| i.normal).collect();
-        assert_eq!(normals, [4.0, 2.0, 0.0]);
-        assert_eq!(contacts[0].impulses[0].tangent, [0.5, -0.5]);
+        assert_eq!(contacts[0].normal_impulses[..3], [4.0, 2.0, 0.0]);
+        assert_eq!(contacts[0].friction_impulse, Vec3::new(0.5, 0.0, -0.5));
         // The same id between other bodies does not inherit anything.
-        assert_eq!(contacts[1].impulses[0], PointImpulse::default());
+        assert_eq!(contacts[1].normal_impulses[0], 0.0);
     }
 
     #[test]

@@ -126,5 +126,8 @@ pub fn collide_halfspace(
     if candidates.len == 0 {
         return None;
     }
-    Some(reduce_contacts(normal, &candidates.points[..candidates.len]))
+    Some(reduce_contacts(
+        normal,
+        &candidates.points[..candidates.len],
+    ))
 }

@@ -2,9 +2,18 @@
 //! narrow phase turns each pair into contact manifolds, and the contact cache carries impulses
 //! from one step to the next.
 
+pub mod broad_phase;
+pub mod clipping;
 pub mod closed_form;
 pub mod contact_cache;
+pub mod dynamic_tree;
+pub mod epa;
+pub mod feature_contact;
+pub mod gjk;
+pub mod halfspace;
 pub mod manifold;
+pub mod narrow_phase;
+pub mod polyhedron;
 
 pub use manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
 

@@ -1,0 +1,110 @@
+//! The narrow phase: contact manifolds between two shapes placed in the world.
+//!
+//! Pairs are routed by shape kind to the best routine: closed forms for spheres and capsules,
+//! the plane test for halfspaces, the separating-axis test for boxes and hulls, and GJK/EPA with
+//! feature clipping for everything with a cylinder or a capsule against a polyhedron. Compounds
+//! collide child by child.
+
+use super::closed_form::{capsule_capsule, sphere_box, sphere_capsule, sphere_sphere};
+use super::feature_contact::collide_features;
+use super::halfspace::collide_halfspace;
+use super::manifold::Manifold;
+use super::polyhedron::{collide_polyhedra, Polyhedron};
+use crate::math::{Aabb, Pose, Vec3};
+use crate::shape::Shape;
+
+/// Order of shape kinds: each pair is solved with the lower kind as A and flipped if needed.
+fn kind_rank(shape: &Shape) -> u8 {
+    match shape {
+        Shape::Halfspace(_) => 0,
+        Shape::Sphere(_) => 1,
+        Shape::Capsule(_) => 2,
+        Shape::Cuboid(_) => 3,
+        Shape::Cylinder(_) => 4,
+        Shape::ConvexHull(_) => 5,
+        Shape::Compound(_) => 6,
+    }
+}
+
+/// The manifold between two convex shapes (neither a compound), with the normal from A toward
+/// B, or `None` when their surfaces are farther apart than `margin` metres.
+pub fn collide_convex(
+    shape_a: &Shape,
+    pose_a: &Pose,
+    shape_b: &Shape,
+    pose_b: &Pose,
+    margin: f32,
+) -> Option<Manifold> {
+    if kind_rank(shape_a) > kind_rank(shape_b) {
+        return collide_convex(shape_b, pose_b, shape_a, pose_a, margin).map(Manifold::flipped);
+    }
+    match (shape_a, shape_b) {
+        (Shape::Halfspace(_), Shape::Halfspace(_)) | (_, Shape::Compound(_)) => None,
+        (Shape::Halfspace(halfspace), other) => {
+            collide_halfspace(halfspace, pose_a, other, pose_b, margin)
+        }
+        (Shape::Sphere(a), Shape::Sphere(b)) => sphere_sphere(a, pose_a, b, pose_b, margin),
+        (Shape::Sphere(a), Shape::Capsule(b)) => sphere_capsule(a, pose_a, b, pose_b, margin),
+        (Shape::Sphere(a), Shape::Cuboid(b)) => sphere_box(a, pose_a, b, pose_b, margin),
+        (Shape::Capsule(a), Shape::Capsule(b)) => capsule_capsule(a, pose_a, b, pose_b, margin),
+        (Shape::Cuboid(_) | Shape::ConvexHull(_), Shape::Cuboid(_) | Shape::ConvexHull(_)) => {
+            let a = Polyhedron::from_shape(shape_a)?;
+            let b = Polyhedron::from_shape(shape_b)?;
+            collide_polyhedra(&a, pose_a, &b, pose_b, margin)
+        }
+        _ => collide_features(shape_a, pose_a, shape_b, pose_b, margin),
+    }
+}
+
+/// The convex parts of a shape with their world poses: the shape itself, or each child of a
+/// compound with its index.
+fn for_each_part(shape: &Shape, pose: &Pose, mut visit: impl FnMut(u32, &Shape, Pose)) {
+    match shape {
+        Shape::Compound(compound) => {
+            for (index, child) in (0..).zip(compound.children()) {
+                visit(index, &child.shape, pose.mul_pose(&child.pose));
+            }
+        }
+        _ => visit(0, shape, *pose),
+    }
+}
+
+/// Every manifold between two shapes, compounds included: `on_manifold(child_a, child_b,
+/// manifold)` is called for each pair of convex parts in contact (child indices are 0 for a shape
+/// that is not a compound), in a deterministic order. Parts whose bounding boxes, grown by
+/// `margin`, do not overlap are skipped.
+pub fn collide(
+    shape_a: &Shape,
+    pose_a: &Pose,
+    shape_b: &Shape,
+    pose_b: &Pose,
+    margin: f32,
+    mut on_manifold: impl FnMut(u32, u32, Manifold),
+) {
+    let grow = |aabb: Aabb| {
+        Aabb::new(
+            aabb.min - Vec3::splat(margin),
+            aabb.max + Vec3::splat(margin),
+        )
+    };
+    let compound = |shape: &Shape| matches!(shape, Shape::Compound(_));
+    if !compound(shape_a) && !compound(shape_b) {
+        if let Some(manifold) = collide_convex(shape_a, pose_a, shape_b, pose_b, margin) {
+            on_manifold(0, 0, manifold);
+        }
+        return;
+    }
+    for_each_part(shape_a, pose_a, |child_a, part_a, part_pose_a| {
+        let bounds_a = grow(part_a.aabb(&part_pose_a));
+        for_each_part(shape_b, pose_b, |child_b, part_b, part_pose_b| {
+            if !bounds_a.overlaps(&part_b.aabb(&part_pose_b)) {
+                return;
+            }
+            if let Some(manifold) =
+                collide_convex(part_a, &part_pose_a, part_b, &part_pose_b, margin)
+            {
+                on_manifold(child_a, child_b, manifold);
+            }
+        });
+    });
+}

@@ -1,0 +1,163 @@
+//! Islands and sleeping.
+//!
+//! After each step, awake dynamic bodies linked by contacts form islands (union–find over the
+//! contact list, roots the lowest slot, so the result never depends on anything but the input).
+//! A body is still while `|v| + r_max |ω|` stays below [`SLEEP_SPEED`]; an island all of whose
+//! bodies have been still for [`TIME_TO_SLEEP`] falls asleep as one group. Sleeping bodies are
+//! left out of the step; a group wakes whole when any member is touched by an awake body, pushed
+//! by the user, or loses a body it rested on.
+
+use crate::arena::Arena;
+use crate::body::{BodyType, RigidBody};
+use crate::collision::contact_cache::Contact;
+use crate::math::Vec3;
+
+/// Speed below which a body counts as still, m/s: `|v| + r_max |ω|` with `r_max` the distance
+/// from its centre of mass to the farthest point of its bounding box.
+pub const SLEEP_SPEED: f32 = 0.05;
+
+/// How long an island must stay still before it sleeps, seconds.
+pub const TIME_TO_SLEEP: f32 = 0.5;
+
+/// Reused buffers of the island pass.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Islands {
+    /// Union–find parent of each arena slot.
+    parent: Vec<usize>,
+    /// Shortest sleep time in the island whose root is the slot.
+    island_sleep_time: Vec<f32>,
+    /// Groups that have an awake member, indexed by the group's root slot.
+    group_awake: Vec<bool>,
+    /// Slots of bodies touching a moving kinematic body this step.
+    kept_awake: Vec<usize>,
+    /// Each awake dynamic body's slot with its island's root slot.
+    members: Vec<(usize, usize)>,
+    /// Number of islands of awake dynamic bodies after the last step.
+    count: usize,
+}
+
+impl Islands {
+    /// Islands of awake dynamic bodies after the last step.
+    pub fn count(&self) -> usize {
+        self.count
+    }
+
+    fn find(&mut self, mut slot: usize) -> usize {
+        while self.parent[slot] != slot {
+            self.parent[slot] = self.parent[self.parent[slot]];
+            slot = self.parent[slot];
+        }
+        slot
+    }
+
+    fn union(&mut self, a: usize, b: usize) {
+        let (root_a, root_b) = (self.find(a), self.find(b));
+        let (low, high) = (root_a.min(root_b), root_a.max(root_b));
+        self.parent[high] = low;
+    }
+
+    /// Wakes every sleeping body whose group has an awake member (woken by the user or by a touch
+    /// since the group fell asleep), and forgets the group of awake bodies.
+    pub fn wake_touched_groups(&mut self, bodies: &mut Arena<RigidBody>) {
+        self.group_awake.clear();
+        for (_, body) in bodies.iter() {
+            if let (false, Some(group)) = (body.sleeping, body.sleep_group) {
+                if self.group_awake.len() <= group {
+                    self.group_awake.resize(group + 1, false);
+                }
+                self.group_awake[group] = true;
+            }
+        }
+        for body in bodies.values_mut() {
+            let Some(group) = body.sleep_group else {
+                continue;
+            };
+            if self.group_awake.get(group).copied().unwrap_or(false) {
+                body.sleeping = false;
+                body.sleep_time = 0.0;
+            }
+            if !body.sleeping {
+                body.sleep_group = None;
+            }
+        }
+    }
+
+    /// Builds this step's islands from `contacts`, advances every awake dynamic body's still time
+    /// by `dt`, and puts to sleep each island that has been still long enough.
+    pub fn update_sleep(&mut self, bodies: &mut Arena<RigidBody>, contacts: &[Contact], dt: f32) {
+        let slots = bodies
+            .iter()
+            .map(|(index, _)| index.slot() + 1)
+            .max()
+            .unwrap_or(0);
+        self.parent.clear();
+        self.parent.extend(0..slots);
+        self.island_sleep_time.clear();
+        self.island_sleep_time.resize(slots, f32::INFINITY);
+        for contact in contacts {
+            let (slot_a, slot_b) = (contact.key.body_a.slot(), contact.key.body_b.slot());
+            let awake_dynamic = |slot: usize| {
+                bodies
+                    .at_slot(slot)
+                    .is_some_and(|(_, body)| body.is_dynamic() && !body.sleeping)
+            };
+            if !contact.manifold.is_empty() && awake_dynamic(slot_a) && awake_dynamic(slot_b) {
+                self.union(slot_a, slot_b);
+            }
+        }
+        let moving_kinematic_contacts = contacts.iter().filter(|contact| {
+            [contact.key.body_a, contact.key.body_b]
+                .iter()
+                .any(|handle| {
+                    bodies.get(handle.0).is_some_and(|body| {
+                        body.body_type == BodyType::Kinematic
+                            && body.max_point_speed() > SLEEP_SPEED
+                    })
+                })
+        });
+        self.kept_awake.clear();
+        for contact in moving_kinematic_contacts {
+            self.kept_awake.push(contact.key.body_a.slot());
+            self.kept_awake.push(contact.key.body_b.slot());
+        }
+        for body in bodies.values_mut() {
+            if !body.is_dynamic() || body.sleeping {
+                continue;
+            }
+            if !body.can_sleep || body.max_point_speed() > SLEEP_SPEED {
+                body.sleep_time = 0.0;
+            } else {
+                body.sleep_time += dt;
+            }
+        }
+        for &slot in &self.kept_awake {
+            if let Some(body) = bodies.at_slot_mut(slot) {
+                body.sleep_time = 0.0;
+            }
+        }
+        self.members.clear();
+        for (index, body) in bodies.iter() {
+            if body.is_dynamic() && !body.sleeping {
+                let root = self.find(index.slot());
+                self.members.push((index.slot(), root));
+                let time = &mut self.island_sleep_time[root];
+                *time = time.min(body.sleep_time);
+            }
+        }
+        self.count = 0;
+        for &(slot, root) in &self.members {
+            let falls_asleep = self.island_sleep_time[root] >= TIME_TO_SLEEP;
+            if slot == root && !falls_asleep {
+                self.count += 1;
+            }
+            if falls_asleep {
+                if let Some(body) = bodies.at_slot_mut(slot) {
+                    body.sleeping = true;
+                    body.sleep_group = Some(root);
+                    body.linear_velocity = Vec3::ZERO;
+                    body.angular_velocity = Vec3::ZERO;
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,260 @@
+//! Stacks that stand, piles that settle without gaining energy, bodies that sleep and wake, and
+//! bit-identical reruns.
+
+mod common;
+
+use common::{add_ground, run, unit_box, world, DT, G};
+use rebond::{BodyDesc, BodyHandle, Quat, Shape, Vec3, World};
+
+/// Largest distance any body moved from its start over `seconds`.
+fn largest_drift(world: &mut World, bodies: &[(BodyHandle, Vec3)], seconds: f32) -> f32 {
+    let mut drift = 0.0f32;
+    for _ in 0..(seconds / DT).round() as usize {
+        world.step(DT).unwrap();
+        for (handle, start) in bodies {
+            drift = drift.max(world.body(*handle).unwrap().position().distance(*start));
+        }
+    }
+    drift
+}
+
+fn add_boxes(
+    world: &mut World,
+    positions: impl IntoIterator<Item = Vec3>,
+) -> Vec<(BodyHandle, Vec3)> {
+    positions
+        .into_iter()
+        .map(|position| (world.add_body(unit_box(position)).unwrap(), position))
+        .collect()
+}
+
+// Stacks: each resting contact settles at most LINEAR_SLOP (1 mm) deep, so a 10-box column and a
+// 20-row pyramid move less than 1 cm (measured 0.81 and 0.75 cm, docs/physics.md). The issue's
+// bound of 5 cm holds with room; anything that topples or slides moves far more.
+
+#[test]
+fn a_ten_box_column_stands_for_ten_seconds() {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    add_ground(&mut world, 0.6);
+    let boxes = add_boxes(
+        &mut world,
+        (0..10).map(|i| Vec3::new(0.0, 0.5 + i as f32, 0.0)),
+    );
+    let drift = largest_drift(&mut world, &boxes, 10.0);
+    assert!(drift < 0.05, "a box moved {drift} m");
+}
+
+#[test]
+fn a_twenty_row_pyramid_stands_for_ten_seconds() {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    add_ground(&mut world, 0.6);
+    let rows = 20;
+    let positions = (0..rows).flat_map(|row| {
+        let count = rows - row;
+        (0..count)
+            .map(move |i| Vec3::new(i as f32 - 0.5 * (count - 1) as f32, 0.5 + row as f32, 0.0))
+    });
+    let boxes = add_boxes(&mut world, positions);
+    assert_eq!(boxes.len(), 210);
+    let drift = largest_drift(&mut world, &boxes, 10.0);
+    assert!(drift < 0.05, "a box moved {drift} m");
+}
+
+#[test]
+fn a_box_a_hundred_times_heavier_sinks_the_light_one_less_than_a_centimetre() {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    add_ground(&mut world, 0.6);
+    let light = world
+        .add_body(unit_box(Vec3::new(0.0, 0.5, 0.0)).mass(1.0))
+        .unwrap();
+    let heavy = world
+        .add_body(unit_box(Vec3::new(0.0, 1.5, 0.0)).mass(100.0))
+        .unwrap();
+    run(&mut world, 300);
+    let light = world.body(light).unwrap().position();
+    let heavy = world.body(heavy).unwrap().position();
+    // Sinking of the light box into the ground plus the heavy one into the light one.
+    let sink = 1.5 - heavy.y;
+    assert!(
+        sink < 0.01,
+        "the heavy box sank {sink} m (light box centre at {})",
+        light.y
+    );
+    // It must not slide off either: measured lateral drift 1 mm, bound 5 mm (half the sink bound).
+    assert!(
+        heavy.x.abs() < 5.0e-3 && heavy.z.abs() < 5.0e-3,
+        "the heavy box slid to {heavy}"
+    );
+}
+
+#[test]
+fn a_settling_pile_never_gains_energy() {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    add_ground(&mut world, 0.6);
+    for i in 0..27 {
+        let (x, y, z) = ((i % 3) as f32, (i / 9) as f32, ((i / 3) % 3) as f32);
+        let tilt =
+            Quat::from_rotation_y(0.3 * i as f32) * Quat::from_rotation_x(0.1 * (i % 4) as f32);
+        world
+            .add_body(unit_box(Vec3::new(1.8 * x, 1.0 + 1.8 * y, 1.8 * z)).rotation(tilt))
+            .unwrap();
+    }
+    // Energy may be added only by the soft push-out of overlaps, bounded by the work of the push
+    // against gravity: at most MAX_PUSH_SPEED · dt of lift per step for a box. 0.1 % of the
+    // pile's mass·g·height budget (27 boxes × 1000 kg × 9.81 × 1 m ≈ 265 kJ) is 265 J.
+    let tolerance = 1.0e-3 * 27.0 * 1000.0 * G;
+    let mut previous = world.total_energy();
+    let start = previous;
+    for step in 0..600 {
+        world.step(DT).unwrap();
+        let energy = world.total_energy();
+        assert!(
+            energy <= previous + tolerance,
+            "step {step}: energy rose from {previous} to {energy}"
+        );
+        assert!(energy <= start + tolerance);
+        previous = energy;
+    }
+}
+
+#[test]
+fn a_resting_stack_falls_asleep_and_wakes_when_struck() {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    add_ground(&mut world, 0.6);
+    let boxes = add_boxes(
+        &mut world,
+        (0..5).map(|i| Vec3::new(0.0, 0.5 + i as f32, 0.0)),
+    );
+    let mut asleep_at = None;
+    for step in 0..300 {
+        world.step(DT).unwrap();
+        if boxes
+            .iter()
+            .all(|(handle, _)| world.body(*handle).unwrap().is_sleeping())
+        {
+            asleep_at = Some(step);
+            break;
+        }
+    }
+    let asleep_at = asleep_at.expect("the stack never fell asleep");
+    assert!(
+        asleep_at as f32 * DT < 3.0,
+        "took {} s to sleep",
+        asleep_at as f32 * DT
+    );
+    assert_eq!(world.island_count(), 0);
+    run(&mut world, 30);
+    assert!(boxes
+        .iter()
+        .all(|(handle, _)| world.body(*handle).unwrap().is_sleeping()));
+
+    // A ball thrown at the top box wakes the whole stack.
+    world
+        .add_body(
+            BodyDesc::dynamic(Shape::sphere(0.25).unwrap())
+                .position(Vec3::new(-3.0, 4.5, 0.0))
+                .linear_velocity(Vec3::new(8.0, 0.0, 0.0)),
+        )
+        .unwrap();
+    run(&mut world, 30);
+    assert!(boxes
+        .iter()
+        .all(|(handle, _)| !world.body(*handle).unwrap().is_sleeping()));
+}
+
+#[test]
+fn user_pushes_and_removal_wake_sleeping_bodies() {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    add_ground(&mut world, 0.6);
+    let boxes = add_boxes(
+        &mut world,
+        (0..3).map(|i| Vec3::new(0.0, 0.5 + i as f32, 0.0)),
+    );
+    run(&mut world, 180);
+    assert!(world.body(boxes[2].0).unwrap().is_sleeping());
+    // An impulse on the bottom box wakes the whole sleeping group at the next step.
+    world
+        .body_mut(boxes[0].0)
+        .unwrap()
+        .apply_impulse(Vec3::new(0.0, 0.0, 10.0))
+        .unwrap();
+    world.step(DT).unwrap();
+    assert!(boxes
+        .iter()
+        .all(|(handle, _)| !world.body(*handle).unwrap().is_sleeping()));
+    run(&mut world, 240);
+    assert!(world.body(boxes[2].0).unwrap().is_sleeping());
+    // Removing the middle box wakes the box that rested on it, which then falls.
+    world.remove_body(boxes[1].0).unwrap();
+    assert!(!world.body(boxes[2].0).unwrap().is_sleeping());
+    run(&mut world, 60);
+    assert!(world.body(boxes[2].0).unwrap().position().y < 1.6);
+}
+
+#[test]
+fn a_kinematic_body_pushes_dynamic_ones_and_is_never_pushed() {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    add_ground(&mut world, 0.3);
+    let pusher = world
+        .add_body(
+            BodyDesc::kinematic(Shape::cuboid(Vec3::new(0.5, 1.0, 2.0)).unwrap())
+                .position(Vec3::new(-2.0, 1.0, 0.0))
+                .linear_velocity(Vec3::new(1.0, 0.0, 0.0)),
+        )
+        .unwrap();
+    let pushed = world.add_body(unit_box(Vec3::new(0.0, 0.5, 0.0))).unwrap();
+    run(&mut world, 180);
+    let pusher = world.body(pusher).unwrap();
+    assert_eq!(pusher.linear_velocity(), Vec3::new(1.0, 0.0, 0.0));
+    assert!((pusher.position().x - 1.0).abs() < 1.0e-3);
+    // The box is carried in front of the pusher's face at x = pusher + 0.5, its centre 0.5 further.
+    let pushed = world.body(pushed).unwrap();
+    assert!(
+        pushed.position().x > pusher.position().x + 0.9,
+        "box at {}",
+        pushed.position()
+    );
+}
+
+#[test]
+fn same_input_gives_bit_identical_trajectories() {
+    let simulate = || {
+        let mut world = world(Vec3::new(0.0, -G, 0.0));
+        add_ground(&mut world, 0.6);
+        let mut handles = Vec::new();
+        for i in 0..40 {
+            let shape = match i % 4 {
+                0 => Shape::cuboid(Vec3::new(0.4, 0.3, 0.5)).unwrap(),
+                1 => Shape::sphere(0.4).unwrap(),
+                2 => Shape::capsule(0.25, 0.4).unwrap(),
+                _ => Shape::cylinder(0.4, 0.3).unwrap(),
+            };
+            let position = Vec3::new(
+                (i % 5) as f32 * 0.7,
+                1.0 + i as f32 * 0.6,
+                (i % 3) as f32 * 0.5,
+            );
+            let rotation = Quat::from_rotation_z(0.37 * i as f32);
+            handles.push(
+                world
+                    .add_body(
+                        BodyDesc::dynamic(shape)
+                            .position(position)
+                            .rotation(rotation),
+                    )
+                    .unwrap(),
+            );
+        }
+        run(&mut world, 300);
+        handles
+            .iter()
+            .flat_map(|handle| {
+                let body = world.body(*handle).unwrap();
+                let mut bits = body.position().to_array().map(f32::to_bits).to_vec();
+                bits.extend(body.rotation().to_array().map(f32::to_bits));
+                bits
+            })
+            .collect::<Vec<u32>>()
+    };
+    assert_eq!(simulate(), simulate());
+}
