@@ -1,8 +1,8 @@
 //! Time integration of body velocities and poses by semi-implicit (symplectic) Euler:
 //! velocities first from forces, then positions from the new velocities.
 
-use crate::math::{rotate_tensor, skew, Quat, Vec3};
-use crate::solver::SolverBody;
+use crate::math::{skew, Quat, Vec3};
+use crate::solver::{BodyMotion, BodyState};
 
 /// Largest rotation of a body in one substep, radians: a quarter turn.
 pub(crate) const MAX_ROTATION_PER_SUBSTEP: f32 = 0.25 * std::f32::consts::PI;
@@ -21,23 +21,27 @@ pub(crate) struct SpeedLimits {
 /// gyroscopic step and `ω ← ω / (1 + h·c_ang)`, each then held to its speed limit. Static and
 /// kinematic bodies are left alone.
 pub(crate) fn integrate_velocities(
-    body: &mut SolverBody,
+    state: &mut BodyState,
+    motion: &BodyMotion,
     gravity: Vec3,
     h: f32,
     limits: SpeedLimits,
 ) {
-    if !body.is_dynamic {
+    if !motion.is_dynamic {
         return;
     }
-    let (force, torque) = (body.force, body.torque);
-    let linear = body.linear_velocity + h * (gravity + body.inverse_mass * force);
-    let angular = body.angular_velocity + h * (body.world_inverse_inertia * torque);
-    let angular = implicit_gyroscopic_step(body, angular, h);
-    body.linear_velocity =
-        (linear / (1.0 + h * body.linear_damping)).clamp_length_max(limits.linear);
-    body.angular_velocity =
-        (angular / (1.0 + h * body.angular_damping)).clamp_length_max(limits.angular);
+    let linear = state.linear_velocity + h * (gravity + state.inverse_mass * motion.force);
+    let angular = state.angular_velocity + h * (motion.world_inverse_inertia * motion.torque);
+    let angular = implicit_gyroscopic_step(motion, angular, h);
+    state.linear_velocity =
+        (linear / (1.0 + h * motion.linear_damping)).clamp_length_max(limits.linear);
+    state.angular_velocity =
+        (angular / (1.0 + h * motion.angular_damping)).clamp_length_max(limits.angular);
 }
+
+/// Below this relative size the gyroscopic change `h ω × I ω` is lost in f32 rounding of `I ω`
+/// (spheres, cubes, slow spins) and the Newton step is skipped.
+const GYROSCOPIC_NEGLIGIBLE: f32 = 1.0e-7;
 
 /// Implicit gyroscopic step for the torque-free Euler equation, in body axes.
 ///
@@ -48,30 +52,38 @@ pub(crate) fn integrate_velocities(
 /// second order, as Box3D does for its (backward-Euler) form: `f = h ω × I ω`,
 /// `J = I + ½ h [ω]ₓ I − h [I ω]ₓ`, `ω' = ω − J⁻¹ f`. Unlike the explicit term
 /// `−h I⁻¹ (ω × I ω)` it never adds energy, and unlike backward Euler it does not bleed momentum.
-fn implicit_gyroscopic_step(body: &SolverBody, world_angular_velocity: Vec3, h: f32) -> Vec3 {
-    let inertia = body.local_inertia;
-    let omega = body.rotation.inverse() * world_angular_velocity;
+fn implicit_gyroscopic_step(motion: &BodyMotion, world_angular_velocity: Vec3, h: f32) -> Vec3 {
+    let inertia = motion.local_inertia;
+    let omega = motion.rotation.inverse() * world_angular_velocity;
     let momentum = inertia * omega;
     let residual = h * omega.cross(momentum);
+    if residual.length_squared()
+        <= GYROSCOPIC_NEGLIGIBLE * GYROSCOPIC_NEGLIGIBLE * momentum.length_squared()
+    {
+        return world_angular_velocity;
+    }
     let jacobian = inertia + 0.5 * h * (skew(omega) * inertia) - h * skew(momentum);
     let determinant = jacobian.determinant();
     if !determinant.is_finite() || determinant.abs() <= f32::MIN_POSITIVE {
         return world_angular_velocity;
     }
-    body.rotation * (omega - jacobian.inverse() * residual)
+    motion.rotation * (omega - jacobian.inverse() * residual)
 }
 
 /// Advances the pose of a dynamic or kinematic body by one substep: `c ← c + h v`,
-/// `q ← normalise(q + ½ h (ω, 0) q)` (the Cayley rotation by `h ω`), then refreshes the world
-/// inverse inertia.
-pub(crate) fn integrate_pose(body: &mut SolverBody, h: f32) {
-    body.center_of_mass += h * body.linear_velocity;
+/// `q ← normalise(q + ½ h (ω, 0) q)` (the Cayley rotation by `h ω`), and accumulates the motion
+/// since the step began (`Δc += h v`, `Δθ += h ω`) for the contact solver. The world inverse
+/// inertia is refreshed once, at the end of the step.
+pub(crate) fn integrate_pose(state: &mut BodyState, motion: &mut BodyMotion, h: f32) {
+    let step = h * state.linear_velocity;
+    motion.center_of_mass += step;
+    state.delta_position += step;
+    state.delta_rotation += h * state.angular_velocity;
     let spin = Quat::from_xyzw(
-        body.angular_velocity.x,
-        body.angular_velocity.y,
-        body.angular_velocity.z,
+        state.angular_velocity.x,
+        state.angular_velocity.y,
+        state.angular_velocity.z,
         0.0,
-    ) * body.rotation;
-    body.rotation = (body.rotation + spin * (0.5 * h)).normalize();
-    body.world_inverse_inertia = rotate_tensor(body.rotation, body.local_inverse_inertia);
+    ) * motion.rotation;
+    motion.rotation = (motion.rotation + spin * (0.5 * h)).normalize();
 }

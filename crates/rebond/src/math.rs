@@ -57,6 +57,12 @@ impl Pose {
         self.rotation.inverse() * vector
     }
 
+    /// The inverse transform: `p_local = inverse.transform_point(p_world)`.
+    pub fn inverse(&self) -> Pose {
+        let rotation = self.rotation.inverse();
+        Pose::new(rotation * -self.position, rotation)
+    }
+
     /// The composition `self · other`: first `other`, then `self`.
     pub fn mul_pose(&self, other: &Pose) -> Pose {
         Pose::new(

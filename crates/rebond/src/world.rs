@@ -230,7 +230,9 @@ impl World {
 
 impl World {
     /// Collision detection: refreshes every proxy's box, updates the broad-phase pairs, and runs
-    /// the narrow phase on each pair with a dynamic body, carrying impulses over by feature id.
+    /// the narrow phase on each pair with a moving body, carrying impulses over by feature id.
+    /// A pair whose bodies barely moved relative to each other since its manifolds were computed
+    /// rebuilds them instead ([`ContactCache::recycle`]).
     ///
     /// The contact margin of a pair grows with how fast its bodies move, so that two bodies
     /// closing in within this step already have speculative points: [`SPECULATIVE_DISTANCE`] plus
@@ -263,11 +265,15 @@ impl World {
                 }
                 continue;
             }
+            let (pose_a, pose_b) = (body_a.pose(), body_b.pose());
+            if contacts.recycle(body_a_handle, body_b_handle, &pose_a, &pose_b) {
+                continue;
+            }
             collide(
                 &body_a.shape,
-                &body_a.pose(),
+                &pose_a,
                 &body_b.shape,
-                &body_b.pose(),
+                &pose_b,
                 SPECULATIVE_DISTANCE + dt * closing_speed_bound(body_a, body_b),
                 |child_a, child_b, manifold| {
                     let key = ContactKey {
@@ -276,18 +282,13 @@ impl World {
                         child_a,
                         child_b,
                     };
-                    contacts.push(key, manifold);
+                    contacts.push(key, manifold, &pose_a, &pose_b);
                 },
             );
         }
         contacts.finish_step();
         for contact in contacts.contacts() {
-            let touching = contact
-                .manifold
-                .points()
-                .iter()
-                .any(|point| point.separation < 0.0);
-            if !touching {
+            if contact.manifold.is_empty() {
                 continue;
             }
             let (a, b) = (contact.key.body_a, contact.key.body_b);

@@ -3,7 +3,74 @@
 
 use super::manifold::{Manifold, MAX_MANIFOLD_POINTS};
 use crate::body::BodyHandle;
-use crate::math::Vec3;
+use crate::math::{Pose, Vec3};
+
+/// A manifold is rebuilt from its stored points instead of running the narrow phase again while
+/// B has moved less than this relative to A since the manifold was computed, metres.
+pub const RECYCLE_MAX_TRANSLATION: f32 = 1.0e-3;
+
+/// ... and turned less than this, radians (1°), measured as `cos(angle / 2)`.
+const RECYCLE_MIN_HALF_ANGLE_COSINE: f32 = 0.999_961_9;
+
+/// Where a manifold was computed, so it can be rebuilt while the two bodies barely move relative
+/// to each other (as Jolt's body-pair cache does): every point follows the bodies' surfaces.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ManifoldFrame {
+    /// Pose of body B in body A's frame when the manifold was computed.
+    relative_pose: Pose,
+    /// The normal in A's frame.
+    local_normal: Vec3,
+    /// Each point's surface point on A in A's frame, and on B in B's frame.
+    local_points: [[Vec3; 2]; MAX_MANIFOLD_POINTS],
+}
+
+impl ManifoldFrame {
+    /// Records `manifold`, computed with the bodies at `pose_a` and `pose_b`. A point at
+    /// `position` with separation `s` has its surface points at `position ∓ n s / 2`.
+    fn new(manifold: &Manifold, pose_a: &Pose, pose_b: &Pose) -> Self {
+        let mut local_points = [[Vec3::ZERO; 2]; MAX_MANIFOLD_POINTS];
+        for (point, local) in manifold.points().iter().zip(&mut local_points) {
+            let half_gap = 0.5 * point.separation * manifold.normal;
+            *local = [
+                pose_a.inverse_transform_point(point.position - half_gap),
+                pose_b.inverse_transform_point(point.position + half_gap),
+            ];
+        }
+        Self {
+            relative_pose: pose_a.inverse().mul_pose(pose_b),
+            local_normal: pose_a.inverse_transform_vector(manifold.normal),
+            local_points,
+        }
+    }
+
+    /// Whether B's pose relative to A is still within the recycling tolerances.
+    fn still_fits(&self, relative_pose: &Pose) -> bool {
+        let moved = relative_pose
+            .position
+            .distance_squared(self.relative_pose.position);
+        let half_angle_cosine = relative_pose
+            .rotation
+            .dot(self.relative_pose.rotation)
+            .abs();
+        moved <= RECYCLE_MAX_TRANSLATION * RECYCLE_MAX_TRANSLATION
+            && half_angle_cosine >= RECYCLE_MIN_HALF_ANGLE_COSINE
+    }
+
+    /// The manifold with its points carried along with the bodies now at `pose_a` and `pose_b`:
+    /// same ids, separations measured again along the carried normal.
+    fn rebuild(&self, manifold: &Manifold, pose_a: &Pose, pose_b: &Pose) -> Manifold {
+        let mut rebuilt = *manifold;
+        let normal = pose_a.transform_vector(self.local_normal);
+        rebuilt.normal = normal;
+        for (point, [on_a, on_b]) in rebuilt.points_mut().iter_mut().zip(&self.local_points) {
+            let surface_a = pose_a.transform_point(*on_a);
+            let surface_b = pose_b.transform_point(*on_b);
+            point.separation = normal.dot(surface_b - surface_a);
+            point.position = 0.5 * (surface_a + surface_b);
+        }
+        rebuilt
+    }
+}
 
 /// Names one contact: the two bodies (A before B) and the compound children involved (0 for a
 /// shape that is not a compound). Ordered, so contacts sort deterministically.
@@ -33,6 +100,8 @@ pub struct Contact {
     pub friction_impulse: Vec3,
     /// Angular friction impulse about the normal, N·m·s.
     pub twist_impulse: f32,
+    /// Where the manifold was computed.
+    pub frame: ManifoldFrame,
 }
 
 /// This step's contacts, sorted by key, and last step's, kept to warm-start from.
@@ -50,28 +119,53 @@ impl ContactCache {
         self.current.clear();
     }
 
-    /// Adds a contact found this step, with zero impulses until [`ContactCache::finish_step`].
-    pub fn push(&mut self, key: ContactKey, manifold: Manifold) {
+    /// Adds a contact found this step by the narrow phase with the bodies at `pose_a` and
+    /// `pose_b`, with zero impulses until [`ContactCache::finish_step`].
+    pub fn push(&mut self, key: ContactKey, manifold: Manifold, pose_a: &Pose, pose_b: &Pose) {
         self.current.push(Contact {
             key,
             manifold,
             normal_impulses: [0.0; MAX_MANIFOLD_POINTS],
             friction_impulse: Vec3::ZERO,
             twist_impulse: 0.0,
+            frame: ManifoldFrame::new(&manifold, pose_a, pose_b),
         });
+    }
+
+    /// Rebuilds last step's contacts between `body_a` (now at `pose_a`) and `body_b` (at
+    /// `pose_b`) instead of running the narrow phase, if there were any and B has barely moved
+    /// relative to A since they were computed ([`RECYCLE_MAX_TRANSLATION`], 1°). Returns whether
+    /// it did.
+    pub fn recycle(
+        &mut self,
+        body_a: BodyHandle,
+        body_b: BodyHandle,
+        pose_a: &Pose,
+        pose_b: &Pose,
+    ) -> bool {
+        let previous = contacts_of_pair(&self.previous, body_a, body_b);
+        let relative_pose = pose_a.inverse().mul_pose(pose_b);
+        if previous.is_empty()
+            || !previous
+                .iter()
+                .all(|contact| contact.frame.still_fits(&relative_pose))
+        {
+            return false;
+        }
+        let start = self.current.len();
+        self.current.extend_from_slice(previous);
+        for contact in &mut self.current[start..] {
+            contact.manifold = contact.frame.rebuild(&contact.manifold, pose_a, pose_b);
+        }
+        true
     }
 
     /// Keeps last step's contacts between `body_a` and `body_b` unchanged, impulses included:
     /// for pairs of bodies that did not move (asleep, or asleep against static), whose contacts
     /// must be ready the moment they wake.
     pub fn keep_previous(&mut self, body_a: BodyHandle, body_b: BodyHandle) {
-        let start = self
-            .previous
-            .partition_point(|contact| (contact.key.body_a, contact.key.body_b) < (body_a, body_b));
-        let kept = self.previous[start..]
-            .iter()
-            .take_while(|contact| contact.key.body_a == body_a && contact.key.body_b == body_b);
-        self.current.extend(kept);
+        self.current
+            .extend_from_slice(contacts_of_pair(&self.previous, body_a, body_b));
     }
 
     /// Sorts this step's contacts by key and gives each point the normal impulse of the previous
@@ -117,6 +211,17 @@ impl ContactCache {
     }
 }
 
+/// The contacts between `body_a` and `body_b` in `contacts`, which is sorted by key.
+fn contacts_of_pair(contacts: &[Contact], body_a: BodyHandle, body_b: BodyHandle) -> &[Contact] {
+    let pair = |contact: &Contact| (contact.key.body_a, contact.key.body_b);
+    let start = contacts.partition_point(|contact| pair(contact) < (body_a, body_b));
+    let length = contacts[start..]
+        .iter()
+        .take_while(|contact| pair(contact) == (body_a, body_b))
+        .count();
+    &contacts[start..start + length]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -158,8 +263,18 @@ mod tests {
         let (ground, box_one, box_two) = handles();
         let mut cache = ContactCache::default();
         cache.begin_step();
-        cache.push(key(ground, box_two), manifold(&[5]));
-        cache.push(key(ground, box_one), manifold(&[1, 2, 3, 4]));
+        cache.push(
+            key(ground, box_two),
+            manifold(&[5]),
+            &Pose::IDENTITY,
+            &Pose::IDENTITY,
+        );
+        cache.push(
+            key(ground, box_one),
+            manifold(&[1, 2, 3, 4]),
+            &Pose::IDENTITY,
+            &Pose::IDENTITY,
+        );
         cache.finish_step();
         assert_eq!(cache.contacts()[0].key, key(ground, box_one));
         for (index, impulse) in cache.contacts_mut()[0]
@@ -173,8 +288,18 @@ mod tests {
         cache.contacts_mut()[1].normal_impulses[0] = 9.0;
 
         cache.begin_step();
-        cache.push(key(ground, box_one), manifold(&[4, 2, 7]));
-        cache.push(key(box_one, box_two), manifold(&[5]));
+        cache.push(
+            key(ground, box_one),
+            manifold(&[4, 2, 7]),
+            &Pose::IDENTITY,
+            &Pose::IDENTITY,
+        );
+        cache.push(
+            key(box_one, box_two),
+            manifold(&[5]),
+            &Pose::IDENTITY,
+            &Pose::IDENTITY,
+        );
         cache.finish_step();
         let contacts = cache.contacts();
         assert_eq!(contacts.len(), 2);
@@ -189,11 +314,71 @@ mod tests {
         let (ground, box_one, box_two) = handles();
         let mut cache = ContactCache::default();
         cache.begin_step();
-        cache.push(key(ground, box_one), manifold(&[1]));
-        cache.push(key(ground, box_two), manifold(&[1]));
+        cache.push(
+            key(ground, box_one),
+            manifold(&[1]),
+            &Pose::IDENTITY,
+            &Pose::IDENTITY,
+        );
+        cache.push(
+            key(ground, box_two),
+            manifold(&[1]),
+            &Pose::IDENTITY,
+            &Pose::IDENTITY,
+        );
         cache.finish_step();
         cache.remove_body(box_one);
         assert_eq!(cache.contacts().len(), 1);
         assert_eq!(cache.contacts()[0].key.body_b, box_two);
+    }
+
+    #[test]
+    fn a_recycled_manifold_follows_small_motions_like_a_fresh_one() {
+        use crate::collision::narrow_phase::collide_convex;
+        use crate::math::Quat;
+        use crate::shape::Shape;
+
+        let (ground, box_one, _) = handles();
+        let ground_shape = Shape::cuboid(Vec3::new(5.0, 0.5, 5.0)).unwrap();
+        let box_shape = Shape::cuboid(Vec3::splat(0.5)).unwrap();
+        let ground_pose = Pose::from_position(Vec3::new(0.0, -0.5, 0.0));
+        let collide = |pose: &Pose| {
+            collide_convex(&ground_shape, &ground_pose, &box_shape, pose, 0.02).unwrap()
+        };
+        let start = Pose::from_position(Vec3::new(0.0, 0.495, 0.0));
+        let mut cache = ContactCache::default();
+        cache.begin_step();
+        cache.push(key(ground, box_one), collide(&start), &ground_pose, &start);
+        cache.finish_step();
+
+        // Moved by 0.6 mm and turned by 0.5°: within the tolerances, rebuilt.
+        let nudged = Pose::new(
+            start.position + Vec3::new(0.0003, 0.0004, -0.0003),
+            Quat::from_rotation_x(0.5f32.to_radians()),
+        );
+        cache.begin_step();
+        assert!(cache.recycle(ground, box_one, &ground_pose, &nudged));
+        cache.finish_step();
+        let rebuilt = cache.contacts()[0].manifold;
+        let fresh = collide(&nudged);
+        assert_eq!(rebuilt.len(), fresh.len());
+        // Separations agree to 0.1 mm: the rebuilt points follow the box's corners exactly. The
+        // positions agree to 4 mm: the turn moves a corner (0.87 m from the centre) sideways by
+        // up to 0.87 · 0.0087 rad ≈ 7.6 mm, and the rebuilt midpoint keeps the ground-side point
+        // where it was, so it moves half of that.
+        for fresh_point in fresh.points() {
+            let twin = rebuilt
+                .points()
+                .iter()
+                .find(|point| point.id == fresh_point.id)
+                .unwrap();
+            assert!((twin.separation - fresh_point.separation).abs() < 1.0e-4);
+            assert!(twin.position.distance(fresh_point.position) < 4.0e-3);
+        }
+
+        // Moved by 2 mm: beyond the tolerance, the narrow phase must run again.
+        cache.begin_step();
+        let moved = Pose::from_position(start.position + Vec3::new(0.002, 0.0, 0.0));
+        assert!(!cache.recycle(ground, box_one, &ground_pose, &moved));
     }
 }

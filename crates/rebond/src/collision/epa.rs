@@ -134,6 +134,9 @@ struct Face {
     distance: f32,
     /// Replaced by newer faces; kept in place so that indices stay valid.
     removed: bool,
+    /// Its support point could not be added (rounding made the polytope inconsistent there):
+    /// never again chosen as the closest face.
+    stuck: bool,
 }
 
 impl Face {
@@ -194,27 +197,38 @@ impl Polytope {
             Ok(scale) => scale,
             Err(answer) => return answer,
         };
-        let Some(mut closest) = self.closest_face() else {
-            return Prober::new(a, b, simplex).fallback();
-        };
-        let mut tolerance = TOLERANCE * scale;
+        // Every support point bounds the depth along its direction from above; the closest face
+        // bounds it from below. The answer is the direction with the least bound, the closest
+        // face's own distance once the two bounds meet.
+        let mut best: Option<(f32, usize)> = None;
         for _ in 0..MAX_ITERATIONS {
+            let Some(closest) = self.closest_face() else {
+                break;
+            };
             let face = self.faces[closest];
             let point = SupportPoint::new(a, b, face.normal);
-            scale = scale.max(point.w.length());
-            tolerance = TOLERANCE * scale;
-            if !point.w.is_finite()
-                || face.height_of(point.w) <= tolerance
-                || !self.add_vertex(point, closest, tolerance, scale)
-            {
+            if !point.w.is_finite() {
                 break;
             }
-            match self.closest_face() {
-                Some(face) => closest = face,
-                None => break,
+            scale = scale.max(point.w.length());
+            let tolerance = TOLERANCE * scale;
+            let reach = point.w.dot(face.normal);
+            let converged = reach - face.distance <= tolerance;
+            let depth = if converged { face.distance } else { reach };
+            if best.is_none_or(|(least, _)| depth < least) {
+                best = Some((depth, closest));
+            }
+            if converged {
+                break;
+            }
+            if !self.add_vertex(point, closest, tolerance, scale) {
+                self.faces[closest].stuck = true;
             }
         }
-        self.answer(closest)
+        match best {
+            Some((depth, face)) => self.answer(face, depth),
+            None => Prober::new(a, b, simplex).fallback(),
+        }
     }
 
     /// Grows the GJK simplex into a tetrahedron of `A − B` around the origin and returns the
@@ -326,6 +340,7 @@ impl Polytope {
             normal,
             distance,
             removed: false,
+            stuck: false,
         }
     }
 
@@ -334,7 +349,7 @@ impl Polytope {
         self.faces
             .iter()
             .enumerate()
-            .filter(|(_, face)| !face.removed && face.distance.is_finite())
+            .filter(|(_, face)| !face.removed && !face.stuck && face.distance.is_finite())
             .min_by(|(_, x), (_, y)| {
                 x.distance
                     .partial_cmp(&y.distance)
@@ -449,37 +464,41 @@ impl Polytope {
         true
     }
 
-    /// The penetration given by a face: its normal and distance, and the points of A and B whose
+    /// The penetration along a face's normal, `depth` deep, with the points of A and B whose
     /// difference is where the ray from the origin along that normal leaves the polytope. That
     /// is usually the origin's projection on the face itself, but may lie in a neighbour of the
     /// same plane (a box face or a cylinder cap is split into several triangles), or elsewhere
     /// when the face is a sliver whose normal, though it does measure the depth, is not quite
-    /// its own.
-    fn answer(&self, face: usize) -> Penetration {
+    /// its own. The ray leaves through the face it meets inside its triangle (found as the face
+    /// whose triangle misses the ray's crossing of its plane the least, which rounding or a
+    /// slightly dented polytope cannot fool the way the nearest crossing could).
+    fn answer(&self, face: usize, depth: f32) -> Penetration {
         let face = self.faces[face];
         let normal = face.normal;
-        let exit = self
-            .faces
-            .iter()
-            .filter(|candidate| !candidate.removed && candidate.distance.is_finite())
-            .filter_map(|candidate| {
-                let facing = candidate.normal.dot(normal);
-                (facing > 0.0).then(|| (candidate.distance / facing, candidate))
-            })
-            .min_by(|x, y| x.0.partial_cmp(&y.0).unwrap_or(Ordering::Equal));
-        let (reach, exit_face) = exit.unwrap_or((face.distance, &face));
-        let target = reach * normal;
-        let shifted = exit_face.vertices.map(|index| {
-            let point = self.vertices[index];
-            SupportPoint {
-                w: point.w - target,
-                ..point
+        let mut exit = (f32::INFINITY, Simplex::default());
+        for candidate in &self.faces {
+            let facing = candidate.normal.dot(normal);
+            if candidate.removed || !candidate.distance.is_finite() || facing <= 0.0 {
+                continue;
             }
-        });
-        let (point_a, point_b) = Simplex::reduced(&shifted).0.witness_points();
+            let crossing = candidate.distance / facing * normal;
+            let shifted = candidate.vertices.map(|index| {
+                let point = self.vertices[index];
+                SupportPoint {
+                    w: point.w - crossing,
+                    ..point
+                }
+            });
+            let (nearest, _) = Simplex::reduced(&shifted);
+            let miss = nearest.closest_point().length_squared();
+            if miss < exit.0 {
+                exit = (miss, nearest);
+            }
+        }
+        let (point_a, point_b) = exit.1.witness_points();
         Penetration {
             normal,
-            depth: face.distance.max(0.0),
+            depth: depth.max(0.0),
             point_a,
             point_b,
         }

@@ -252,11 +252,19 @@ impl Barycentric {
         let edge_products =
             ab.length() * ac.length() + ac.length() * ad.length() + ad.length() * ab.length();
         let solid = volume.abs() > DEGENERACY * edge_products;
-        // The origin is a + wb·ab + wc·ac + wd·ad: Cramer's rule on the edges, which keeps the
-        // weights precise for a flat tetrahedron, and the first weight makes the sum one.
-        let weight_b = -a.dot(ac.cross(ad)) / volume;
-        let weight_c = -ab.dot(a.cross(ad)) / volume;
-        let weight_d = -ab.dot(ac.cross(a)) / volume;
+        // The origin is a + wb·ab + wc·ac + wd·ad: Cramer's rule on the edges, the first weight
+        // making the sum one. A thin tetrahedron loses precision there, which one round of
+        // refinement (solving again for what the weights miss) wins back.
+        let solve = |target: Vec3| {
+            let weight_b = -target.dot(ac.cross(ad)) / volume;
+            let weight_c = -ab.dot(target.cross(ad)) / volume;
+            let weight_d = -ab.dot(ac.cross(target)) / volume;
+            [weight_b, weight_c, weight_d]
+        };
+        let [weight_b, weight_c, weight_d] = solve(a);
+        let residual = weight_b * ab + weight_c * ac + weight_d * ad + a;
+        let [fix_b, fix_c, fix_d] = solve(residual);
+        let (weight_b, weight_c, weight_d) = (weight_b + fix_b, weight_c + fix_c, weight_d + fix_d);
         let weights = [
             1.0 - weight_b - weight_c - weight_d,
             weight_b,

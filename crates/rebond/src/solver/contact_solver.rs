@@ -9,11 +9,11 @@
 //! rate instead of 5 % too little, and no longer starts to spin about the normal.
 
 use super::softness::Softness;
-use super::SolverBody;
+use super::{BodyMotion, BodyState};
 use crate::body::RigidBody;
 use crate::collision::contact_cache::Contact;
 use crate::collision::MAX_MANIFOLD_POINTS;
-use crate::math::Vec3;
+use crate::math::{Mat3, Vec3};
 
 /// Penetration allowed without correction, metres: resting contacts settle this deep instead of
 /// jittering in and out of touch. Stacks sink by about this much per layer.
@@ -50,19 +50,93 @@ pub fn combine_restitution(a: f32, b: f32) -> f32 {
     a.max(b)
 }
 
+/// The velocity Jacobian of one direction `d` of a contact, for both bodies, with the angular
+/// response precomputed from the inverse inertia at the start of the step.
+#[derive(Debug, Clone, Copy, Default)]
+struct Jacobian {
+    /// `r_A × d` and `r_B × d`: how each body's spin moves the contact along `d`.
+    arm_a: Vec3,
+    arm_b: Vec3,
+    /// `I_A⁻¹ (r_A × d)` and `I_B⁻¹ (r_B × d)`: the spin a unit impulse along `d` gives.
+    spin_a: Vec3,
+    spin_b: Vec3,
+    /// `1 / (m_A⁻¹ + m_B⁻¹ + (r_A × d)·I_A⁻¹(r_A × d) + (r_B × d)·I_B⁻¹(r_B × d))`, or zero when
+    /// nothing can move along `d`.
+    mass: f32,
+}
+
+impl Jacobian {
+    fn new(a: &Body, b: &Body, anchor_a: Vec3, anchor_b: Vec3, direction: Vec3) -> Self {
+        let arm_a = anchor_a.cross(direction);
+        let arm_b = anchor_b.cross(direction);
+        let spin_a = a.world_inverse_inertia * arm_a;
+        let spin_b = b.world_inverse_inertia * arm_b;
+        let k = a.inverse_mass + b.inverse_mass + arm_a.dot(spin_a) + arm_b.dot(spin_b);
+        Self {
+            arm_a,
+            arm_b,
+            spin_a,
+            spin_b,
+            mass: inverse_or_zero(k),
+        }
+    }
+
+    /// Relative velocity of B's point with respect to A's along the direction:
+    /// `d·(v_B − v_A) + ω_B·(r_B × d) − ω_A·(r_A × d)`.
+    fn velocity(&self, a: &BodyState, b: &BodyState, direction: Vec3) -> f32 {
+        direction.dot(b.linear_velocity - a.linear_velocity) + b.angular_velocity.dot(self.arm_b)
+            - a.angular_velocity.dot(self.arm_a)
+    }
+
+    /// Applies `impulse` along the direction to B and its opposite to A:
+    /// `Δv = ±λ d / m`, `Δω = ±λ I⁻¹ (r × d)`.
+    fn apply(&self, a: &mut BodyState, b: &mut BodyState, direction: Vec3, impulse: f32) {
+        a.linear_velocity -= (a.inverse_mass * impulse) * direction;
+        a.angular_velocity -= impulse * self.spin_a;
+        b.linear_velocity += (b.inverse_mass * impulse) * direction;
+        b.angular_velocity += impulse * self.spin_b;
+    }
+}
+
+/// A body as the constraint builder sees it.
+struct Body {
+    center_of_mass: Vec3,
+    inverse_mass: f32,
+    world_inverse_inertia: Mat3,
+    linear_velocity: Vec3,
+    angular_velocity: Vec3,
+}
+
+impl Body {
+    fn new(state: &BodyState, motion: &BodyMotion) -> Self {
+        Self {
+            center_of_mass: motion.center_of_mass,
+            inverse_mass: state.inverse_mass,
+            world_inverse_inertia: motion.world_inverse_inertia,
+            linear_velocity: state.linear_velocity,
+            angular_velocity: state.angular_velocity,
+        }
+    }
+
+    fn velocity_at(&self, anchor: Vec3) -> Vec3 {
+        self.linear_velocity + self.angular_velocity.cross(anchor)
+    }
+}
+
+fn inverse_or_zero(k: f32) -> f32 {
+    if k > 0.0 {
+        1.0 / k
+    } else {
+        0.0
+    }
+}
+
 /// One point of a contact constraint: the normal (non-penetration) part.
 #[derive(Debug, Clone, Copy, Default)]
 struct ConstraintPoint {
-    /// Contact point relative to each centre of mass at the start of the step, world axes.
-    anchor_a: Vec3,
-    anchor_b: Vec3,
-    /// The same offsets in each body's frame, to follow the bodies through the substeps.
-    local_anchor_a: Vec3,
-    local_anchor_b: Vec3,
+    normal: Jacobian,
     /// Separation at the start of the step, metres.
     base_separation: f32,
-    /// `1 / (J M⁻¹ Jᵀ)` along the normal.
-    normal_mass: f32,
     /// Normal relative velocity at the start of the step, m/s (negative when approaching).
     approach_velocity: f32,
     /// Accumulated normal impulse, N·s; never negative.
@@ -70,6 +144,17 @@ struct ConstraintPoint {
     /// Largest normal impulse applied in one iteration this step: zero means the point never
     /// pushed, and restitution must not act on it.
     max_normal_impulse: f32,
+}
+
+impl ConstraintPoint {
+    /// The separation now: the start value plus how the bodies moved along the normal since,
+    /// `s₀ + n·(Δc_B − Δc_A) + Δθ_B·(r_B × n) − Δθ_A·(r_A × n)` (rotation to first order).
+    fn current_separation(&self, a: &BodyState, b: &BodyState, normal: Vec3) -> f32 {
+        self.base_separation
+            + normal.dot(b.delta_position - a.delta_position)
+            + b.delta_rotation.dot(self.normal.arm_b)
+            - a.delta_rotation.dot(self.normal.arm_a)
+    }
 }
 
 /// A manifold turned into a velocity constraint between two solver bodies.
@@ -85,12 +170,13 @@ pub(crate) struct ContactConstraint {
     restitution: f32,
     points: [ConstraintPoint; MAX_MANIFOLD_POINTS],
     point_count: usize,
-    /// Centre of the points relative to each centre of mass, where friction acts.
-    friction_anchor_a: Vec3,
-    friction_anchor_b: Vec3,
-    tangent_mass: [f32; 2],
+    /// Friction acts at the centre of the points, along the two tangents.
+    tangent: [Jacobian; 2],
     /// Accumulated friction impulses along the two tangents, N·s.
     tangent_impulse: [f32; 2],
+    /// `I_A⁻¹ n` and `I_B⁻¹ n`: the spin a unit twist impulse gives.
+    twist_spin_a: Vec3,
+    twist_spin_b: Vec3,
     /// `1 / (n · (I_A⁻¹ + I_B⁻¹) n)`: effective inertia for turning about the normal.
     twist_mass: f32,
     /// Mean distance of the points from their centre, m: the lever of twist friction.
@@ -99,38 +185,19 @@ pub(crate) struct ContactConstraint {
     twist_impulse: f32,
 }
 
-/// `1 / (m_A⁻¹ + m_B⁻¹ + (I_A⁻¹ (r_A × d)) · (r_A × d) + (I_B⁻¹ (r_B × d)) · (r_B × d))`, or zero
-/// when nothing can move along `d`.
-fn effective_mass(a: &SolverBody, b: &SolverBody, anchor_a: Vec3, anchor_b: Vec3, d: Vec3) -> f32 {
-    let arm_a = anchor_a.cross(d);
-    let arm_b = anchor_b.cross(d);
-    let k = a.inverse_mass
-        + b.inverse_mass
-        + (a.world_inverse_inertia * arm_a).dot(arm_a)
-        + (b.world_inverse_inertia * arm_b).dot(arm_b);
-    inverse_or_zero(k)
-}
-
-fn inverse_or_zero(k: f32) -> f32 {
-    if k > 0.0 {
-        1.0 / k
-    } else {
-        0.0
-    }
-}
-
 impl ContactConstraint {
     /// Builds the constraint of `contact` (index `contact_index`) between solver bodies `body_a`
     /// and `body_b`, warm-started from the contact's cached impulses.
     pub fn new(
         contact: &Contact,
         contact_index: usize,
-        bodies: &[SolverBody],
+        (states, motions): (&[BodyState], &[BodyMotion]),
         body_a: usize,
         body_b: usize,
         materials: (&RigidBody, &RigidBody),
     ) -> Self {
-        let (a, b) = (&bodies[body_a], &bodies[body_b]);
+        let a = Body::new(&states[body_a], &motions[body_a]);
+        let b = Body::new(&states[body_b], &motions[body_b]);
         let normal = contact.manifold.normal;
         let (tangent_1, tangent_2) = normal.any_orthonormal_pair();
         let tangents = [tangent_1, tangent_2];
@@ -145,12 +212,8 @@ impl ContactConstraint {
             let anchor_b = point.position - b.center_of_mass;
             let relative_velocity = b.velocity_at(anchor_b) - a.velocity_at(anchor_a);
             *constraint_point = ConstraintPoint {
-                anchor_a,
-                anchor_b,
-                local_anchor_a: a.rotation.inverse() * anchor_a,
-                local_anchor_b: b.rotation.inverse() * anchor_b,
+                normal: Jacobian::new(&a, &b, anchor_a, anchor_b, normal),
                 base_separation: point.separation,
-                normal_mass: effective_mass(a, b, anchor_a, anchor_b, normal),
                 approach_velocity: relative_velocity.dot(normal),
                 normal_impulse,
                 max_normal_impulse: 0.0,
@@ -167,12 +230,9 @@ impl ContactConstraint {
             .map(|point| point.position.distance(center))
             .sum::<f32>()
             / count;
-        let (friction_anchor_a, friction_anchor_b) =
-            (center - a.center_of_mass, center - b.center_of_mass);
-        let twist_mass = inverse_or_zero(
-            normal.dot(a.world_inverse_inertia * normal)
-                + normal.dot(b.world_inverse_inertia * normal),
-        );
+        let (center_a, center_b) = (center - a.center_of_mass, center - b.center_of_mass);
+        let twist_spin_a = a.world_inverse_inertia * normal;
+        let twist_spin_b = b.world_inverse_inertia * normal;
         Self {
             body_a,
             body_b,
@@ -183,12 +243,11 @@ impl ContactConstraint {
             restitution: combine_restitution(materials.0.restitution, materials.1.restitution),
             points,
             point_count: manifold_points.len(),
-            friction_anchor_a,
-            friction_anchor_b,
-            tangent_mass: tangents
-                .map(|tangent| effective_mass(a, b, friction_anchor_a, friction_anchor_b, tangent)),
+            tangent: tangents.map(|tangent| Jacobian::new(&a, &b, center_a, center_b, tangent)),
             tangent_impulse: tangents.map(|tangent| contact.friction_impulse.dot(tangent)),
-            twist_mass,
+            twist_spin_a,
+            twist_spin_b,
+            twist_mass: inverse_or_zero(normal.dot(twist_spin_a) + normal.dot(twist_spin_b)),
             twist_radius,
             twist_impulse: contact.twist_impulse,
         }
@@ -202,26 +261,21 @@ impl ContactConstraint {
         self.tangent_impulse[0] * self.tangents[0] + self.tangent_impulse[1] * self.tangents[1]
     }
 
+    fn apply_twist(&self, a: &mut BodyState, b: &mut BodyState, impulse: f32) {
+        a.angular_velocity -= impulse * self.twist_spin_a;
+        b.angular_velocity += impulse * self.twist_spin_b;
+    }
+
     /// Applies last step's accumulated impulses again (warm starting).
-    pub fn warm_start(&self, bodies: &mut [SolverBody]) {
-        let (a, b) = pair_mut(bodies, self.body_a, self.body_b);
+    pub fn warm_start(&self, states: &mut [BodyState]) {
+        let (a, b) = pair_mut(states, self.body_a, self.body_b);
         for point in self.points() {
-            apply(
-                a,
-                b,
-                point.anchor_a,
-                point.anchor_b,
-                point.normal_impulse * self.normal,
-            );
+            point.normal.apply(a, b, self.normal, point.normal_impulse);
         }
-        apply(
-            a,
-            b,
-            self.friction_anchor_a,
-            self.friction_anchor_b,
-            self.friction_impulse(),
-        );
-        apply_twist(a, b, self.twist_impulse * self.normal);
+        for axis in 0..2 {
+            self.tangent[axis].apply(a, b, self.tangents[axis], self.tangent_impulse[axis]);
+        }
+        self.apply_twist(a, b, self.twist_impulse);
     }
 
     /// One sequential-impulse pass: the normal impulse of each point with accumulated clamping
@@ -234,18 +288,16 @@ impl ContactConstraint {
     /// added.
     pub fn solve(
         &mut self,
-        bodies: &mut [SolverBody],
+        states: &mut [BodyState],
         softness: &Softness,
         inverse_h: f32,
         use_bias: bool,
     ) {
-        let (a, b) = pair_mut(bodies, self.body_a, self.body_b);
+        let (a, b) = pair_mut(states, self.body_a, self.body_b);
         let normal = self.normal;
         let mut total_normal_impulse = 0.0;
         for point in &mut self.points[..self.point_count] {
-            let moved = (b.center_of_mass + b.rotation * point.local_anchor_b)
-                - (a.center_of_mass + a.rotation * point.local_anchor_a);
-            let separation = point.base_separation + moved.dot(normal);
+            let separation = point.current_separation(a, b, normal);
             let (bias, mass_scale, impulse_scale) = if separation > 0.0 {
                 (separation * inverse_h, 1.0, 0.0)
             } else if use_bias && separation < -LINEAR_SLOP {
@@ -254,25 +306,23 @@ impl ContactConstraint {
             } else {
                 (0.0, 1.0, 0.0)
             };
-            let normal_velocity =
-                (b.velocity_at(point.anchor_b) - a.velocity_at(point.anchor_a)).dot(normal);
-            let impulse = -point.normal_mass * mass_scale * (normal_velocity + bias)
+            let normal_velocity = point.normal.velocity(a, b, normal);
+            let impulse = -point.normal.mass * mass_scale * (normal_velocity + bias)
                 - impulse_scale * point.normal_impulse;
             let total = (point.normal_impulse + impulse).max(0.0);
             let applied = total - point.normal_impulse;
             point.normal_impulse = total;
             point.max_normal_impulse = point.max_normal_impulse.max(applied);
             total_normal_impulse += total;
-            apply(a, b, point.anchor_a, point.anchor_b, applied * normal);
+            point.normal.apply(a, b, normal, applied);
         }
 
         let limit = self.friction * total_normal_impulse;
-        let velocity =
-            b.velocity_at(self.friction_anchor_b) - a.velocity_at(self.friction_anchor_a);
         let old = self.tangent_impulse;
         let mut total = [0.0; 2];
         for axis in 0..2 {
-            total[axis] = old[axis] - self.tangent_mass[axis] * velocity.dot(self.tangents[axis]);
+            let velocity = self.tangent[axis].velocity(a, b, self.tangents[axis]);
+            total[axis] = old[axis] - self.tangent[axis].mass * velocity;
         }
         let length = (total[0] * total[0] + total[1] * total[1]).sqrt();
         if length > limit {
@@ -280,43 +330,36 @@ impl ContactConstraint {
             total = total.map(|value| value * scale);
         }
         self.tangent_impulse = total;
-        let impulse =
-            (total[0] - old[0]) * self.tangents[0] + (total[1] - old[1]) * self.tangents[1];
-        apply(
-            a,
-            b,
-            self.friction_anchor_a,
-            self.friction_anchor_b,
-            impulse,
-        );
+        for axis in 0..2 {
+            self.tangent[axis].apply(a, b, self.tangents[axis], total[axis] - old[axis]);
+        }
 
         let twist_limit = limit * self.twist_radius;
         let spin = (b.angular_velocity - a.angular_velocity).dot(normal);
         let old_twist = self.twist_impulse;
         self.twist_impulse = (old_twist - self.twist_mass * spin).clamp(-twist_limit, twist_limit);
-        apply_twist(a, b, (self.twist_impulse - old_twist) * normal);
+        self.apply_twist(a, b, self.twist_impulse - old_twist);
     }
 
     /// After the substeps: points that were approaching faster than [`RESTITUTION_THRESHOLD`] and
     /// pushed this step leave with `v_n = −e · v_n,start`.
-    pub fn apply_restitution(&mut self, bodies: &mut [SolverBody]) {
+    pub fn apply_restitution(&mut self, states: &mut [BodyState]) {
         if self.restitution == 0.0 {
             return;
         }
-        let (a, b) = pair_mut(bodies, self.body_a, self.body_b);
+        let (a, b) = pair_mut(states, self.body_a, self.body_b);
         let normal = self.normal;
         for point in &mut self.points[..self.point_count] {
             if point.approach_velocity > -RESTITUTION_THRESHOLD || point.max_normal_impulse == 0.0 {
                 continue;
             }
-            let normal_velocity =
-                (b.velocity_at(point.anchor_b) - a.velocity_at(point.anchor_a)).dot(normal);
+            let normal_velocity = point.normal.velocity(a, b, normal);
             let impulse =
-                -point.normal_mass * (normal_velocity + self.restitution * point.approach_velocity);
+                -point.normal.mass * (normal_velocity + self.restitution * point.approach_velocity);
             let total = (point.normal_impulse + impulse).max(0.0);
             let applied = total - point.normal_impulse;
             point.normal_impulse = total;
-            apply(a, b, point.anchor_a, point.anchor_b, applied * normal);
+            point.normal.apply(a, b, normal, applied);
         }
     }
 
@@ -333,32 +376,17 @@ impl ContactConstraint {
     }
 }
 
-/// Applies `impulse` to B and its opposite to A at the given anchors:
-/// `Δv = ±P/m`, `Δω = ±I⁻¹ (r × P)`.
-fn apply(a: &mut SolverBody, b: &mut SolverBody, anchor_a: Vec3, anchor_b: Vec3, impulse: Vec3) {
-    a.linear_velocity -= a.inverse_mass * impulse;
-    a.angular_velocity -= a.world_inverse_inertia * anchor_a.cross(impulse);
-    b.linear_velocity += b.inverse_mass * impulse;
-    b.angular_velocity += b.world_inverse_inertia * anchor_b.cross(impulse);
-}
-
-/// Applies the angular impulse `impulse` to B and its opposite to A.
-fn apply_twist(a: &mut SolverBody, b: &mut SolverBody, impulse: Vec3) {
-    a.angular_velocity -= a.world_inverse_inertia * impulse;
-    b.angular_velocity += b.world_inverse_inertia * impulse;
-}
-
 /// Mutable access to two different solver bodies.
 fn pair_mut(
-    bodies: &mut [SolverBody],
+    states: &mut [BodyState],
     index_a: usize,
     index_b: usize,
-) -> (&mut SolverBody, &mut SolverBody) {
+) -> (&mut BodyState, &mut BodyState) {
     if index_a < index_b {
-        let (low, high) = bodies.split_at_mut(index_b);
+        let (low, high) = states.split_at_mut(index_b);
         (&mut low[index_a], &mut high[0])
     } else {
-        let (low, high) = bodies.split_at_mut(index_a);
+        let (low, high) = states.split_at_mut(index_a);
         (&mut high[0], &mut low[index_b])
     }
 }

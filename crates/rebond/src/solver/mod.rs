@@ -21,16 +21,30 @@ use contact_solver::{
 };
 use softness::Softness;
 
-/// The moving state and mass of one awake body, copied out of the world for the step.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct SolverBody {
+/// What the contact solver reads and writes of one awake body, kept small and contiguous.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct BodyState {
+    /// m/s.
     pub linear_velocity: Vec3,
+    /// rad/s, world frame.
     pub angular_velocity: Vec3,
+    /// How far the centre of mass moved since the step began, m.
+    pub delta_position: Vec3,
+    /// Rotation since the step began, as the sum of `h ω` over the substeps (a rotation vector,
+    /// rad): contacts follow the bodies to first order in the angle.
+    pub delta_rotation: Vec3,
+    /// `1/m`; zero for kinematic bodies and for solver body 0, which stands for every static or
+    /// sleeping body.
+    pub inverse_mass: f32,
+}
+
+/// The rest of a body the step needs: pose, inertia and forces for integration.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct BodyMotion {
     pub center_of_mass: Vec3,
     pub rotation: Quat,
-    pub inverse_mass: f32,
+    /// `R I⁻¹ Rᵀ` at the start of the step; the contact solver uses it for the whole step.
     pub world_inverse_inertia: Mat3,
-    pub local_inverse_inertia: Mat3,
     pub local_inertia: Mat3,
     /// User forces plus the constant force, N; and torques, N·m.
     pub force: Vec3,
@@ -41,16 +55,12 @@ pub(crate) struct SolverBody {
     pub is_dynamic: bool,
 }
 
-impl SolverBody {
+impl BodyMotion {
     /// Solver body 0: stands for every static or sleeping body, which the step never moves.
     const FIXED: Self = Self {
-        linear_velocity: Vec3::ZERO,
-        angular_velocity: Vec3::ZERO,
         center_of_mass: Vec3::ZERO,
         rotation: Quat::IDENTITY,
-        inverse_mass: 0.0,
         world_inverse_inertia: Mat3::ZERO,
-        local_inverse_inertia: Mat3::ZERO,
         local_inertia: Mat3::ZERO,
         force: Vec3::ZERO,
         torque: Vec3::ZERO,
@@ -61,13 +71,9 @@ impl SolverBody {
 
     fn from_body(body: &RigidBody) -> Self {
         Self {
-            linear_velocity: body.linear_velocity,
-            angular_velocity: body.angular_velocity,
             center_of_mass: body.center_of_mass,
             rotation: body.rotation,
-            inverse_mass: body.inverse_mass,
             world_inverse_inertia: body.world_inverse_inertia,
-            local_inverse_inertia: body.local_inverse_inertia,
             local_inertia: body.local_inertia,
             force: body.force + body.constant_force,
             torque: body.torque + body.constant_torque,
@@ -75,11 +81,6 @@ impl SolverBody {
             angular_damping: body.angular_damping,
             is_dynamic: body.body_type == BodyType::Dynamic,
         }
-    }
-
-    /// Velocity of the material point at offset `anchor` from the centre of mass: `v + ω × r`.
-    pub fn velocity_at(&self, anchor: Vec3) -> Vec3 {
-        self.linear_velocity + self.angular_velocity.cross(anchor)
     }
 }
 
@@ -95,7 +96,8 @@ pub(crate) struct StepSettings {
 /// Buffers reused from step to step, so a steady scene allocates nothing.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Solver {
-    bodies: Vec<SolverBody>,
+    states: Vec<BodyState>,
+    motions: Vec<BodyMotion>,
     /// Solver index of each arena slot; 0 for static, sleeping and empty slots.
     solver_index_of_slot: Vec<usize>,
     /// Arena slot of each solver body (index 0 unused).
@@ -124,26 +126,25 @@ impl Solver {
             linear: settings.max_linear_speed,
             angular: MAX_ROTATION_PER_SUBSTEP * inverse_h,
         };
-        let moving = 1..self.bodies.len();
         for _ in 0..settings.substeps {
-            for body in &mut self.bodies[moving.clone()] {
-                integrate_velocities(body, settings.gravity, h, limits);
+            for (state, motion) in self.states.iter_mut().zip(&self.motions).skip(1) {
+                integrate_velocities(state, motion, settings.gravity, h, limits);
             }
             for constraint in &self.constraints {
-                constraint.warm_start(&mut self.bodies);
+                constraint.warm_start(&mut self.states);
             }
             for constraint in &mut self.constraints {
-                constraint.solve(&mut self.bodies, &softness, inverse_h, true);
+                constraint.solve(&mut self.states, &softness, inverse_h, true);
             }
-            for body in &mut self.bodies[moving.clone()] {
-                integrate_pose(body, h);
+            for (state, motion) in self.states.iter_mut().zip(&mut self.motions).skip(1) {
+                integrate_pose(state, motion, h);
             }
             for constraint in &mut self.constraints {
-                constraint.solve(&mut self.bodies, &softness, inverse_h, false);
+                constraint.solve(&mut self.states, &softness, inverse_h, false);
             }
         }
         for constraint in &mut self.constraints {
-            constraint.apply_restitution(&mut self.bodies);
+            constraint.apply_restitution(&mut self.states);
         }
         for constraint in &self.constraints {
             constraint.store_impulses(contacts.contacts_mut());
@@ -153,8 +154,10 @@ impl Solver {
 
     /// Copies every awake dynamic or kinematic body into the solver array (slot order).
     fn gather_bodies(&mut self, bodies: &Arena<RigidBody>) {
-        self.bodies.clear();
-        self.bodies.push(SolverBody::FIXED);
+        self.states.clear();
+        self.states.push(BodyState::default());
+        self.motions.clear();
+        self.motions.push(BodyMotion::FIXED);
         self.slot_of_solver_index.clear();
         self.slot_of_solver_index.push(0);
         self.solver_index_of_slot.clear();
@@ -164,9 +167,16 @@ impl Solver {
                 self.solver_index_of_slot.resize(slot + 1, 0);
             }
             if body.body_type != BodyType::Static && !body.sleeping {
-                self.solver_index_of_slot[slot] = self.bodies.len();
+                self.solver_index_of_slot[slot] = self.states.len();
                 self.slot_of_solver_index.push(slot);
-                self.bodies.push(SolverBody::from_body(body));
+                self.states.push(BodyState {
+                    linear_velocity: body.linear_velocity,
+                    angular_velocity: body.angular_velocity,
+                    delta_position: Vec3::ZERO,
+                    delta_rotation: Vec3::ZERO,
+                    inverse_mass: body.inverse_mass,
+                });
+                self.motions.push(BodyMotion::from_body(body));
             }
         }
     }
@@ -191,7 +201,7 @@ impl Solver {
             self.constraints.push(ContactConstraint::new(
                 contact,
                 contact_index,
-                &self.bodies,
+                (&self.states, &self.motions),
                 solver_a,
                 solver_b,
                 (body_a, body_b),
@@ -201,13 +211,14 @@ impl Solver {
 
     /// Copies the solved state back into the bodies and clears their force accumulators.
     fn scatter_bodies(&self, bodies: &mut Arena<RigidBody>) {
-        for (solved, &slot) in self.bodies.iter().zip(&self.slot_of_solver_index).skip(1) {
+        let solved = self.states.iter().zip(&self.motions);
+        for ((state, motion), &slot) in solved.zip(&self.slot_of_solver_index).skip(1) {
             if let Some(body) = bodies.at_slot_mut(slot) {
-                body.linear_velocity = solved.linear_velocity;
-                body.angular_velocity = solved.angular_velocity;
-                body.center_of_mass = solved.center_of_mass;
-                body.rotation = solved.rotation;
-                body.world_inverse_inertia = solved.world_inverse_inertia;
+                body.linear_velocity = state.linear_velocity;
+                body.angular_velocity = state.angular_velocity;
+                body.center_of_mass = motion.center_of_mass;
+                body.rotation = motion.rotation;
+                body.update_world_inverse_inertia();
             }
         }
         for body in bodies.values_mut() {
