@@ -4,9 +4,9 @@
 //! When A and B overlap, the origin lies inside their Minkowski difference `A − B`, and the
 //! shortest translation of B that separates them reaches the point of the boundary of `A − B`
 //! closest to the origin. EPA grows a polytope inside `A − B` from GJK's final simplex: it takes
-//! the polytope face closest to the origin, adds the support point along that face's normal,
-//! replaces the faces the new point sees by a fan around it, and stops when the support point is
-//! no farther out than the face.
+//! the polytope face closest to the origin (a lower bound on the depth), adds the support point
+//! along that face's normal (an upper bound along that direction), replaces the faces the new
+//! point sees by a fan around it, and stops when the bounds meet.
 //!
 //! Tolerances are relative to the size of the problem, the largest `|a − b|` among the polytope's
 //! vertices (never less than the depth, since the origin is inside), for the same reason as in
@@ -19,7 +19,9 @@ use crate::collision::{PosedCore, SupportMap};
 use crate::math::Vec3;
 
 /// Most support points one query adds to the polytope. Polytopes need a few dozen at most;
-/// smooth surfaces refine around the answer until the tolerance is met.
+/// smooth surfaces refine around the answer until the tolerance is met, except on exact ties
+/// (a point on a cylinder's axis is as deep in every direction across it), where EPA settles
+/// for the shallowest direction found, within about 1e-3 of the size.
 pub const MAX_ITERATIONS: usize = 128;
 
 /// Relative precision of the depth: EPA stops once the support point along the closest face's
@@ -149,11 +151,11 @@ impl Face {
             f32::INFINITY
         }
     }
+}
 
-    /// Which edge of this face runs `from → to`.
-    fn edge_from(&self, from: usize, to: usize) -> Option<usize> {
-        (0..3).find(|&k| self.vertices[k] == from && self.vertices[(k + 1) % 3] == to)
-    }
+/// Which edge `vertices[k] → vertices[k + 1]` of a triangle runs `from → to`.
+fn edge_index(vertices: [usize; 3], from: usize, to: usize) -> Option<usize> {
+    (0..3).find(|&k| vertices[k] == from && vertices[(k + 1) % 3] == to)
 }
 
 /// An edge of the rim of the faces a new vertex replaces, as it runs on a replaced face.
@@ -184,8 +186,8 @@ pub struct Polytope {
 
 impl Polytope {
     /// The penetration of A and B, starting from `simplex`, the final simplex of a GJK query that
-    /// found them overlapping. Always answers: when rounding defeats the algorithm, the best
-    /// face found so far (or the shallowest world axis) is returned.
+    /// found them overlapping. Always answers: when rounding or the iteration budget defeats the
+    /// algorithm, with the shallowest direction found so far.
     pub fn penetration<A, B>(&mut self, a: &A, b: &B, simplex: &Simplex) -> Penetration
     where
         A: SupportMap + ?Sized,
@@ -197,10 +199,10 @@ impl Polytope {
             Ok(scale) => scale,
             Err(answer) => return answer,
         };
-        // Every support point bounds the depth along its direction from above; the closest face
-        // bounds it from below. The answer is the direction with the least bound, the closest
-        // face's own distance once the two bounds meet.
-        let mut best: Option<(f32, usize)> = None;
+        // Each support point bounds the depth from above, along its direction, and the closest
+        // face bounds it from below. The answer is the direction of least upper bound, once the
+        // two bounds meet (or when the iterations run out).
+        let mut best: Option<(f32, usize, SupportPoint)> = None;
         for _ in 0..MAX_ITERATIONS {
             let Some(closest) = self.closest_face() else {
                 break;
@@ -213,12 +215,11 @@ impl Polytope {
             scale = scale.max(point.w.length());
             let tolerance = TOLERANCE * scale;
             let reach = point.w.dot(face.normal);
-            let converged = reach - face.distance <= tolerance;
-            let depth = if converged { face.distance } else { reach };
-            if best.is_none_or(|(least, _)| depth < least) {
-                best = Some((depth, closest));
+            let (least, _, _) = *best.get_or_insert((reach, closest, point));
+            if reach < least {
+                best = Some((reach, closest, point));
             }
-            if converged {
+            if reach.min(least) - face.distance <= tolerance {
                 break;
             }
             if !self.add_vertex(point, closest, tolerance, scale) {
@@ -226,7 +227,7 @@ impl Polytope {
             }
         }
         match best {
-            Some((depth, face)) => self.answer(face, depth),
+            Some((_, face, support)) => self.answer(self.faces[face].normal, support),
             None => Prober::new(a, b, simplex).fallback(),
         }
     }
@@ -313,7 +314,7 @@ impl Polytope {
                 let (from, to) = (vertices[k], vertices[(k + 1) % 3]);
                 face.neighbors[k] = faces
                     .iter()
-                    .position(|other| (0..3).any(|j| other[j] == to && other[(j + 1) % 3] == from))
+                    .position(|&other| edge_index(other, to, from).is_some())
                     .unwrap_or(0);
             }
             self.faces.push(face);
@@ -414,7 +415,7 @@ impl Polytope {
             if neighbor.removed {
                 continue;
             }
-            let Some(back) = neighbor.edge_from(to, from) else {
+            let Some(back) = edge_index(neighbor.vertices, to, from) else {
                 return false;
             };
             if neighbor.height_of(point) > seen_above {
@@ -431,11 +432,7 @@ impl Polytope {
                 });
             }
         }
-        let chained =
-            (0..self.rim.len()).all(|i| self.rim[i].to == self.rim[(i + 1) % self.rim.len()].from);
-        let simple =
-            (0..self.rim.len()).all(|i| (0..i).all(|j| self.rim[i].from != self.rim[j].from));
-        self.rim.len() >= 3 && chained && simple
+        is_single_loop(&self.rim)
     }
 
     /// Closes the rim with a fan of faces to vertex `apex`, unless one would come nearer the
@@ -464,17 +461,15 @@ impl Polytope {
         true
     }
 
-    /// The penetration along a face's normal, `depth` deep, with the points of A and B whose
-    /// difference is where the ray from the origin along that normal leaves the polytope. That
-    /// is usually the origin's projection on the face itself, but may lie in a neighbour of the
-    /// same plane (a box face or a cylinder cap is split into several triangles), or elsewhere
-    /// when the face is a sliver whose normal, though it does measure the depth, is not quite
-    /// its own. The ray leaves through the face it meets inside its triangle (found as the face
-    /// whose triangle misses the ray's crossing of its plane the least, which rounding or a
-    /// slightly dented polytope cannot fool the way the nearest crossing could).
-    fn answer(&self, face: usize, depth: f32) -> Penetration {
-        let face = self.faces[face];
-        let normal = face.normal;
+    /// The penetration along `normal`, whose support point in `A − B` is `support`: as deep as
+    /// that point reaches along it. The points of A and B are found where the ray from the origin
+    /// along the normal leaves the polytope, in the face it meets inside its triangle (usually the
+    /// face the normal came from, but it may be a neighbour in the same plane, as a box face or a
+    /// cylinder cap is split into several triangles, or another face when the normal came from a
+    /// sliver), then moved along the normal onto A's and B's support planes, so that they lie on
+    /// the surfaces and `point_a − point_b = depth · normal` exactly. The move is within the
+    /// tolerance once EPA has converged.
+    fn answer(&self, normal: Vec3, support: SupportPoint) -> Penetration {
         let mut exit = (f32::INFINITY, Simplex::default());
         for candidate in &self.faces {
             let facing = candidate.normal.dot(normal);
@@ -495,25 +490,34 @@ impl Polytope {
                 exit = (miss, nearest);
             }
         }
-        let (point_a, point_b) = exit.1.witness_points();
-        Penetration {
-            normal,
-            depth: depth.max(0.0),
-            point_a,
-            point_b,
-        }
+        let (inside_a, inside_b) = exit.1.witness_points();
+        penetration_along(normal, support, inside_a, inside_b)
     }
 }
 
-/// A penetration of (almost) zero depth along `normal`, with the GJK simplex's common point of A
-/// and B as the contact.
-fn touching(simplex: &Simplex, normal: Vec3, overlap: f32) -> Penetration {
-    let (point_a, point_b) = simplex.witness_points();
+/// Whether the rim, as listed, runs once round a single loop: each edge ends where the next
+/// begins, and no vertex is left twice.
+fn is_single_loop(rim: &[RimEdge]) -> bool {
+    let chained = (0..rim.len()).all(|i| rim[i].to == rim[(i + 1) % rim.len()].from);
+    let simple = (0..rim.len()).all(|i| (0..i).all(|j| rim[i].from != rim[j].from));
+    rim.len() >= 3 && chained && simple
+}
+
+/// The penetration along unit `normal`, as deep as `support`, the support point of `A − B`
+/// along it, reaches. `inside_a` and `inside_b`, points of A and B whose difference lies along
+/// the normal (or is negligible), are moved along it onto A's and B's support planes, so that
+/// they lie on the surfaces and `point_a − point_b = depth · normal`.
+fn penetration_along(
+    normal: Vec3,
+    support: SupportPoint,
+    inside_a: Vec3,
+    inside_b: Vec3,
+) -> Penetration {
     Penetration {
         normal,
-        depth: overlap.max(0.0),
-        point_a,
-        point_b,
+        depth: support.w.dot(normal).max(0.0),
+        point_a: inside_a + (support.a - inside_a).dot(normal) * normal,
+        point_b: inside_b + (support.b - inside_b).dot(normal) * normal,
     }
 }
 
@@ -525,7 +529,8 @@ struct Prober<'q, A: ?Sized, B: ?Sized> {
     simplex: &'q Simplex,
     /// Largest `|w|` seen so far.
     scale: f32,
-    shallowest: Option<Penetration>,
+    /// The direction of least overlap so far, with its support point.
+    shallowest: Option<(Vec3, SupportPoint)>,
 }
 
 impl<'q, A, B> Prober<'q, A, B>
@@ -549,15 +554,14 @@ where
         let point = SupportPoint::new(self.a, self.b, direction);
         let overlap = point.w.dot(direction);
         self.scale = self.scale.max(point.w.length());
-        let candidate = touching(self.simplex, direction, overlap);
         if self
             .shallowest
-            .is_none_or(|shallowest| candidate.depth < shallowest.depth)
+            .is_none_or(|(least, support)| overlap < support.w.dot(least))
         {
-            self.shallowest = Some(candidate);
+            self.shallowest = Some((direction, point));
         }
         if overlap <= TOLERANCE * self.scale {
-            Err(candidate)
+            Err(self.along(direction, point))
         } else {
             Ok(point)
         }
@@ -566,15 +570,127 @@ where
     /// Last resort when no polytope can be built: the direction of least overlap probed so far,
     /// or, with none probed, the world axis of least overlap.
     fn fallback(&mut self) -> Penetration {
-        if let Some(shallowest) = self.shallowest {
-            return shallowest;
-        }
-        for direction in AXES {
-            if let Err(answer) = self.probe(direction) {
-                return answer;
+        if self.shallowest.is_none() {
+            for direction in AXES {
+                if let Err(answer) = self.probe(direction) {
+                    return answer;
+                }
             }
         }
-        self.shallowest
-            .unwrap_or_else(|| touching(self.simplex, Vec3::X, 0.0))
+        let (direction, point) = self
+            .shallowest
+            .unwrap_or_else(|| (Vec3::X, SupportPoint::new(self.a, self.b, Vec3::X)));
+        self.along(direction, point)
+    }
+
+    /// The penetration along `direction`, with the GJK simplex's point common to A and B as the
+    /// contact.
+    fn along(&self, direction: Vec3, point: SupportPoint) -> Penetration {
+        let (inside_a, inside_b) = self.simplex.witness_points();
+        penetration_along(direction, point, inside_a, inside_b)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::{Pose, Quat};
+    use crate::shape::Shape;
+
+    // Values of order one from exact inputs; 1e-4 covers TOLERANCE (1e-5 relative) with margin.
+    const CLOSE: f32 = 1e-4;
+
+    /// GJK may stop with 1, 2 or 3 points around the origin; EPA must build a tetrahedron from
+    /// any of them. A is a bipyramid on the triangle (2, −1, 0), (−1, 2, 0), (−1, −1, 0) with
+    /// apexes (0, 0, ±1), B a point at the origin (a sphere's core), so A − B = A: its faces
+    /// nearest the origin are x + y ± z = 1, at 1/√3.
+    #[test]
+    fn blows_up_small_simplices() {
+        let equator = [
+            Vec3::new(2.0, -1.0, 0.0),
+            Vec3::new(-1.0, 2.0, 0.0),
+            Vec3::new(-1.0, -1.0, 0.0),
+        ];
+        let apexes = [Vec3::Z, Vec3::NEG_Z];
+        let bipyramid = Shape::convex_hull(&[equator.as_slice(), &apexes].concat()).unwrap();
+        let ball = Shape::sphere(0.5).unwrap();
+        let pose = Pose::IDENTITY;
+        let a = PosedCore {
+            shape: &bipyramid,
+            pose: &pose,
+        };
+        let b = PosedCore {
+            shape: &ball,
+            pose: &pose,
+        };
+        let of_a = |point: Vec3| SupportPoint {
+            a: point,
+            b: Vec3::ZERO,
+            w: point,
+        };
+        let simplices = [
+            vec![of_a(Vec3::ZERO)],
+            apexes.map(of_a).to_vec(),
+            equator.map(of_a).to_vec(),
+        ];
+        for points in simplices {
+            let (simplex, _) = Simplex::reduced(&points);
+            assert_eq!(simplex.points().len(), points.len());
+            let found = Polytope::default().penetration(&a, &b, &simplex);
+            assert!(
+                (found.depth - 3.0f32.sqrt().recip()).abs() < CLOSE,
+                "{found:?}"
+            );
+            let expected = Vec3::new(1.0, 1.0, found.normal.z.signum()) / 3.0f32.sqrt();
+            assert!((found.normal - expected).length() < CLOSE, "{found:?}");
+            let gap = found.point_a - found.point_b - found.depth * found.normal;
+            assert!(gap.length() < CLOSE, "{found:?}");
+        }
+    }
+
+    /// Sphere and capsule cores are points and segments: when they meet, `A − B` is a point, a
+    /// segment or a parallelogram holding the origin, and the depth is zero along some unit
+    /// normal.
+    #[test]
+    fn flat_differences_have_zero_depth() {
+        let ball = Shape::sphere(1.0).unwrap();
+        let stick = Shape::capsule(0.5, 1.0).unwrap();
+        let here = Pose::from_position(Vec3::new(0.5, -0.25, 2.0));
+        let across = Pose::new(here.position, Quat::from_rotation_z(1.0));
+        for (a, b) in [(&ball, &ball), (&ball, &stick), (&stick, &stick)] {
+            let core_a = PosedCore {
+                shape: a,
+                pose: &here,
+            };
+            let core_b = PosedCore {
+                shape: b,
+                pose: &across,
+            };
+            let found = penetration(&core_a, &core_b).expect("the cores meet");
+            assert!(found.depth.abs() < CLOSE, "{found:?}");
+            assert!((found.normal.length() - 1.0).abs() < CLOSE, "{found:?}");
+        }
+    }
+
+    #[test]
+    fn single_loop_rims() {
+        let edge = |from, to| RimEdge {
+            from,
+            to,
+            outside: 0,
+            outside_edge: 0,
+        };
+        assert!(is_single_loop(&[edge(1, 2), edge(2, 3), edge(3, 1)]));
+        assert!(!is_single_loop(&[edge(1, 2), edge(2, 1)]));
+        assert!(!is_single_loop(&[edge(1, 2), edge(3, 1), edge(2, 3)]));
+        let figure_eight = [
+            edge(1, 2),
+            edge(2, 3),
+            edge(3, 1),
+            edge(1, 4),
+            edge(4, 5),
+            edge(5, 1),
+        ];
+        assert!(!is_single_loop(&figure_eight));
     }
 }

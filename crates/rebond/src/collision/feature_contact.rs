@@ -17,8 +17,22 @@ use super::PosedCore;
 use crate::math::{Pose, Vec3};
 use crate::shape::Shape;
 
-/// Rim points of a cylinder cap used as its face polygon.
+/// Rim points of a cylinder cap used as its face polygon when the cap is the reference face, the
+/// region the other shape's feature is clipped to.
 const CAP_VERTICES: usize = 8;
+
+/// Every other of the [`CAP_VERTICES`] rim points, a square fixed in the cylinder's frame, is what
+/// a cap offers as the incident feature. A cap resting whole on a face then gives the same four
+/// points, and ids, however it wobbles; with all eight, more than four would touch, and the
+/// reduction to four, which starts from the deepest point, would pick a different subset whenever
+/// the cylinder tilts a little.
+const CAP_SQUARE_CORNERS: usize = 4;
+
+/// The corner of a cap's square nearest the rim point farthest along the query direction moves
+/// onto that point when the point reaches farther by more than this, metres (the 1 mm of
+/// [`DUPLICATE_DISTANCE`]). A cap lying flat keeps its square; a tilted one reaches its deepest
+/// spot, under the id of the corner it replaces, so its ids stay the same set.
+const CORNER_SNAP_DISTANCE: f32 = 1.0e-3;
 
 /// Most vertices of a supporting face used for clipping (larger hull faces keep their first ones,
 /// a convex polygon inside the face).
@@ -36,6 +50,19 @@ const SIDE_SINE: f32 = 0.5;
 /// of the contact normal: otherwise the contact is on an edge or vertex and one point is right.
 const FACE_COSINE: f32 = 0.98;
 
+/// When both supporting features are faces, the better aligned with the contact normal is the
+/// reference only when it is better by more than this cosine difference (as when one face is
+/// tilted 0.8° from a normal that the other matches). Faces resting flat on each other are aligned
+/// equally but for rounding, which would otherwise pick the reference, and so the contact ids,
+/// afresh at every step: the larger face is then the reference (see [`LARGER_FACE_RATIO`]).
+const REFERENCE_PREFERENCE: f32 = 1.0e-4;
+
+/// Between two equally aligned faces, B's is the reference only when its area exceeds A's by this
+/// factor, so that faces of equal size (up to rounding) always pick A's. The larger face holds the
+/// smaller one's corners, which are then kept whole, with their ids, rather than cut into
+/// crossings.
+const LARGER_FACE_RATIO: f32 = 1.01;
+
 /// The GJK/EPA point joins clipped points only when it is deeper than all of them by more than
 /// this, metres: then the clipped feature (a cylinder cap's polygon) missed the deepest spot.
 const DUPLICATE_DISTANCE: f32 = 1.0e-3;
@@ -51,6 +78,9 @@ struct Feature {
     face_normal: Vec3,
     /// Which face or segment of the shape it is; part of the contact ids.
     index: u32,
+    /// For a cylinder cap, the polygon clipped when the cap is the incident feature: a square of
+    /// every other rim point (see [`CAP_SQUARE_CORNERS`]).
+    cap_square: Option<[Vec3; CAP_SQUARE_CORNERS]>,
 }
 
 impl Feature {
@@ -60,6 +90,7 @@ impl Feature {
             len: 0,
             face_normal: Vec3::ZERO,
             index,
+            cap_square: None,
         }
     }
 
@@ -72,6 +103,31 @@ impl Feature {
 
     fn points(&self) -> &[Vec3] {
         &self.points[..self.len]
+    }
+
+    /// The points to clip when the feature is the incident one.
+    fn incident_points(&self) -> &[Vec3] {
+        self.cap_square
+            .as_ref()
+            .map_or(self.points(), |square| square.as_slice())
+    }
+
+    /// Area of the polygon (zero unless the feature is a face).
+    fn area(&self) -> f32 {
+        let points = self.points();
+        let Some(&first) = points.first() else {
+            return 0.0;
+        };
+        let doubled: f32 = points
+            .windows(2)
+            .skip(1)
+            .map(|edge| {
+                (edge[0] - first)
+                    .cross(edge[1] - first)
+                    .dot(self.face_normal)
+            })
+            .sum();
+        0.5 * doubled.abs()
     }
 
     fn is_face(&self) -> bool {
@@ -109,12 +165,25 @@ fn supporting_feature(shape: &Shape, pose: &Pose, direction: Vec3) -> Feature {
                 // Counter-clockwise about the cap's outward normal ±Y.
                 let winding = if local.y >= 0.0 { -1.0 } else { 1.0 };
                 let mut feature = Feature::new(if local.y >= 0.0 { 2 } else { 1 });
-                for corner in 0..CAP_VERTICES {
+                let rim: [Vec3; CAP_VERTICES] = std::array::from_fn(|corner| {
                     let angle = TAU * corner as f32 / CAP_VERTICES as f32;
-                    let rim =
-                        Vec3::new(radius * angle.cos(), cap_y, winding * radius * angle.sin());
-                    feature.push(pose.transform_point(rim));
+                    Vec3::new(radius * angle.cos(), cap_y, winding * radius * angle.sin())
+                });
+                for point in rim {
+                    feature.push(pose.transform_point(point));
                 }
+                let step = CAP_VERTICES / CAP_SQUARE_CORNERS;
+                let mut square: [Vec3; CAP_SQUARE_CORNERS] =
+                    std::array::from_fn(|corner| rim[corner * step]);
+                let farthest = radial + Vec3::new(0.0, cap_y, 0.0);
+                let nearest = (0..CAP_SQUARE_CORNERS)
+                    .max_by(|&i, &j| square[i].dot(radial).total_cmp(&square[j].dot(radial)));
+                if let Some(nearest) = nearest {
+                    if (farthest - square[nearest]).dot(local) > CORNER_SNAP_DISTANCE {
+                        square[nearest] = farthest;
+                    }
+                }
+                feature.cap_square = Some(square.map(|corner| pose.transform_point(corner)));
                 feature.face_normal = pose.transform_vector(Vec3::new(0.0, cap_y.signum(), 0.0));
                 feature
             } else if local.y.abs() <= SIDE_SINE {
@@ -161,6 +230,13 @@ fn polyhedron_face(polyhedron: &Polyhedron, pose: &Pose, direction: Vec3) -> Fea
 
 /// The contact of convex shapes A and B (capsules, cylinders, spheres, boxes or hulls; never
 /// compounds or halfspaces) with the normal from A toward B, or `None` beyond `margin`.
+///
+/// When both supporting features are faces within 11° of the GJK/EPA normal, the better aligned
+/// one is the reference, or, when they are aligned alike (within [`REFERENCE_PREFERENCE`]), the
+/// larger one; no clipped point is reported deeper than the GJK/EPA depth. A cylinder's cap is an
+/// octagon of rim points as the reference face and a square of every other one as the incident
+/// face, its corner nearest the deepest rim point moved there when the cap is tilted (see
+/// [`CORNER_SNAP_DISTANCE`]): a cylinder standing or wobbling on a face keeps the same four ids.
 pub fn collide_features(
     shape_a: &Shape,
     pose_a: &Pose,
@@ -183,10 +259,21 @@ pub fn collide_features(
     let alignment_b = -feature_b.face_normal.dot(deepest.normal);
     let use_a = feature_a.is_face() && alignment_a >= FACE_COSINE;
     let use_b = feature_b.is_face() && alignment_b >= FACE_COSINE;
-    let clipped = if use_a && (!use_b || alignment_a >= alignment_b) {
-        clip_against_face(&feature_a, &feature_b, shape_b.core_radius(), 0, margin)
+    let limits = SeparationLimits {
+        deepest: deepest.separation,
+        margin,
+    };
+    let prefer_b = match (use_a, use_b) {
+        (true, true) if (alignment_a - alignment_b).abs() <= REFERENCE_PREFERENCE => {
+            feature_b.area() > LARGER_FACE_RATIO * feature_a.area()
+        }
+        (true, true) => alignment_b > alignment_a,
+        _ => use_b && !use_a,
+    };
+    let clipped = if use_a && !prefer_b {
+        clip_against_face(&feature_a, &feature_b, shape_b.core_radius(), 0, &limits)
     } else if use_b {
-        clip_against_face(&feature_b, &feature_a, shape_a.core_radius(), 1, margin)
+        clip_against_face(&feature_b, &feature_a, shape_a.core_radius(), 1, &limits)
             .map(Manifold::flipped)
     } else {
         None
@@ -229,25 +316,36 @@ fn add_deepest_point(manifold: &mut Manifold, deepest: &ContactInfo) {
     }
 }
 
+/// The range of separations a clipped point may take.
+struct SeparationLimits {
+    /// The separation GJK/EPA measured along the contact normal: no point is deeper.
+    deepest: f32,
+    /// Points farther apart than this are dropped.
+    margin: f32,
+}
+
 /// Clips the `incident` feature (on a shape of rounding `incident_radius`) against the
 /// `reference` face. The manifold normal is the reference face's normal, pointing from the
 /// reference shape toward the incident one; each point's separation is its incident surface
-/// point's height above the reference plane. `side` (0: A holds the reference face, 1: B) and
-/// the feature indices go into the ids.
+/// point's height above the reference plane, but never deeper than `limits.deepest`: the reference
+/// normal may be up to 11° off the contact normal, along which the shapes overlap least, and
+/// would overstate the depth of a point near the reference face's rim. `side` (0: A holds the
+/// reference face, 1: B) and the feature indices go into the ids.
 fn clip_against_face(
     reference: &Feature,
     incident: &Feature,
     incident_radius: f32,
     side: u32,
-    margin: f32,
+    limits: &SeparationLimits,
 ) -> Option<Manifold> {
     let normal = reference.face_normal;
     let plane_point = reference.points[0];
     let mut candidates = [ContactPoint::default(); 2 * MAX_FEATURE_VERTICES];
     let mut count = 0;
     let mut offer = |vertex: &ClipVertex| {
-        let separation = normal.dot(vertex.position - plane_point) - incident_radius;
-        if separation <= margin && count < candidates.len() {
+        let height = normal.dot(vertex.position - plane_point) - incident_radius;
+        let separation = height.max(limits.deepest);
+        if separation <= limits.margin && count < candidates.len() {
             candidates[count] = ContactPoint {
                 position: vertex.position - normal * (incident_radius + 0.5 * separation),
                 separation,
@@ -259,16 +357,15 @@ fn clip_against_face(
             count += 1;
         }
     };
-    match incident.len {
-        0 | 1 => return None,
-        2 => {
-            let [start, end] = [incident.points[0], incident.points[1]];
+    match *incident.incident_points() {
+        [] | [_] => return None,
+        [start, end] => {
             for vertex in clip_segment(start, end, reference.points(), normal)? {
                 offer(&vertex);
             }
         }
         _ => {
-            let polygon = clip_polygon(incident.points(), reference.points(), normal);
+            let polygon = clip_polygon(incident.incident_points(), reference.points(), normal);
             for vertex in polygon.vertices() {
                 offer(vertex);
             }

@@ -182,7 +182,9 @@ impl Barycentric {
         }
     }
 
-    /// Closest point of segment `[i, j]`: the origin's projection on the line, clamped.
+    /// Closest point of segment `[i, j]`: the origin's projection on the line, clamped. The
+    /// projection is taken as the part of the ends across the line, `e × (pᵢ × pⱼ) / |e|²`, which
+    /// keeps its direction precise when it is much shorter than the ends themselves.
     fn segment(unit: &[Vec3; 4], i: usize, j: usize) -> Self {
         let edge = unit[j] - unit[i];
         let along = -unit[i].dot(edge);
@@ -197,7 +199,7 @@ impl Barycentric {
                 indices: [i, j, 0, 0],
                 weights: [1.0 - t, t, 0.0, 0.0],
                 len: 2,
-                point: unit[i] + t * edge,
+                point: edge.cross(unit[i].cross(unit[j])) / length_squared,
             }
         }
     }
@@ -386,12 +388,11 @@ where
             return Distance::from_simplex(grown, true);
         }
         // Near the answer the distance improves only at second order, below rounding, while
-        // the direction still improves at first order: a simplex no farther (within rounding)
-        // is kept, and the search ends after a few without progress.
-        let grown_upper = grown.closest_point().length();
-        if grown_upper >= upper {
+        // the direction still improves at first order: a simplex no nearer is kept all the same,
+        // and the search ends after a few of those in a row.
+        if grown.closest_point().length() >= upper {
             stalls += 1;
-            if stalls > MAX_STALLS || grown_upper > upper + DEGENERACY * scale {
+            if stalls > MAX_STALLS {
                 break;
             }
         } else {

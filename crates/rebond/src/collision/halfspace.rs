@@ -12,18 +12,17 @@ use crate::shape::{Halfspace, Shape};
 /// the first ones found (a flat face of a hull rarely has more).
 const MAX_CANDIDATES: usize = 64;
 
-/// Rim points sampled on each cylinder cap, at fixed angles in the cylinder's frame so a cylinder
-/// standing on its cap keeps the same point ids from step to step.
-const CYLINDER_RIM_SAMPLES: usize = 8;
+/// Rim points sampled on each cylinder cap, at fixed angles in the cylinder's frame (a square
+/// inscribed in the rim), so a cylinder standing on its cap keeps the same four point ids from step
+/// to step. With more samples, more than four would touch and the reduction to four, which starts
+/// from the deepest point, would pick a different subset whenever the cylinder tilts a little.
+const CYLINDER_RIM_SAMPLES: usize = 4;
 
-/// A cylinder's cap is taken as parallel to the plane when the sine of the angle between its axis
-/// and the normal is below this; the exact deepest rim point is then undefined and the rim
-/// samples carry the contact.
-const CAP_PARALLEL_SINE: f32 = 1.0e-4;
-
-/// A rim sample closer than this fraction of the radius to the exact deepest rim point is the same
-/// point and is not added twice.
-const DUPLICATE_FRACTION: f32 = 1.0e-3;
+/// The rim sample nearest a cap's deepest rim point moves onto that point when it lies deeper by
+/// more than this, metres (the solver's 1 mm slop, below which depth errors do not matter): a
+/// cylinder standing flat keeps its square of samples, a tilted or lying one reaches its deepest
+/// spot, under the id of the sample it replaces.
+const DEEPEST_SNAP_DISTANCE: f32 = 1.0e-3;
 
 /// Candidate points of B below (or within `margin` above) the plane.
 struct Candidates {
@@ -53,8 +52,10 @@ impl Candidates {
 /// The contact of halfspace A (at `pose_a`) with the convex shape B (at `pose_b`; never a
 /// compound or a halfspace), with the normal from A toward B: the plane's outward normal.
 /// Points: a sphere's lowest point; a capsule's two lowest segment ends; a box's or hull's
-/// vertices; a cylinder's deepest rim points and fixed rim samples. More than four are reduced to
-/// four by depth and spread.
+/// vertices; a cylinder's four fixed rim samples on each cap, the one nearest a cap's deepest rim
+/// point moved there when it lies deeper by more than [`DEEPEST_SNAP_DISTANCE`] (so a cylinder
+/// keeps the same ids whether it stands flat, wobbles or lies on its side). More than four are
+/// reduced to four by depth and spread.
 pub fn collide_halfspace(
     halfspace: &Halfspace,
     pose_a: &Pose,
@@ -96,28 +97,27 @@ pub fn collide_halfspace(
         }
         Shape::Cylinder(cylinder) => {
             let local_normal = pose_b.inverse_transform_vector(normal);
-            let radial = Vec3::new(local_normal.x, 0.0, local_normal.z);
-            for (cap, y) in [-cylinder.half_height(), cylinder.half_height()]
-                .into_iter()
-                .enumerate()
-            {
-                let cap = cap as u32;
+            let down = Vec3::new(-local_normal.x, 0.0, -local_normal.z).normalize_or_zero();
+            let rim_direction = |sample: u32| {
+                let angle = TAU * sample as f32 / CYLINDER_RIM_SAMPLES as f32;
+                Vec3::new(angle.cos(), 0.0, angle.sin())
+            };
+            let samples = 0..CYLINDER_RIM_SAMPLES as u32;
+            let nearest = samples.clone().max_by(|&i, &j| {
+                rim_direction(i)
+                    .dot(down)
+                    .total_cmp(&rim_direction(j).dot(down))
+            });
+            for (cap, y) in (0u32..).zip([-cylinder.half_height(), cylinder.half_height()]) {
                 let center = Vec3::new(0.0, y, 0.0);
-                let deepest = (radial.length() > CAP_PARALLEL_SINE)
-                    .then(|| center - radial.normalize() * cylinder.radius());
-                if let Some(deepest) = deepest {
-                    candidates.offer(pose_b.transform_point(deepest), 16 + cap);
-                }
-                for sample in 0..CYLINDER_RIM_SAMPLES {
-                    let angle = TAU * sample as f32 / CYLINDER_RIM_SAMPLES as f32;
-                    let rim = center + Vec3::new(angle.cos(), 0.0, angle.sin()) * cylinder.radius();
-                    let duplicate = deepest.is_some_and(|deepest| {
-                        rim.distance(deepest) < DUPLICATE_FRACTION * cylinder.radius()
-                    });
-                    if !duplicate {
-                        let id = cap * CYLINDER_RIM_SAMPLES as u32 + sample as u32;
-                        candidates.offer(pose_b.transform_point(rim), id);
-                    }
+                let deepest = center + down * cylinder.radius();
+                for sample in samples.clone() {
+                    let rim = center + rim_direction(sample) * cylinder.radius();
+                    let snapped = Some(sample) == nearest
+                        && local_normal.dot(rim - deepest) > DEEPEST_SNAP_DISTANCE;
+                    let point = if snapped { deepest } else { rim };
+                    let id = cap * CYLINDER_RIM_SAMPLES as u32 + sample;
+                    candidates.offer(pose_b.transform_point(point), id);
                 }
             }
         }
