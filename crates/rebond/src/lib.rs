@@ -11,6 +11,7 @@ mod integration;
 pub mod island;
 pub mod mass;
 pub mod math;
+pub mod query;
 pub mod shape;
 pub mod solver;
 pub mod world;
@@ -19,6 +20,7 @@ pub use body::{BodyDesc, BodyHandle, BodyType, RigidBody};
 pub use error::{Error, ErrorKind, Result};
 pub use mass::MassProperties;
 pub use math::{Aabb, Mat3, Pose, Quat, Vec3};
+pub use query::{QueryFilter, Ray, RayHit, ShapeHit};
 pub use shape::{CompoundChild, Shape};
 pub use world::{World, WorldSettings};
 

@@ -314,3 +314,14 @@ fn closing_speed_bound(a: &RigidBody, b: &RigidBody) -> f32 {
 fn stale() -> Error {
     Error::new("", ErrorKind::StaleHandle)
 }
+
+/// Read access for the scene queries in [`crate::query`].
+impl World {
+    pub(crate) fn bodies_arena(&self) -> &Arena<RigidBody> {
+        &self.bodies
+    }
+
+    pub(crate) fn broad_phase(&self) -> &BroadPhase {
+        &self.broad_phase
+    }
+}

@@ -1,0 +1,343 @@
+//! The scene queries as methods of [`World`]: each walks the broad phase's static and moving
+//! trees for candidates, lets the [`QueryFilter`] pick among them, and tests their exact shapes.
+
+use std::ops::ControlFlow;
+
+use super::overlap::{shape_contains_point, shapes_overlap};
+use super::ray::cast_ray_at_shape;
+use super::shape_cast::{cast_shape_at_shape, Sweep};
+use super::{
+    check_max_distance, unit_direction, validated_pose, QueryFilter, Ray, RayHit, ShapeHit,
+};
+use crate::body::{BodyHandle, RigidBody};
+use crate::collision::dynamic_tree::{DynamicTree, ProxyId};
+use crate::error::{Error, ErrorKind, Result};
+use crate::math::{Aabb, Pose, Vec3};
+use crate::shape::Shape;
+use crate::world::World;
+
+/// Scene queries; see [`crate::query`] for the conventions they share.
+impl World {
+    /// The nearest body `ray` meets, or `None`.
+    ///
+    /// ```
+    /// use rebond::{BodyDesc, QueryFilter, Ray, Shape, Vec3, World, WorldSettings};
+    ///
+    /// let mut world = World::new(WorldSettings::default())?;
+    /// let ground = world.add_body(BodyDesc::fixed(Shape::cuboid(Vec3::new(10.0, 1.0, 10.0))?))?;
+    /// let ray = Ray::new(Vec3::new(0.0, 5.0, 0.0), Vec3::NEG_Y);
+    /// let hit = world.cast_ray(&ray, &QueryFilter::default())?.expect("the ground is below");
+    /// assert_eq!(hit.body, ground);
+    /// assert!((hit.distance - 4.0).abs() < 1e-6);
+    /// assert_eq!(hit.normal, Vec3::Y);
+    /// # Ok::<(), rebond::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// A non-finite `origin` or `direction`, a zero `direction`, a NaN or negative
+    /// `max_distance`; the error names the field.
+    pub fn cast_ray(&self, ray: &Ray, filter: &QueryFilter) -> Result<Option<RayHit>> {
+        let ray = ray.validated()?;
+        let mut nearest: Option<RayHit> = None;
+        self.visit_ray(&ray, filter, |handle, body| {
+            let Some(hit) = cast_ray_at_shape(&body.shape, &body.pose(), &ray) else {
+                return ControlFlow::Continue(f32::INFINITY);
+            };
+            let is_nearer =
+                nearest.is_none_or(|best| (hit.distance, handle) < (best.distance, best.body));
+            if is_nearer {
+                nearest = Some(ray_hit(&ray, handle, hit.distance, hit.normal));
+            }
+            ControlFlow::Continue(nearest.map_or(f32::INFINITY, |best| best.distance))
+        });
+        Ok(nearest)
+    }
+
+    /// Every body `ray` meets, one hit each (the nearest on that body), into `hits` (cleared
+    /// first), sorted by distance and then by handle.
+    ///
+    /// # Errors
+    /// As [`World::cast_ray`]; `hits` is then left empty.
+    pub fn cast_ray_all(
+        &self,
+        ray: &Ray,
+        filter: &QueryFilter,
+        hits: &mut Vec<RayHit>,
+    ) -> Result<()> {
+        hits.clear();
+        let ray = ray.validated()?;
+        self.visit_ray(&ray, filter, |handle, body| {
+            if let Some(hit) = cast_ray_at_shape(&body.shape, &body.pose(), &ray) {
+                hits.push(ray_hit(&ray, handle, hit.distance, hit.normal));
+            }
+            ControlFlow::Continue(f32::INFINITY)
+        });
+        hits.sort_unstable_by(|a, b| a.distance.total_cmp(&b.distance).then(a.body.cmp(&b.body)));
+        Ok(())
+    }
+
+    /// Whether `ray` meets any body; stops at the first hit found, which is cheaper than
+    /// [`World::cast_ray`].
+    ///
+    /// # Errors
+    /// As [`World::cast_ray`].
+    pub fn cast_ray_any(&self, ray: &Ray, filter: &QueryFilter) -> Result<bool> {
+        let ray = ray.validated()?;
+        let mut found = false;
+        self.visit_ray(&ray, filter, |_, body| {
+            if cast_ray_at_shape(&body.shape, &body.pose(), &ray).is_some() {
+                found = true;
+                ControlFlow::Break(())
+            } else {
+                ControlFlow::Continue(f32::INFINITY)
+            }
+        });
+        Ok(found)
+    }
+
+    /// Sweeps `shape`, placed at `pose`, along `direction` (normalised here) for up to
+    /// `max_distance` metres (infinity allowed), and returns where it first touches a body.
+    /// Compounds and halfspaces may be swept too.
+    ///
+    /// ```
+    /// use rebond::{BodyDesc, Pose, QueryFilter, Shape, Vec3, World, WorldSettings};
+    ///
+    /// let mut world = World::new(WorldSettings::default())?;
+    /// let wall = world.add_body(
+    ///     BodyDesc::fixed(Shape::cuboid(Vec3::splat(1.0))?).position(Vec3::new(5.0, 0.0, 0.0)),
+    /// )?;
+    /// let ball = Shape::sphere(0.5)?;
+    /// let hit = world
+    ///     .cast_shape(&ball, &Pose::IDENTITY, Vec3::X, 10.0, &QueryFilter::default())?
+    ///     .expect("the wall is in the way");
+    /// assert_eq!(hit.body, wall);
+    /// assert!((hit.distance - 3.5).abs() < 1e-4);
+    /// # Ok::<(), rebond::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// A non-finite `pose.position` or `pose.rotation`, a zero `pose.rotation`, a non-finite or
+    /// zero `direction`, a NaN or negative `max_distance`; the error names the field.
+    pub fn cast_shape(
+        &self,
+        shape: &Shape,
+        pose: &Pose,
+        direction: Vec3,
+        max_distance: f32,
+        filter: &QueryFilter,
+    ) -> Result<Option<ShapeHit>> {
+        let sweep = Sweep {
+            shape,
+            pose: validated_pose(pose)?,
+            direction: unit_direction("direction", direction)?,
+            max_distance: check_max_distance("max_distance", max_distance)?,
+        };
+        let start_aabb = shape.aabb(&sweep.pose);
+        let mut nearest: Option<ShapeHit> = None;
+        self.visit_candidates(
+            filter,
+            |tree, bound, visit| tree.box_cast(&start_aabb, sweep.direction, bound, visit),
+            sweep.max_distance,
+            |handle, body| {
+                let reach = nearest.map_or(sweep.max_distance, |best| best.distance);
+                let body_sweep = Sweep {
+                    max_distance: reach,
+                    ..sweep
+                };
+                let Some(hit) = cast_shape_at_shape(&body_sweep, &body.shape, &body.pose()) else {
+                    return ControlFlow::Continue(reach);
+                };
+                let is_nearer =
+                    nearest.is_none_or(|best| (hit.distance, handle) < (best.distance, best.body));
+                if is_nearer {
+                    nearest = Some(ShapeHit {
+                        body: handle,
+                        distance: hit.distance,
+                        point: hit.point,
+                        normal: hit.normal,
+                    });
+                }
+                ControlFlow::Continue(nearest.map_or(reach, |best| best.distance))
+            },
+        );
+        Ok(nearest)
+    }
+
+    /// The bodies whose shape holds `point` (inside or on the surface), into `bodies` (cleared
+    /// first), sorted by handle.
+    ///
+    /// # Errors
+    /// A non-finite `point`; `bodies` is then left empty.
+    pub fn bodies_containing_point(
+        &self,
+        point: Vec3,
+        filter: &QueryFilter,
+        bodies: &mut Vec<BodyHandle>,
+    ) -> Result<()> {
+        bodies.clear();
+        if !point.is_finite() {
+            return Err(Error::new("point", ErrorKind::NotFinite));
+        }
+        self.collect_overlaps(&Aabb::new(point, point), filter, bodies, |body| {
+            shape_contains_point(&body.shape, &body.pose(), point)
+        });
+        Ok(())
+    }
+
+    /// The bodies whose bounding box overlaps `aabb` (touching counts), into `bodies` (cleared
+    /// first), sorted by handle. A cheap, conservative test: for the exact shapes, query with
+    /// [`World::bodies_overlapping_shape`] and a box.
+    ///
+    /// # Errors
+    /// A non-finite corner, field `aabb.min[i]` or `aabb.max[i]`, or a `min` above `max` on an
+    /// axis (field `aabb.min[i]`, [`ErrorKind::OutOfRange`]); `bodies` is then left empty.
+    pub fn bodies_overlapping_aabb(
+        &self,
+        aabb: &Aabb,
+        filter: &QueryFilter,
+        bodies: &mut Vec<BodyHandle>,
+    ) -> Result<()> {
+        bodies.clear();
+        for axis in 0..3 {
+            let (min, max) = (aabb.min[axis], aabb.max[axis]);
+            if !min.is_finite() {
+                return Err(Error::new(
+                    format!("aabb.min[{axis}]"),
+                    ErrorKind::NotFinite,
+                ));
+            }
+            if !max.is_finite() {
+                return Err(Error::new(
+                    format!("aabb.max[{axis}]"),
+                    ErrorKind::NotFinite,
+                ));
+            }
+            if min > max {
+                let kind = ErrorKind::OutOfRange {
+                    value: min,
+                    min: f32::NEG_INFINITY,
+                    max,
+                };
+                return Err(Error::new(format!("aabb.min[{axis}]"), kind));
+            }
+        }
+        self.collect_overlaps(aabb, filter, bodies, |body| body.aabb().overlaps(aabb));
+        Ok(())
+    }
+
+    /// The bodies whose shape overlaps `shape` placed at `pose` (touching counts), into `bodies`
+    /// (cleared first), sorted by handle.
+    ///
+    /// # Errors
+    /// A non-finite `pose.position` or `pose.rotation`, or a zero `pose.rotation`; `bodies` is
+    /// then left empty.
+    pub fn bodies_overlapping_shape(
+        &self,
+        shape: &Shape,
+        pose: &Pose,
+        filter: &QueryFilter,
+        bodies: &mut Vec<BodyHandle>,
+    ) -> Result<()> {
+        bodies.clear();
+        let pose = validated_pose(pose)?;
+        let bounds = shape.aabb(&pose);
+        self.collect_overlaps(&bounds, filter, bodies, |body| {
+            body.aabb().overlaps(&bounds) && shapes_overlap(shape, &pose, &body.shape, &body.pose())
+        });
+        Ok(())
+    }
+}
+
+/// The walks shared by the queries.
+impl World {
+    /// Calls `visit` with every body passing `filter` whose broad-phase box the ray meets within
+    /// the current bound, nearer boxes first, static tree then moving tree. `visit` returns the
+    /// new bound (the distance of its nearest hit, or infinity to keep the bound) or stops the
+    /// walk.
+    fn visit_ray(
+        &self,
+        ray: &Ray,
+        filter: &QueryFilter,
+        visit: impl FnMut(BodyHandle, &RigidBody) -> ControlFlow<(), f32>,
+    ) {
+        self.visit_candidates(
+            filter,
+            |tree, bound, tree_visit| tree.ray_cast(ray.origin, ray.direction, bound, tree_visit),
+            ray.max_distance,
+            visit,
+        );
+    }
+
+    /// The walk of [`visit_ray`](Self::visit_ray) for any cast: `cast(tree, bound, callback)`
+    /// runs one tree's cast with the current bound.
+    fn visit_candidates<C, V>(
+        &self,
+        filter: &QueryFilter,
+        mut cast: C,
+        max_distance: f32,
+        mut visit: V,
+    ) where
+        C: FnMut(&DynamicTree, f32, &mut dyn FnMut(ProxyId, f32) -> ControlFlow<(), f32>),
+        V: FnMut(BodyHandle, &RigidBody) -> ControlFlow<(), f32>,
+    {
+        let bodies = self.bodies_arena();
+        let broad_phase = self.broad_phase();
+        let mut bound = max_distance;
+        for tree in [broad_phase.static_tree(), broad_phase.moving_tree()] {
+            let mut stopped = false;
+            cast(tree, bound, &mut |proxy, _entry| {
+                let Some((index, body)) = bodies.at_slot(tree.user_data(proxy) as usize) else {
+                    return ControlFlow::Continue(bound);
+                };
+                let handle = BodyHandle(index);
+                if !filter.accepts(handle, body) {
+                    return ControlFlow::Continue(bound);
+                }
+                let flow = visit(handle, body);
+                match flow {
+                    ControlFlow::Continue(new_bound) => bound = bound.min(new_bound),
+                    ControlFlow::Break(()) => stopped = true,
+                }
+                flow
+            });
+            if stopped {
+                return;
+            }
+        }
+    }
+
+    /// Pushes into `bodies` every body passing `filter` whose broad-phase box overlaps `aabb`
+    /// and for which `test` holds, then sorts them by handle.
+    fn collect_overlaps(
+        &self,
+        aabb: &Aabb,
+        filter: &QueryFilter,
+        bodies: &mut Vec<BodyHandle>,
+        test: impl Fn(&RigidBody) -> bool,
+    ) {
+        let arena = self.bodies_arena();
+        let broad_phase = self.broad_phase();
+        for tree in [broad_phase.static_tree(), broad_phase.moving_tree()] {
+            tree.query(aabb, |proxy| {
+                if let Some((index, body)) = arena.at_slot(tree.user_data(proxy) as usize) {
+                    let handle = BodyHandle(index);
+                    if filter.accepts(handle, body) && test(body) {
+                        bodies.push(handle);
+                    }
+                }
+                true
+            });
+        }
+        bodies.sort_unstable();
+    }
+}
+
+/// A [`RayHit`] on `body` at `distance` along the (validated) ray.
+fn ray_hit(ray: &Ray, body: BodyHandle, distance: f32, normal: Vec3) -> RayHit {
+    RayHit {
+        body,
+        point: ray.point_at(distance),
+        normal,
+        distance,
+    }
+}
