@@ -10,6 +10,7 @@ mod record;
 mod run;
 mod scene;
 mod source;
+mod view;
 
 use std::io::{self, Write};
 use std::path::PathBuf;
@@ -18,9 +19,9 @@ use std::process::ExitCode;
 use clap::{Args, Parser, Subcommand};
 
 use crate::builtin::BUILTIN_SCENES;
-use crate::failure::Failure;
 use crate::run::{RunLength, RunOptions};
 use crate::source::SceneSource;
+use crate::view::{ViewError, ViewOptions};
 
 /// What `SCENE` means, shared by the subcommands' help.
 const SCENE_HELP: &str =
@@ -73,6 +74,14 @@ enum Command {
     Bench(BenchArgs),
     /// List the built-in scenes, one per line with a description.
     Scenes,
+    /// Open a window that simulates a scene live: orbit camera, pause, step, reset, slow motion,
+    /// contacts, bounding boxes, sleeping tint, drag bodies, shoot balls (press H for the keys).
+    ///
+    /// With --screenshot, takes --steps steps (0 by default), saves the 960x540 frame as PNG,
+    /// prints the counts and, for each body, its colour and the pixel its centre of mass is drawn
+    /// at, and exits. OpenGL and the X11 or Wayland libraries are loaded at run time; on a machine
+    /// without a screen, run under `xvfb-run -s "-screen 0 1280x720x24"`.
+    View(ViewArgs),
 }
 
 /// Arguments of `rebond run`.
@@ -116,6 +125,25 @@ struct BenchArgs {
     steps: u32,
 }
 
+/// Arguments of `rebond view`.
+#[derive(Debug, Args)]
+struct ViewArgs {
+    #[arg(value_name = "SCENE", help = SCENE_HELP)]
+    scene: PathBuf,
+    /// Save the frame as PNG to FILE after --steps steps and exit, instead of staying open
+    #[arg(long, value_name = "FILE")]
+    screenshot: Option<PathBuf>,
+    /// Steps to take before the screenshot; needs --screenshot
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 0,
+        requires = "screenshot",
+        value_parser = clap::value_parser!(u64)
+    )]
+    steps: u64,
+}
+
 /// Parses `--seconds`: a finite, positive number.
 fn positive_seconds(text: &str) -> Result<f64, String> {
     match text.parse::<f64>() {
@@ -136,15 +164,16 @@ fn main() -> ExitCode {
                 .and_then(|()| stdout.flush());
             ExitCode::SUCCESS
         }
-        Err(failure) => {
-            eprintln!("error: {failure}");
-            ExitCode::from(failure.exit_status())
+        Err(error) => {
+            eprintln!("error: {error}");
+            ExitCode::from(error.exit_status())
         }
     }
 }
 
-/// Runs one subcommand and returns what it prints on stdout.
-fn execute(command: Command) -> Result<String, Failure> {
+/// Runs one subcommand and returns what it prints on stdout. Errors are the commands' failures,
+/// or for `view` a window that cannot be opened.
+fn execute(command: Command) -> Result<String, ViewError> {
     match command {
         Command::Run(arguments) => {
             let source = SceneSource::resolve(&arguments.scene)?;
@@ -158,12 +187,20 @@ fn execute(command: Command) -> Result<String, Failure> {
                 record: arguments.record,
                 every: arguments.every,
             };
-            run::run(&source, &options).map(|summary| summary.to_string())
+            Ok(run::run(&source, &options)?.to_string())
         }
         Command::Bench(arguments) => {
             let source = SceneSource::resolve(&arguments.scene)?;
             let steps = usize::try_from(arguments.steps).unwrap_or(usize::MAX);
-            bench::bench(&source, steps).map(|report| report.to_string())
+            Ok(bench::bench(&source, steps)?.to_string())
+        }
+        Command::View(arguments) => {
+            let source = SceneSource::resolve(&arguments.scene)?;
+            let options = ViewOptions {
+                screenshot: arguments.screenshot,
+                steps: arguments.steps,
+            };
+            view::view(&source, &options)
         }
         Command::Scenes => Ok(BUILTIN_SCENES
             .iter()

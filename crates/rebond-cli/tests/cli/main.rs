@@ -6,3 +6,4 @@ mod commands;
 mod common;
 mod records;
 mod scenes;
+mod view;

@@ -1,0 +1,310 @@
+//! Triangle meshes of the shapes, in the body frame, with per-vertex normals for lighting.
+//! Round shapes (sphere, capsule, cylinder) are lathed about the Y axis from a profile; boxes and
+//! hulls are flat-shaded, one set of vertices per face. A halfspace has no mesh: the renderer
+//! draws it as a ground grid.
+
+use std::f32::consts::{FRAC_PI_2, TAU};
+
+use rebond::shape::{Capsule, ConvexHull, Cuboid, Cylinder, Sphere};
+use rebond::{Pose, Shape, Vec3};
+
+/// Segments around the Y axis of lathed shapes.
+const SEGMENTS_AROUND: usize = 32;
+/// Segments from pole to pole of a sphere (a capsule's caps take half each).
+const SEGMENTS_POLE_TO_POLE: usize = 16;
+
+/// Triangles with a normal at every vertex; triangles wind counter-clockwise seen from outside.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TriangleMesh {
+    /// Vertex positions, metres.
+    pub positions: Vec<Vec3>,
+    /// Unit vertex normals, one per position.
+    pub normals: Vec<Vec3>,
+    /// Three indices into `positions` per triangle.
+    pub indices: Vec<u32>,
+}
+
+impl TriangleMesh {
+    /// Appends `other` moved by `pose`.
+    fn append(&mut self, other: &TriangleMesh, pose: &Pose) {
+        let base = self.positions.len() as u32;
+        self.positions.extend(
+            other
+                .positions
+                .iter()
+                .map(|&position| pose.transform_point(position)),
+        );
+        self.normals.extend(
+            other
+                .normals
+                .iter()
+                .map(|&normal| pose.transform_vector(normal)),
+        );
+        self.indices
+            .extend(other.indices.iter().map(|&index| base + index));
+    }
+
+    /// Adds a vertex and returns its index.
+    fn vertex(&mut self, position: Vec3, normal: Vec3) -> u32 {
+        self.positions.push(position);
+        self.normals.push(normal);
+        self.positions.len() as u32 - 1
+    }
+}
+
+/// The mesh of `shape` in its body frame, or `None` for a halfspace.
+pub fn shape_mesh(shape: &Shape) -> Option<TriangleMesh> {
+    Some(match shape {
+        Shape::Sphere(sphere) => sphere_mesh(sphere),
+        Shape::Cuboid(cuboid) => cuboid_mesh(cuboid),
+        Shape::Capsule(capsule) => capsule_mesh(capsule),
+        Shape::Cylinder(cylinder) => cylinder_mesh(cylinder),
+        Shape::ConvexHull(hull) => hull_mesh(hull),
+        Shape::Compound(compound) => {
+            let mut mesh = TriangleMesh::default();
+            for child in compound.children() {
+                if let Some(child_mesh) = shape_mesh(&child.shape) {
+                    mesh.append(&child_mesh, &child.pose);
+                }
+            }
+            mesh
+        }
+        Shape::Halfspace(_) => return None,
+    })
+}
+
+/// One point of a lathe profile: distance from the Y axis, height, and the outward normal in
+/// the (radial, Y) plane.
+#[derive(Debug, Clone, Copy)]
+struct ProfilePoint {
+    radius: f32,
+    height: f32,
+    normal_radial: f32,
+    normal_y: f32,
+}
+
+/// Turns a profile, listed from bottom to top, about the Y axis.
+fn lathe(profile: &[ProfilePoint]) -> TriangleMesh {
+    let mut mesh = TriangleMesh::default();
+    for point in profile {
+        for segment in 0..=SEGMENTS_AROUND {
+            let angle = TAU * segment as f32 / SEGMENTS_AROUND as f32;
+            let (sin, cos) = angle.sin_cos();
+            mesh.vertex(
+                Vec3::new(point.radius * cos, point.height, -point.radius * sin),
+                Vec3::new(
+                    point.normal_radial * cos,
+                    point.normal_y,
+                    -point.normal_radial * sin,
+                ),
+            );
+        }
+    }
+    let ring = SEGMENTS_AROUND as u32 + 1;
+    for level in 0..profile.len().saturating_sub(1) as u32 {
+        for segment in 0..SEGMENTS_AROUND as u32 {
+            let lower = level * ring + segment;
+            let upper = lower + ring;
+            mesh.indices
+                .extend([lower, lower + 1, upper + 1, lower, upper + 1, upper]);
+        }
+    }
+    mesh
+}
+
+/// Points of a circular arc of `radius` centred at height `center`, from `from` to `to` radians
+/// above the horizon, in `segments` steps.
+fn arc(radius: f32, center: f32, from: f32, to: f32, segments: usize) -> Vec<ProfilePoint> {
+    (0..=segments)
+        .map(|step| {
+            let angle = from + (to - from) * step as f32 / segments as f32;
+            let (sin, cos) = angle.sin_cos();
+            ProfilePoint {
+                radius: radius * cos,
+                height: center + radius * sin,
+                normal_radial: cos,
+                normal_y: sin,
+            }
+        })
+        .collect()
+}
+
+fn sphere_mesh(sphere: &Sphere) -> TriangleMesh {
+    lathe(&arc(
+        sphere.radius(),
+        0.0,
+        -FRAC_PI_2,
+        FRAC_PI_2,
+        SEGMENTS_POLE_TO_POLE,
+    ))
+}
+
+fn capsule_mesh(capsule: &Capsule) -> TriangleMesh {
+    let half_segments = SEGMENTS_POLE_TO_POLE / 2;
+    let (radius, half_height) = (capsule.radius(), capsule.half_height());
+    let mut profile = arc(radius, -half_height, -FRAC_PI_2, 0.0, half_segments);
+    profile.extend(arc(radius, half_height, 0.0, FRAC_PI_2, half_segments));
+    lathe(&profile)
+}
+
+fn cylinder_mesh(cylinder: &Cylinder) -> TriangleMesh {
+    let (radius, half_height) = (cylinder.radius(), cylinder.half_height());
+    let point = |radius, height, normal_radial, normal_y| ProfilePoint {
+        radius,
+        height,
+        normal_radial,
+        normal_y,
+    };
+    lathe(&[
+        point(0.0, -half_height, 0.0, -1.0),
+        point(radius, -half_height, 0.0, -1.0),
+        point(radius, -half_height, 1.0, 0.0),
+        point(radius, half_height, 1.0, 0.0),
+        point(radius, half_height, 0.0, 1.0),
+        point(0.0, half_height, 0.0, 1.0),
+    ])
+}
+
+fn cuboid_mesh(cuboid: &Cuboid) -> TriangleMesh {
+    let half = cuboid.half_extents();
+    let mut mesh = TriangleMesh::default();
+    for axis in 0..3 {
+        for sign in [-1.0_f32, 1.0] {
+            let normal = Vec3::AXES[axis] * sign;
+            let tangent = Vec3::AXES[(axis + 1) % 3];
+            let bitangent = normal.cross(tangent);
+            let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+                .map(|(u, v)| mesh.vertex(half * (normal + u * tangent + v * bitangent), normal));
+            push_fan(&mut mesh, &corners);
+        }
+    }
+    mesh
+}
+
+fn hull_mesh(hull: &ConvexHull) -> TriangleMesh {
+    let vertices = hull.vertices();
+    let mut mesh = TriangleMesh::default();
+    for face in hull.faces() {
+        let corners: Vec<u32> = face
+            .vertices
+            .iter()
+            .filter_map(|&index| vertices.get(index as usize))
+            .map(|&position| mesh.vertex(position, face.normal))
+            .collect();
+        push_fan(&mut mesh, &corners);
+    }
+    mesh
+}
+
+/// Triangulates a convex polygon, counter-clockwise seen from outside, as a fan.
+fn push_fan(mesh: &mut TriangleMesh, corners: &[u32]) {
+    for pair in corners.windows(2).skip(1) {
+        mesh.indices.extend([corners[0], pair[0], pair[1]]);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use rebond::shape::CompoundChild;
+    use rebond::Quat;
+
+    use super::*;
+
+    /// The largest gap between a lathed sphere and its mesh, as a fraction of the radius.
+    fn lathe_sag() -> f32 {
+        1.0 - (std::f32::consts::PI / SEGMENTS_POLE_TO_POLE as f32).cos()
+    }
+
+    fn every_shape() -> Vec<Shape> {
+        let hull = Shape::convex_hull(&[
+            Vec3::new(-1.0, 0.0, -1.0),
+            Vec3::new(1.0, 0.0, -1.0),
+            Vec3::new(1.0, 0.0, 1.0),
+            Vec3::new(-1.0, 0.0, 1.0),
+            Vec3::new(0.0, 1.5, 0.0),
+        ])
+        .expect("a pyramid");
+        let compound = Shape::compound(vec![
+            CompoundChild {
+                pose: Pose::from_position(Vec3::new(-1.0, 0.0, 0.0)),
+                shape: Shape::sphere(0.4).expect("a sphere"),
+            },
+            CompoundChild {
+                pose: Pose::new(Vec3::ZERO, Quat::from_rotation_z(FRAC_PI_2)),
+                shape: Shape::cylinder(0.1, 1.0).expect("a cylinder"),
+            },
+        ])
+        .expect("a compound");
+        vec![
+            Shape::sphere(0.7).expect("a sphere"),
+            Shape::cuboid(Vec3::new(0.5, 1.0, 1.5)).expect("a box"),
+            Shape::capsule(0.3, 0.8).expect("a capsule"),
+            Shape::cylinder(0.6, 0.4).expect("a cylinder"),
+            hull,
+            compound,
+        ]
+    }
+
+    #[test]
+    fn meshes_are_well_formed_and_lie_on_their_shapes() {
+        for shape in every_shape() {
+            let mesh = shape_mesh(&shape).expect("a bounded shape has a mesh");
+            assert!(!mesh.indices.is_empty(), "{shape:?}");
+            assert_eq!(mesh.indices.len() % 3, 0);
+            assert_eq!(mesh.positions.len(), mesh.normals.len());
+            assert!(mesh
+                .indices
+                .iter()
+                .all(|&index| (index as usize) < mesh.positions.len()));
+            assert!(mesh
+                .normals
+                .iter()
+                .all(|normal| (normal.length() - 1.0).abs() < 1e-4));
+            let bounds = shape.aabb(&Pose::IDENTITY);
+            let slack = Vec3::splat(1e-4);
+            assert!(mesh.positions.iter().all(|&position| {
+                position.cmpge(bounds.min - slack).all() && position.cmple(bounds.max + slack).all()
+            }));
+            let reach = |direction: Vec3| {
+                mesh.positions
+                    .iter()
+                    .map(|position| position.dot(direction))
+                    .fold(f32::MIN, f32::max)
+            };
+            for direction in [Vec3::X, Vec3::Y, Vec3::Z, -Vec3::X, -Vec3::Y, -Vec3::Z] {
+                let support = shape.support(direction).expect("bounded").dot(direction);
+                assert!(
+                    reach(direction) >= support * (1.0 - lathe_sag()) - 1e-4,
+                    "{shape:?} along {direction}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn triangles_face_outward() {
+        for shape in every_shape() {
+            let mesh = shape_mesh(&shape).expect("a mesh");
+            for triangle in mesh.indices.chunks_exact(3) {
+                let [a, b, c] = [0, 1, 2].map(|corner| mesh.positions[triangle[corner] as usize]);
+                let face_normal = (b - a).cross(c - a);
+                if face_normal.length() < 1e-7 {
+                    continue;
+                }
+                let vertex_normals: Vec3 = triangle
+                    .iter()
+                    .map(|&index| mesh.normals[index as usize])
+                    .sum();
+                assert!(face_normal.dot(vertex_normals) > 0.0, "{shape:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn halfspaces_have_no_mesh() {
+        assert_eq!(
+            shape_mesh(&Shape::halfspace(Vec3::Y).expect("a halfspace")),
+            None
+        );
+    }
+}
