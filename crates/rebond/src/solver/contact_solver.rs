@@ -29,7 +29,6 @@ pub const MAX_PUSH_SPEED: f32 = 3.0;
 /// Stiffness of contacts, Hz, capped at [`CONTACT_HERTZ_PER_SUBSTEP_RATE`] of the substep rate so
 /// the spring stays stable. A contact's steady sag under a load is `load / (m_eff ω²)`: at 60 Hz
 /// a box sags 0.07 mm per box resting on it.
-
 pub const CONTACT_HERTZ: f32 = 60.0;
 
 /// Largest contact frequency as a fraction of the substep rate: `ω h ≤ 2π / 8`. Measured on a
