@@ -6,8 +6,10 @@
 use crate::arena::ArenaIndex;
 use crate::collision::broad_phase::ProxyHandle;
 use crate::error::{
-    check_finite_vector, check_non_negative, check_positive, check_range, Error, ErrorKind, Result,
+    check_finite_vector, check_non_negative, check_non_negative_or_infinite, check_positive,
+    check_range, Error, ErrorKind, Result,
 };
+use crate::filter::InteractionGroups;
 use crate::mass::MassProperties;
 use crate::math::{normalize_rotation, rotate_tensor, Aabb, Mat3, Pose, Quat, Vec3};
 use crate::shape::Shape;
@@ -73,6 +75,18 @@ pub struct BodyDesc {
     pub angular_damping: f32,
     /// Whether the body may fall asleep, default true.
     pub can_sleep: bool,
+    /// Whether the body is a sensor, default false: it never pushes anything and nothing pushes
+    /// it (no contacts), but it reports the bodies that enter and leave its shape
+    /// ([`crate::events::SensorEvent`]). A sensor sees dynamic and kinematic bodies, and static
+    /// ones if it moves itself (two static bodies are never paired); not other sensors. A body
+    /// asleep inside it stays inside; a sensor never wakes anything.
+    pub sensor: bool,
+    /// Which bodies it interacts with (contacts and sensors), default [`InteractionGroups::ALL`].
+    pub collision_groups: InteractionGroups,
+    /// Contacts of this body whose normal force exceeds this, newtons, are reported as
+    /// [`crate::events::ContactForceEvent`]s; default infinity (no reports). A pair uses the
+    /// smaller threshold of its two bodies.
+    pub contact_force_threshold: f32,
 }
 
 impl BodyDesc {
@@ -94,6 +108,9 @@ impl BodyDesc {
             linear_damping: 0.0,
             angular_damping: 0.0,
             can_sleep: true,
+            sensor: false,
+            collision_groups: InteractionGroups::ALL,
+            contact_force_threshold: f32::INFINITY,
         }
     }
 
@@ -184,6 +201,24 @@ impl BodyDesc {
         self.can_sleep = can_sleep;
         self
     }
+
+    /// Sets whether the body is a sensor.
+    pub fn sensor(mut self, sensor: bool) -> Self {
+        self.sensor = sensor;
+        self
+    }
+
+    /// Sets the collision groups.
+    pub fn collision_groups(mut self, groups: InteractionGroups) -> Self {
+        self.collision_groups = groups;
+        self
+    }
+
+    /// Sets the contact force above which contacts are reported, newtons (not negative).
+    pub fn contact_force_threshold(mut self, threshold: f32) -> Self {
+        self.contact_force_threshold = threshold;
+        self
+    }
 }
 
 /// A rigid body in a world.
@@ -224,6 +259,10 @@ pub struct RigidBody {
     pub(crate) max_extent: f32,
     /// The body's entry in the broad phase, set when it joins a world.
     pub(crate) proxy: Option<ProxyHandle>,
+    pub(crate) sensor: bool,
+    pub(crate) collision_groups: InteractionGroups,
+    /// Newtons; infinity for no force reports.
+    pub(crate) contact_force_threshold: f32,
 }
 
 impl RigidBody {
@@ -243,6 +282,7 @@ impl RigidBody {
         check_finite_vector("torque", desc.constant_torque)?;
         check_non_negative("linear_damping", desc.linear_damping)?;
         check_non_negative("angular_damping", desc.angular_damping)?;
+        check_non_negative_or_infinite("contact_force_threshold", desc.contact_force_threshold)?;
 
         let mass_properties = match desc.body_type {
             BodyType::Dynamic => Some(dynamic_mass_properties(&desc)?),
@@ -284,6 +324,9 @@ impl RigidBody {
             sleep_group: None,
             max_extent: 0.0,
             proxy: None,
+            sensor: desc.sensor,
+            collision_groups: desc.collision_groups,
+            contact_force_threshold: desc.contact_force_threshold,
         };
         if let Some((properties, inverse_inertia)) = mass_properties {
             body.mass = properties.mass;
@@ -420,6 +463,30 @@ impl RigidBody {
     /// Whether the body may fall asleep.
     pub fn can_sleep(&self) -> bool {
         self.can_sleep
+    }
+
+    /// Whether the body is a sensor (reports overlaps, never pushes).
+    pub fn is_sensor(&self) -> bool {
+        self.sensor
+    }
+
+    /// Which bodies it interacts with; change them with
+    /// [`World::set_collision_groups`](crate::World::set_collision_groups).
+    pub fn collision_groups(&self) -> InteractionGroups {
+        self.collision_groups
+    }
+
+    /// Contact force above which its contacts are reported, newtons (infinity: never).
+    pub fn contact_force_threshold(&self) -> f32 {
+        self.contact_force_threshold
+    }
+
+    /// Sets the contact force above which its contacts are reported, newtons, not negative
+    /// (infinity: never).
+    pub fn set_contact_force_threshold(&mut self, threshold: f32) -> Result<()> {
+        self.contact_force_threshold =
+            check_non_negative_or_infinite("contact_force_threshold", threshold)?;
+        Ok(())
     }
 
     /// Whether the body is asleep (skipped by the step until something wakes it).

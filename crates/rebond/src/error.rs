@@ -132,6 +132,17 @@ pub(crate) fn check_non_negative(field: &str, value: f32) -> Result<f32> {
     }
 }
 
+/// Checks that `value` is zero or more, infinity allowed (for limits that may be absent), NaN not.
+pub(crate) fn check_non_negative_or_infinite(field: &str, value: f32) -> Result<f32> {
+    if value.is_nan() {
+        Err(Error::new(field, ErrorKind::NotFinite))
+    } else if value < 0.0 {
+        Err(Error::new(field, ErrorKind::Negative(value)))
+    } else {
+        Ok(value)
+    }
+}
+
 /// Checks that `value` is finite and lies in `[min, max]`.
 pub(crate) fn check_range(field: &str, value: f32, min: f32, max: f32) -> Result<f32> {
     check_finite(field, value)?;

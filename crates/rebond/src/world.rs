@@ -7,6 +7,8 @@ use crate::collision::contact_cache::{Contact, ContactCache, ContactKey};
 use crate::collision::narrow_phase::collide;
 use crate::collision::SPECULATIVE_DISTANCE;
 use crate::error::{check_finite_vector, check_positive, Error, ErrorKind, Result};
+use crate::events::{ContactEvent, ContactForceEvent, EventTracker, SensorEvent};
+use crate::filter::{ordered, IgnoredPairs, InteractionGroups};
 use crate::island::Islands;
 use crate::math::Vec3;
 use crate::solver::{Solver, StepSettings};
@@ -85,6 +87,10 @@ pub struct World {
     contacts: ContactCache,
     solver: Solver,
     islands: Islands,
+    ignored_pairs: IgnoredPairs,
+    events: EventTracker,
+    /// Pairs the narrow phase ran on in the last step (recycled and sleeping pairs excepted).
+    narrow_phase_pair_tests: usize,
 }
 
 impl World {
@@ -98,6 +104,9 @@ impl World {
             contacts: ContactCache::default(),
             solver: Solver::default(),
             islands: Islands::default(),
+            ignored_pairs: IgnoredPairs::default(),
+            events: EventTracker::default(),
+            narrow_phase_pair_tests: 0,
         })
     }
 
@@ -129,6 +138,8 @@ impl World {
     }
 
     /// Removes the body and returns it; its handle becomes stale, and its contacts go with it.
+    /// Its touching pairs and sensor overlaps end at the next step (a stop or exit event naming
+    /// the stale handle).
     pub fn remove_body(&mut self, handle: BodyHandle) -> Result<RigidBody> {
         let mut body = self.bodies.remove(handle.0).ok_or_else(stale)?;
         if let Some(proxy) = body.proxy.take() {
@@ -145,6 +156,7 @@ impl World {
             }
         }
         self.contacts.remove_body(handle);
+        self.ignored_pairs.remove_body(handle);
         Ok(body)
     }
 
@@ -156,6 +168,62 @@ impl World {
     /// The body behind `handle`, to change through its validating setters.
     pub fn body_mut(&mut self, handle: BodyHandle) -> Result<&mut RigidBody> {
         self.bodies.get_mut(handle.0).ok_or_else(stale)
+    }
+
+    /// Changes which bodies `handle` interacts with, and wakes it. Pairs that no longer interact
+    /// lose their contacts now and their broad-phase pair at the next step (their events end
+    /// then); pairs that now interact are found at the next step.
+    pub fn set_collision_groups(
+        &mut self,
+        handle: BodyHandle,
+        groups: InteractionGroups,
+    ) -> Result<()> {
+        let body = self.bodies.get_mut(handle.0).ok_or_else(stale)?;
+        body.collision_groups = groups;
+        body.wake();
+        if let Some(proxy) = body.proxy {
+            self.broad_phase.refilter(proxy);
+        }
+        let bodies = &self.bodies;
+        self.contacts
+            .retain_pairs(|a, b| match (bodies.get(a.0), bodies.get(b.0)) {
+                (Some(body_a), Some(body_b)) => body_a
+                    .collision_groups
+                    .interacts_with(body_b.collision_groups),
+                _ => false,
+            });
+        Ok(())
+    }
+
+    /// Makes bodies `a` and `b` ignore each other (or interact again), whatever their groups
+    /// say, and wakes both. An ignored pair loses its contacts now and its broad-phase pair at
+    /// the next step.
+    pub fn set_pair_ignored(&mut self, a: BodyHandle, b: BodyHandle, ignored: bool) -> Result<()> {
+        let proxies = [a, b].map(|handle| self.bodies.get(handle.0).map(|body| body.proxy));
+        let [Some(proxy_a), Some(_)] = proxies else {
+            return Err(stale());
+        };
+        if !self.ignored_pairs.set(a, b, ignored) {
+            return Ok(());
+        }
+        if let Some(proxy) = proxy_a {
+            self.broad_phase.refilter(proxy);
+        }
+        if ignored {
+            self.contacts
+                .retain_pairs(|body_a, body_b| (body_a, body_b) != ordered(a, b));
+        }
+        for handle in [a, b] {
+            if let Some(body) = self.bodies.get_mut(handle.0) {
+                body.wake();
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether bodies `a` and `b` were told to ignore each other.
+    pub fn is_pair_ignored(&self, a: BodyHandle, b: BodyHandle) -> bool {
+        self.ignored_pairs.contains(a, b)
     }
 
     /// All bodies with their handles, in a deterministic order (storage slots).
@@ -190,6 +258,55 @@ impl World {
             .sum()
     }
 
+    /// Pairs of bodies that started or stopped touching during the last step, sorted by handles;
+    /// see [`crate::events`]. Valid until the next step.
+    pub fn contact_events(&self) -> &[ContactEvent] {
+        self.events.contact_events()
+    }
+
+    /// Touching pairs whose normal force exceeded the smaller of their bodies' thresholds during
+    /// the last step, sorted by handles.
+    pub fn contact_force_events(&self) -> &[ContactForceEvent] {
+        self.events.force_events()
+    }
+
+    /// Bodies that entered or left a sensor during the last step, sorted by (sensor, body).
+    pub fn sensor_events(&self) -> &[SensorEvent] {
+        self.events.sensor_events()
+    }
+
+    /// Pairs of bodies touching (their contacts pushed) during the last step, smaller handle
+    /// first, sorted.
+    pub fn touching_pairs(&self) -> &[(BodyHandle, BodyHandle)] {
+        self.events.touching()
+    }
+
+    /// (sensor, body) pairs overlapping after the last step, sorted.
+    pub fn sensor_overlaps(&self) -> &[(BodyHandle, BodyHandle)] {
+        self.events.overlaps()
+    }
+
+    /// The broad phase's pairs of bodies after the last step, smaller handle first, sorted: the
+    /// pairs whose fat boxes overlap and that interact (groups, ignored pairs, never two
+    /// sensors). Diagnostics.
+    pub fn broad_phase_pairs(&self) -> impl Iterator<Item = (BodyHandle, BodyHandle)> + '_ {
+        self.broad_phase
+            .pairs()
+            .iter()
+            .filter_map(|&(key_a, key_b)| {
+                let (index_a, _) = self.bodies.at_slot(key_a as usize)?;
+                let (index_b, _) = self.bodies.at_slot(key_b as usize)?;
+                Some(ordered(BodyHandle(index_a), BodyHandle(index_b)))
+            })
+    }
+
+    /// How many pairs of bodies the narrow phase tested in the last step: broad-phase pairs with
+    /// a moving body whose contacts were not recycled; sensor pairs are not counted.
+    /// Diagnostics.
+    pub fn narrow_phase_pair_tests(&self) -> usize {
+        self.narrow_phase_pair_tests
+    }
+
     /// Number of islands (groups of awake dynamic bodies linked by contacts) after the last step.
     pub fn island_count(&self) -> usize {
         self.islands.count()
@@ -222,6 +339,10 @@ impl World {
                 max_linear_speed: self.settings.max_linear_speed,
             },
         );
+        let substep_length = dt / self.settings.substeps as f32;
+        self.events
+            .update_contacts(self.contacts.contacts(), &self.bodies, substep_length);
+        self.events.finish_sensor_step(&self.bodies);
         self.islands
             .update_sleep(&mut self.bodies, self.contacts.contacts(), dt);
         Ok(())
@@ -229,8 +350,10 @@ impl World {
 }
 
 impl World {
-    /// Collision detection: refreshes every proxy's box, updates the broad-phase pairs, and runs
-    /// the narrow phase on each pair with a moving body, carrying impulses over by feature id.
+    /// Collision detection: refreshes every proxy's box, updates the broad-phase pairs (only
+    /// pairs that interact: groups, ignored pairs, not two sensors), and runs the narrow phase on
+    /// each pair with a moving body, carrying impulses over by feature id. Pairs with a sensor
+    /// get no contacts; they are listed for the overlap test at the end of the step.
     /// A pair whose bodies barely moved relative to each other since its manifolds were computed
     /// rebuilds them instead ([`ContactCache::recycle`]).
     ///
@@ -242,6 +365,9 @@ impl World {
             bodies,
             broad_phase,
             contacts,
+            ignored_pairs,
+            events,
+            narrow_phase_pair_tests,
             ..
         } = self;
         for (_, body) in bodies.iter() {
@@ -249,8 +375,22 @@ impl World {
                 broad_phase.update(proxy, body.swept_aabb(dt));
             }
         }
-        broad_phase.update_pairs();
+        broad_phase.update_pairs_filtered(|key_a, key_b| {
+            let (Some((index_a, body_a)), Some((index_b, body_b))) = (
+                bodies.at_slot(key_a as usize),
+                bodies.at_slot(key_b as usize),
+            ) else {
+                return false;
+            };
+            !(body_a.sensor && body_b.sensor)
+                && body_a
+                    .collision_groups
+                    .interacts_with(body_b.collision_groups)
+                && !ignored_pairs.contains(BodyHandle(index_a), BodyHandle(index_b))
+        });
         contacts.begin_step();
+        events.begin_sensor_step();
+        *narrow_phase_pair_tests = 0;
         for &(key_a, key_b) in broad_phase.pairs() {
             let (Some((index_a, body_a)), Some((index_b, body_b))) = (
                 bodies.at_slot(key_a as usize),
@@ -259,7 +399,21 @@ impl World {
                 continue;
             };
             let (body_a_handle, body_b_handle) = (BodyHandle(index_a), BodyHandle(index_b));
-            if !body_a.is_awake_mover() && !body_b.is_awake_mover() {
+            let moves = body_a.is_awake_mover() || body_b.is_awake_mover();
+            if body_a.sensor || body_b.sensor {
+                let (sensor, other) = if body_a.sensor {
+                    (body_a_handle, body_b_handle)
+                } else {
+                    (body_b_handle, body_a_handle)
+                };
+                if moves {
+                    events.add_sensor_candidate(sensor, other);
+                } else {
+                    events.keep_sensor_overlap(sensor, other);
+                }
+                continue;
+            }
+            if !moves {
                 if body_a.sleeping || body_b.sleeping {
                     contacts.keep_previous(body_a_handle, body_b_handle);
                 }
@@ -269,6 +423,7 @@ impl World {
             if contacts.recycle(body_a_handle, body_b_handle, &pose_a, &pose_b) {
                 continue;
             }
+            *narrow_phase_pair_tests += 1;
             collide(
                 &body_a.shape,
                 &pose_a,

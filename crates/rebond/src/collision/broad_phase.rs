@@ -158,6 +158,13 @@ impl BroadPhase {
     /// last call: drops the pairs of changed proxies, then each moved proxy queries the moving
     /// tree (and, if it moves, the static tree) for its overlaps.
     pub fn update_pairs(&mut self) {
+        self.update_pairs_filtered(|_, _| true);
+    }
+
+    /// [`update_pairs`](Self::update_pairs), keeping only the new pairs of keys `(a, b)` for
+    /// which `accepts(a, b)` (called with either key first) is true. When the filter's answer
+    /// for a proxy's pairs changes, [`refilter`](Self::refilter) the proxy.
+    pub fn update_pairs_filtered(&mut self, mut accepts: impl FnMut(u32, u32) -> bool) {
         if self.changed.is_empty() {
             return;
         }
@@ -199,7 +206,7 @@ impl BroadPhase {
                     // Two moved proxies find each other: only the smaller one adds the pair.
                     let found_by_other =
                         other_side.state(other_proxy) == ProxyState::Moved && other < handle;
-                    if other_key != key && !found_by_other {
+                    if other_key != key && !found_by_other && accepts(key, other_key) {
                         found_pairs.push(Pair::new((key, handle), (other_key, other)));
                     }
                     true
@@ -234,6 +241,12 @@ impl BroadPhase {
             };
             *side.state_mut(handle.proxy) = ProxyState::Unchanged;
         }
+    }
+
+    /// Drops the proxy's pairs and finds them again at the next update, as if it had moved: for
+    /// when the pair filter's answer changed. `handle` must name a live proxy.
+    pub fn refilter(&mut self, handle: ProxyHandle) {
+        self.mark(handle, ProxyState::Moved);
     }
 
     /// The pairs of keys whose fat boxes overlapped at the last

@@ -206,8 +206,13 @@ impl ContactCache {
 
     /// Forgets every contact of `body` (it was removed), so no impulse reaches a later body.
     pub fn remove_body(&mut self, body: BodyHandle) {
+        self.retain_pairs(|body_a, body_b| body_a != body && body_b != body);
+    }
+
+    /// Keeps only this step's contacts between bodies `(a, b)` for which `keep(a, b)` is true.
+    pub fn retain_pairs(&mut self, mut keep: impl FnMut(BodyHandle, BodyHandle) -> bool) {
         self.current
-            .retain(|contact| contact.key.body_a != body && contact.key.body_b != body);
+            .retain(|contact| keep(contact.key.body_a, contact.key.body_b));
     }
 }
 

@@ -20,7 +20,8 @@
 //! - Normals are unit vectors in the world frame that face where the ray or the swept shape came
 //!   from: the outward surface normal of the body hit, or, for a hollow ray leaving a shape from
 //!   inside, the inward one.
-//! - A [`QueryFilter`] decides which bodies count: by handle, by body type, and by a predicate.
+//! - A [`QueryFilter`] decides which bodies count: by handle, by body type, sensor or not, by
+//!   collision groups (the rule bodies use between themselves) and by a predicate.
 //!   Sleeping bodies are found like any other.
 //! - Equally near hits are broken by body handle (the smaller wins), lists come sorted, so
 //!   answers do not depend on the history of the broad phase's trees.
@@ -41,10 +42,13 @@ mod ray;
 mod shape_cast;
 mod world_queries;
 
+pub(crate) use overlap::shapes_overlap;
+
 use std::fmt;
 
 use crate::body::{BodyHandle, BodyType, RigidBody};
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{check_non_negative_or_infinite, Error, ErrorKind, Result};
+use crate::filter::InteractionGroups;
 use crate::math::{normalize_rotation, Pose, Vec3};
 use crate::shape::{Halfspace, Shape};
 
@@ -95,7 +99,7 @@ impl Ray {
         Ok(Ray {
             origin: self.origin,
             direction: unit_direction("direction", self.direction)?,
-            max_distance: check_max_distance("max_distance", self.max_distance)?,
+            max_distance: check_non_negative_or_infinite("max_distance", self.max_distance)?,
             solid: self.solid,
         })
     }
@@ -160,6 +164,11 @@ pub struct QueryFilter<'a> {
     pub include_static: bool,
     /// Whether kinematic bodies are seen (default true).
     pub include_kinematic: bool,
+    /// Whether sensors are seen (default true).
+    pub include_sensors: bool,
+    /// When set, only bodies whose collision groups interact with these are seen, by the rule of
+    /// [`InteractionGroups::interacts_with`]; default `None` (groups ignored).
+    pub groups: Option<InteractionGroups>,
     /// A last word on each body that passed the other tests: it is seen when this returns true.
     /// Called before the body's shape is tested, so it may be called for bodies the query then
     /// misses.
@@ -179,6 +188,8 @@ impl fmt::Debug for QueryFilter<'_> {
             .field("include_dynamic", &self.include_dynamic)
             .field("include_static", &self.include_static)
             .field("include_kinematic", &self.include_kinematic)
+            .field("include_sensors", &self.include_sensors)
+            .field("groups", &self.groups)
             .field("predicate", &self.predicate.map(|_| "Fn(..)"))
             .finish()
     }
@@ -192,6 +203,8 @@ impl<'a> QueryFilter<'a> {
             include_dynamic: true,
             include_static: true,
             include_kinematic: true,
+            include_sensors: true,
+            groups: None,
             predicate: None,
         }
     }
@@ -217,6 +230,18 @@ impl<'a> QueryFilter<'a> {
         self
     }
 
+    /// Leaves out sensors.
+    pub fn exclude_sensors(mut self) -> Self {
+        self.include_sensors = false;
+        self
+    }
+
+    /// Sees only the bodies whose collision groups interact with `groups`.
+    pub fn groups(mut self, groups: InteractionGroups) -> Self {
+        self.groups = Some(groups);
+        self
+    }
+
     /// Sees only the bodies for which `predicate(handle, body)` returns true (among those the
     /// other tests let through).
     pub fn predicate(mut self, predicate: BodyPredicate<'a>) -> Self {
@@ -232,6 +257,10 @@ impl<'a> QueryFilter<'a> {
             BodyType::Kinematic => self.include_kinematic,
         };
         type_included
+            && (self.include_sensors || !body.is_sensor())
+            && self
+                .groups
+                .is_none_or(|groups| groups.interacts_with(body.collision_groups()))
             && !self.excluded_bodies.contains(&handle)
             && self
                 .predicate
@@ -256,17 +285,6 @@ fn unit_direction(field: &str, direction: Vec3) -> Result<Vec3> {
     direction
         .try_normalize()
         .ok_or_else(|| Error::new(field, ErrorKind::ZeroVector))
-}
-
-/// A maximum distance: zero or more, infinity allowed, NaN not.
-fn check_max_distance(field: &str, max_distance: f32) -> Result<f32> {
-    if max_distance.is_nan() {
-        Err(Error::new(field, ErrorKind::NotFinite))
-    } else if max_distance < 0.0 {
-        Err(Error::new(field, ErrorKind::Negative(max_distance)))
-    } else {
-        Ok(max_distance)
-    }
 }
 
 /// A user pose with a finite position and a normalised rotation; errors name `pose.position` or

@@ -6,12 +6,10 @@ use std::ops::ControlFlow;
 use super::overlap::{shape_contains_point, shapes_overlap};
 use super::ray::cast_ray_at_shape;
 use super::shape_cast::{cast_shape_at_shape, Sweep};
-use super::{
-    check_max_distance, unit_direction, validated_pose, QueryFilter, Ray, RayHit, ShapeHit,
-};
+use super::{unit_direction, validated_pose, QueryFilter, Ray, RayHit, ShapeHit};
 use crate::body::{BodyHandle, RigidBody};
 use crate::collision::dynamic_tree::{DynamicTree, ProxyId};
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{check_non_negative_or_infinite, Error, ErrorKind, Result};
 use crate::math::{Aabb, Pose, Vec3};
 use crate::shape::Shape;
 use crate::world::World;
@@ -130,7 +128,7 @@ impl World {
             shape,
             pose: validated_pose(pose)?,
             direction: unit_direction("direction", direction)?,
-            max_distance: check_max_distance("max_distance", max_distance)?,
+            max_distance: check_non_negative_or_infinite("max_distance", max_distance)?,
         };
         let start_aabb = shape.aabb(&sweep.pose);
         let mut nearest: Option<ShapeHit> = None;
