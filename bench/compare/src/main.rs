@@ -8,6 +8,10 @@
 //!
 //! Every scene is described once, engine-neutrally ([`Scene`]), and built from that description
 //! in each engine, so shapes, sizes, masses, poses and materials are the same by construction.
+//!
+//! `compare --rays` is the scene-query comparison instead: 10,000 static boxes and 10,000 rays,
+//! the same in both engines, cast through each engine's query API in one process, alternating
+//! engines from one round to the next ([`run_rays`]).
 
 use std::process::Command;
 use std::time::Instant;
@@ -260,6 +264,161 @@ fn hull_points() -> Vec<[f32; 3]> {
     points.push([0.05, -0.4, 0.0]);
     points.push([-0.05, 0.4, 0.05]);
     points
+}
+
+// ---------------------------------------------------------------------------------------------
+// Ray casts: the same rays against the same static boxes in both engines
+// ---------------------------------------------------------------------------------------------
+
+/// Number of boxes in the ray scene, and of rays cast per round.
+const RAY_COUNT: usize = 10_000;
+/// Half the side of the cube the boxes and ray origins fill, metres.
+const RAY_EXTENT: f32 = 50.0;
+/// Rounds of 10,000 rays per engine by default.
+const RAY_ROUNDS: usize = 31;
+
+/// Uniform in `[low, high)` from a jitter value in `[-1, 1)` (`(j + 1) / 2` is exact in f32).
+fn uniform(jitter: &mut Jitter, low: f32, high: f32) -> f32 {
+    low + (high - low) * (0.5 * (jitter.next() + 1.0))
+}
+
+fn uniform3(jitter: &mut Jitter, low: f32, high: f32) -> [f32; 3] {
+    [(); 3].map(|()| uniform(jitter, low, high))
+}
+
+fn unit_vector(jitter: &mut Jitter) -> [f32; 3] {
+    loop {
+        let v = uniform3(jitter, -1.0, 1.0);
+        let length_squared = v.iter().map(|c| c * c).sum::<f32>();
+        if (0.01..=1.0).contains(&length_squared) {
+            return v.map(|c| c / length_squared.sqrt());
+        }
+    }
+}
+
+/// The scene of `crates/rebond/benches/ray_cast.rs`, drawn from the same numbers (SplitMix64,
+/// seed 0x7a75, in the same order): 10,000 static boxes of half extents 0.25–1 m turned at random
+/// in a 100 m cube, and 10,000 rays (origin, unit direction) from random points of the cube in
+/// random directions, without a distance limit.
+fn ray_scene() -> (Scene, Vec<([f32; 3], [f32; 3])>) {
+    let mut jitter = Jitter(0x7a75);
+    let mut bodies = Vec::with_capacity(RAY_COUNT);
+    for _ in 0..RAY_COUNT {
+        let half_extents = uniform3(&mut jitter, 0.25, 1.0);
+        let axis = unit_vector(&mut jitter);
+        let angle = uniform(&mut jitter, 0.0, 6.3);
+        let mut body = fixed_box(half_extents, uniform3(&mut jitter, -RAY_EXTENT, RAY_EXTENT));
+        body.rotation = axis.map(|c| c * angle);
+        bodies.push(body);
+    }
+    let rays = (0..RAY_COUNT)
+        .map(|_| {
+            let origin = uniform3(&mut jitter, -RAY_EXTENT, RAY_EXTENT);
+            (origin, unit_vector(&mut jitter))
+        })
+        .collect();
+    (
+        Scene {
+            bodies,
+            is_stack: false,
+        },
+        rays,
+    )
+}
+
+/// Casts every ray for its nearest hit with the normal, through `world.cast_ray` (validation,
+/// the broad-phase trees, the exact shapes); writes each distance (infinity for a miss).
+fn rebond_rays(world: &rebond::World, rays: &[rebond::Ray], distances: &mut [f32]) {
+    let filter = rebond::QueryFilter::new();
+    for (ray, distance) in rays.iter().zip(distances) {
+        *distance = world
+            .cast_ray(ray, &filter)
+            .expect("valid ray")
+            .map_or(f32::INFINITY, |hit| hit.distance);
+    }
+}
+
+/// The same through rapier's query pipeline, `cast_ray_and_get_normal` (solid, no limit).
+fn rapier_rays(
+    world: &rapier3d::prelude::PhysicsWorld,
+    rays: &[rapier3d::prelude::Ray],
+    distances: &mut [f32],
+) {
+    let pipeline = world.query_pipeline();
+    for (ray, distance) in rays.iter().zip(distances) {
+        *distance = pipeline
+            .cast_ray_and_get_normal(ray, f32::MAX, true)
+            .map_or(f32::INFINITY, |(_, hit)| hit.time_of_impact);
+    }
+}
+
+/// Builds the ray scene in both engines (one step each, so rapier's BVH is built), counts the
+/// rays on which they disagree, then times `rounds` rounds of 10,000 rays per engine, alternating
+/// which engine goes first, and prints the medians and their ratio.
+fn run_rays(rounds: usize) {
+    let (scene, ray_specs) = ray_scene();
+    let mut rebond_engine = RebondEngine::new(&scene);
+    let mut rapier_engine = RapierEngine::new(&scene);
+    rebond_engine.step();
+    rapier_engine.step();
+    let rebond_ray_list: Vec<rebond::Ray> = ray_specs
+        .iter()
+        .map(|(o, d)| rebond::Ray::new(rebond::Vec3::from(*o), rebond::Vec3::from(*d)))
+        .collect();
+    let rapier_ray_list: Vec<rapier3d::prelude::Ray> = ray_specs
+        .iter()
+        .map(|(o, d)| {
+            use rapier3d::prelude::{Ray, Vector};
+            Ray::new(Vector::new(o[0], o[1], o[2]), Vector::new(d[0], d[1], d[2]))
+        })
+        .collect();
+
+    let mut rebond_distances = vec![0.0f32; RAY_COUNT];
+    let mut rapier_distances = vec![0.0f32; RAY_COUNT];
+    rebond_rays(&rebond_engine.world, &rebond_ray_list, &mut rebond_distances);
+    rapier_rays(&rapier_engine.world, &rapier_ray_list, &mut rapier_distances);
+    let hits = |distances: &[f32]| distances.iter().filter(|d| d.is_finite()).count();
+    // Answers agree when both miss or both hit within 1 mm (f32 rounding of a 100 m scene is
+    // ~10 µm; a ray grazing an edge may hit in one engine and miss in the other).
+    let disagreements = rebond_distances
+        .iter()
+        .zip(&rapier_distances)
+        .filter(|(a, b)| !(a == b || (*a - *b).abs() <= 1e-3))
+        .count();
+
+    let mut times: [Vec<f64>; 2] = [Vec::new(), Vec::new()];
+    for round in 0..rounds {
+        for slot in 0..2 {
+            let engine = (slot + round) % 2;
+            let start = thread_cpu_ms();
+            if engine == 0 {
+                rebond_rays(&rebond_engine.world, &rebond_ray_list, &mut rebond_distances);
+            } else {
+                rapier_rays(&rapier_engine.world, &rapier_ray_list, &mut rapier_distances);
+            }
+            times[engine].push(thread_cpu_ms() - start);
+        }
+    }
+    let [rebond_ms, rapier_ms] = times.map(|mut t| median(&mut t));
+    println!(
+        "rebond vs rapier3d {}: {RAY_COUNT} rays against {RAY_COUNT} static boxes, nearest hit \
+         with normal, median thread CPU time of {rounds} rounds per engine",
+        rapier3d::VERSION
+    );
+    println!(
+        "| engine | ms per 10,000 rays | µs per ray | hits |\n|---|---|---|---|\n\
+         | rebond | {} | {:.2} | {} |\n| rapier3d | {} | {:.2} | {} |",
+        ms(rebond_ms),
+        rebond_ms * 1e3 / RAY_COUNT as f64,
+        hits(&rebond_distances),
+        ms(rapier_ms),
+        rapier_ms * 1e3 / RAY_COUNT as f64,
+        hits(&rapier_distances),
+    );
+    println!(
+        "rays ratio={:.3} rebond_ms={rebond_ms:.3} rapier_ms={rapier_ms:.3} disagreements={disagreements}",
+        rebond_ms / rapier_ms
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -838,10 +997,16 @@ fn main() {
     let mut scenes = Vec::new();
     let mut steps = None;
     let mut rounds = None;
+    let mut rays = false;
     let mut i = 0;
     while i < args.len() {
         let value = args.get(i + 1).cloned();
         match args[i].as_str() {
+            "--rays" => {
+                rays = true;
+                i += 1;
+                continue;
+            }
             "--engine" => engine = value,
             "--scene" => scenes.extend(value),
             "--steps" => steps = value.and_then(|v| v.parse().ok()),
@@ -850,6 +1015,8 @@ fn main() {
                 println!(
                     "compare [--scene S]... [--steps N] [--rounds K]   run the comparison\n\
                      compare --engine rebond|rapier --scene S [--steps N]   one run (child)\n\
+                     compare --rays [--rounds K]   10,000 rays against 10,000 boxes in both \
+                     engines (default {RAY_ROUNDS} rounds)\n\
                      scenes: {}",
                     SCENES.iter().map(|s| s.0).collect::<Vec<_>>().join(", ")
                 );
@@ -861,6 +1028,10 @@ fn main() {
             }
         }
         i += 2;
+    }
+    if rays {
+        run_rays(rounds.unwrap_or(RAY_ROUNDS));
+        return;
     }
     match engine {
         Some(engine) => {
