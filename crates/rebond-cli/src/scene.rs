@@ -14,8 +14,8 @@ use std::marker::PhantomData;
 use std::ops::Deref;
 
 use rebond::{
-    BodyDesc, BodyHandle, BodyType, CompoundChild, Pose, Quat, RigidBody, Shape, Vec3, World,
-    WorldSettings,
+    BodyDesc, BodyHandle, BodyType, CompoundChild, InteractionGroups, Pose, Quat, RigidBody, Shape,
+    Vec3, World, WorldSettings,
 };
 use serde::de::value::MapAccessDeserializer;
 use serde::de::{Deserializer, MapAccess, Visitor};
@@ -144,6 +144,18 @@ struct BodyEntry {
     linear_damping: Option<f64>,
     angular_damping: Option<f64>,
     can_sleep: Option<bool>,
+    /// Extension of the contract: a sensor reports overlaps and pushes nothing.
+    sensor: Option<bool>,
+    /// Extension of the contract: the body's collision groups.
+    collision_groups: Option<JsonObject<GroupsEntry>>,
+}
+
+/// Collision groups, as written: two 32-bit masks, each all ones when left out.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct GroupsEntry {
+    memberships: Option<u32>,
+    filter: Option<u32>,
 }
 
 /// The shape types of the format.
@@ -485,6 +497,15 @@ fn body_desc(entry: &BodyEntry, place: &str) -> Result<BodyDesc, SceneError> {
     }
     if let Some(value) = entry.can_sleep {
         desc.can_sleep = value;
+    }
+    if let Some(value) = entry.sensor {
+        desc.sensor = value;
+    }
+    if let Some(groups) = &entry.collision_groups {
+        desc.collision_groups = InteractionGroups::new(
+            groups.memberships.unwrap_or(u32::MAX),
+            groups.filter.unwrap_or(u32::MAX),
+        );
     }
     Ok(desc)
 }

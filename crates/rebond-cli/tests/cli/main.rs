@@ -4,6 +4,7 @@
 mod bad_input;
 mod commands;
 mod common;
+mod filtering;
 mod records;
 mod scenes;
 mod view;
