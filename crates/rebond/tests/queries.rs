@@ -1,6 +1,6 @@
 //! Scene queries against independent references over thousands of random cases: ray casts
-//! against closed forms (sphere, capsule, cylinder, halfspace) and brute force over triangles
-//! (boxes, hulls, compounds); shape casts against the closed-form time of impact of a sphere and
+//! against closed forms (sphere, box as three slabs, capsule, cylinder, halfspace) and brute
+//! force over triangles (hulls) and over children (compounds); shape casts against the closed-form time of impact of a sphere and
 //! a box at a box; overlaps against closed-form containment and distance. Then filters, ties,
 //! sleeping bodies and input validation.
 //!
@@ -107,6 +107,12 @@ enum Piece {
         centre: DVec3,
         radius: f64,
     },
+    /// A box: the intersection of three slabs, one per unit axis.
+    Box {
+        centre: DVec3,
+        axes: [DVec3; 3],
+        half_extents: DVec3,
+    },
     /// A closed triangle mesh of a convex solid.
     Mesh(Vec<[DVec3; 3]>),
     Capsule {
@@ -203,6 +209,13 @@ impl Piece {
     fn line(&self, o: DVec3, d: DVec3) -> Option<Interval> {
         match *self {
             Piece::Ball { centre, radius } => line_ball(o, d, centre, radius),
+            Piece::Box {
+                centre,
+                axes,
+                half_extents,
+            } => (0..3)
+                .map(|k| line_slab(o, d, centre, axes[k], half_extents[k]))
+                .fold(Some((f64::NEG_INFINITY, f64::INFINITY)), intersection),
             Piece::Mesh(ref triangles) => triangles
                 .iter()
                 .filter_map(|&triangle| line_triangle(o, d, triangle))
@@ -246,33 +259,6 @@ impl Piece {
     }
 }
 
-/// Triangles of a box of half extents `half` at `pose`.
-fn box_triangles(pose: &Pose, half: DVec3) -> Vec<[DVec3; 3]> {
-    let corner = |signs: [f64; 3]| {
-        let local = DVec3::new(signs[0], signs[1], signs[2]) * half;
-        to_f64(pose.position) + pose.rotation.as_dquat() * local
-    };
-    let mut triangles = Vec::new();
-    for axis in 0..3 {
-        for side in [-1.0, 1.0] {
-            let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
-            let quad: Vec<DVec3> = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
-                .iter()
-                .map(|&(su, sv)| {
-                    let mut signs = [0.0; 3];
-                    signs[axis] = side;
-                    signs[u] = su;
-                    signs[v] = sv;
-                    corner(signs)
-                })
-                .collect();
-            triangles.push([quad[0], quad[1], quad[2]]);
-            triangles.push([quad[0], quad[2], quad[3]]);
-        }
-    }
-    triangles
-}
-
 /// The reference pieces of `shape` at `pose`, grown by `grow` metres (negative shrinks).
 fn pieces(shape: &Shape, pose: &Pose, grow: f64) -> Vec<Piece> {
     let centre = to_f64(pose.position);
@@ -282,10 +268,11 @@ fn pieces(shape: &Shape, pose: &Pose, grow: f64) -> Vec<Piece> {
             centre,
             radius: f64::from(sphere.radius()) + grow,
         }],
-        Shape::Cuboid(cuboid) => vec![Piece::Mesh(box_triangles(
-            pose,
-            to_f64(cuboid.half_extents()) + grow,
-        ))],
+        Shape::Cuboid(cuboid) => vec![Piece::Box {
+            centre,
+            axes: [Vec3::X, Vec3::Y, Vec3::Z].map(|local| to_f64(pose.rotation * local)),
+            half_extents: to_f64(cuboid.half_extents()) + grow,
+        }],
         Shape::Capsule(capsule) => vec![Piece::Capsule {
             centre,
             axis,
