@@ -15,6 +15,41 @@
 //! and their history; the buffers are reused from step to step, so a steady scene allocates
 //! nothing. Sleeping pairs keep their state: a body asleep on the floor stays touching it, a body
 //! asleep inside a sensor stays inside.
+//!
+//! ```
+//! use rebond::{BodyDesc, ContactEventKind, SensorEventKind, Shape, Vec3, World, WorldSettings};
+//!
+//! let mut world = World::new(WorldSettings::default())?;
+//! let floor = world.add_body(
+//!     BodyDesc::fixed(Shape::cuboid(Vec3::new(10.0, 0.5, 10.0))?)
+//!         .position(Vec3::new(0.0, -0.5, 0.0)),
+//! )?;
+//! let trigger = world.add_body(
+//!     BodyDesc::fixed(Shape::cuboid(Vec3::splat(1.0))?)
+//!         .position(Vec3::new(0.0, 3.0, 0.0))
+//!         .sensor(true),
+//! )?;
+//! let ball = world.add_body(
+//!     BodyDesc::dynamic(Shape::sphere(0.25)?).position(Vec3::new(0.0, 6.0, 0.0)),
+//! )?;
+//! let (mut entered, mut exited, mut landed) = (0, 0, 0);
+//! for _ in 0..120 {
+//!     world.step(1.0 / 60.0)?;
+//!     for event in world.sensor_events() {
+//!         assert_eq!((event.sensor, event.body), (trigger, ball));
+//!         match event.kind {
+//!             SensorEventKind::Entered => entered += 1,
+//!             SensorEventKind::Exited => exited += 1,
+//!         }
+//!     }
+//!     let starts = world.contact_events().iter();
+//!     landed += starts.filter(|e| e.kind == ContactEventKind::Started).count();
+//! }
+//! // The ball fell through the trigger (in, then out) and landed on the floor once.
+//! assert_eq!((entered, exited, landed), (1, 1, 1));
+//! assert_eq!(world.touching_pairs(), [(floor, ball)]);
+//! # Ok::<(), rebond::Error>(())
+//! ```
 
 use crate::arena::Arena;
 use crate::body::{BodyHandle, RigidBody};

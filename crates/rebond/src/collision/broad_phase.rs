@@ -361,6 +361,27 @@ mod tests {
     }
 
     #[test]
+    fn filtered_pairs_are_never_made_and_refiltering_asks_again() {
+        let mut broad_phase = BroadPhase::new();
+        broad_phase.insert(1, unit_box_at(0.0), false);
+        let second = broad_phase.insert(2, unit_box_at(0.5), false);
+        broad_phase.insert(3, unit_box_at(0.9), false);
+        let mut refused = (1, 2);
+        let filter = |refused: (u32, u32)| move |a: u32, b: u32| (a.min(b), a.max(b)) != refused;
+        broad_phase.update_pairs_filtered(filter(refused));
+        assert_eq!(broad_phase.pairs(), &[(1, 3), (2, 3)]);
+
+        // Unchanged proxies keep their pairs whatever the filter says now...
+        refused = (2, 3);
+        broad_phase.update_pairs_filtered(filter(refused));
+        assert_eq!(broad_phase.pairs(), &[(1, 3), (2, 3)]);
+        // ...until one of them is refiltered.
+        broad_phase.refilter(second);
+        broad_phase.update_pairs_filtered(filter(refused));
+        assert_eq!(broad_phase.pairs(), &[(1, 2), (1, 3)]);
+    }
+
+    #[test]
     fn removing_a_proxy_drops_its_pairs_even_when_its_slot_is_reused() {
         let mut broad_phase = BroadPhase::new();
         let first = broad_phase.insert(1, unit_box_at(0.0), false);
