@@ -2,14 +2,16 @@
 //!
 //! After each [`World::step`](crate::World::step) the world lists
 //! - [`ContactEvent`]s: pairs of bodies that started or stopped touching. A pair touches during a
-//!   step when its contacts pushed: the solver's normal impulse, summed over the pair's manifold
-//!   points, is positive. Speculative points that never push (a body passing close by) do not
-//!   count. Each start is followed by exactly one stop, reported at the step the pair no longer
-//!   pushes, or at the step after one of its bodies was removed (with the removed body's stale
+//!   step when its surfaces meet (a manifold point with separation ≤ 0 at the start of the step)
+//!   or its contacts pushed (the solver's normal impulse, summed over the pair's manifold points,
+//!   is positive). Speculative points that never push (a body passing close by) do not count.
+//!   Each start is followed by exactly one stop, reported at the first step the pair no longer
+//!   touches, or at the step after one of its bodies was removed (with the removed body's stale
 //!   handle).
 //! - [`ContactForceEvent`]s: touching pairs whose normal force exceeds the smaller of the two
 //!   bodies' [`contact_force_threshold`](crate::BodyDesc::contact_force_threshold)s.
-//! - [`SensorEvent`]s: bodies that entered or left a sensor's shape (see [`crate::BodyDesc::sensor`]).
+//! - [`SensorEvent`]s: bodies that entered or left a sensor's shape (see
+//!   [`crate::BodyDesc::sensor`]).
 //!
 //! Every list is sorted by the pair's handles, so it does not depend on anything but the bodies
 //! and their history; the buffers are reused from step to step, so a steady scene allocates
@@ -60,9 +62,9 @@ use crate::query::shapes_overlap;
 /// Whether a pair started or stopped touching.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum ContactEventKind {
-    /// The pair pushed during this step and did not during the previous one.
+    /// The pair touches during this step and did not during the previous one.
     Started,
-    /// The pair pushed during the previous step and does not any more.
+    /// The pair touched during the previous step and does not any more.
     Stopped,
 }
 
@@ -199,17 +201,26 @@ impl EventTracker {
         for pair in contacts.chunk_by(same_pair) {
             let (body_a, body_b) = (pair[0].key.body_a, pair[0].key.body_b);
             let (mut impulse, mut impulse_vector) = (0.0, Vec3::ZERO);
+            let mut surfaces_meet = false;
             for contact in pair {
                 let manifold_impulse: f32 = contact.normal_impulses[..contact.manifold.len()]
                     .iter()
                     .sum();
                 impulse += manifold_impulse;
                 impulse_vector += manifold_impulse * contact.manifold.normal;
+                surfaces_meet |= contact
+                    .manifold
+                    .points()
+                    .iter()
+                    .any(|p| p.separation <= 0.0);
             }
-            if impulse <= 0.0 {
+            if impulse <= 0.0 && !surfaces_meet {
                 continue;
             }
             self.touching.push((body_a, body_b));
+            if impulse <= 0.0 {
+                continue;
+            }
             let threshold = [body_a, body_b]
                 .iter()
                 .filter_map(|handle| bodies.get(handle.0))

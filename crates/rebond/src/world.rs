@@ -171,8 +171,9 @@ impl World {
     }
 
     /// Changes which bodies `handle` interacts with, and wakes it. Pairs that no longer interact
-    /// lose their contacts now and their broad-phase pair at the next step (their events end
-    /// then); pairs that now interact are found at the next step.
+    /// lose their contacts now (their bodies wake, so nothing sleeps on a support that is gone)
+    /// and their broad-phase pair at the next step (their events end then); pairs that now
+    /// interact are found at the next step.
     pub fn set_collision_groups(
         &mut self,
         handle: BodyHandle,
@@ -184,14 +185,12 @@ impl World {
         if let Some(proxy) = body.proxy {
             self.broad_phase.refilter(proxy);
         }
-        let bodies = &self.bodies;
-        self.contacts
-            .retain_pairs(|a, b| match (bodies.get(a.0), bodies.get(b.0)) {
-                (Some(body_a), Some(body_b)) => body_a
-                    .collision_groups
-                    .interacts_with(body_b.collision_groups),
-                _ => false,
-            });
+        self.drop_contacts(|bodies, a, b| match (bodies.get(a.0), bodies.get(b.0)) {
+            (Some(body_a), Some(body_b)) => !body_a
+                .collision_groups
+                .interacts_with(body_b.collision_groups),
+            _ => true,
+        });
         Ok(())
     }
 
@@ -209,10 +208,7 @@ impl World {
         if let Some(proxy) = proxy_a {
             self.broad_phase.refilter(proxy);
         }
-        if ignored {
-            self.contacts
-                .retain_pairs(|body_a, body_b| (body_a, body_b) != ordered(a, b));
-        }
+        self.drop_contacts(|_, body_a, body_b| ignored && (body_a, body_b) == ordered(a, b));
         for handle in [a, b] {
             if let Some(body) = self.bodies.get_mut(handle.0) {
                 body.wake();
@@ -275,8 +271,8 @@ impl World {
         self.events.sensor_events()
     }
 
-    /// Pairs of bodies touching (their contacts pushed) during the last step, smaller handle
-    /// first, sorted.
+    /// Pairs of bodies touching (surfaces meeting or contacts pushing) during the last step,
+    /// smaller handle first, sorted.
     pub fn touching_pairs(&self) -> &[(BodyHandle, BodyHandle)] {
         self.events.touching()
     }
@@ -456,6 +452,30 @@ impl World {
                 }
             }
         }
+    }
+}
+
+impl World {
+    /// Removes this step's contacts of the pairs `(a, b)` for which `dropped(bodies, a, b)` is
+    /// true, and wakes their bodies.
+    fn drop_contacts(
+        &mut self,
+        dropped: impl Fn(&Arena<RigidBody>, BodyHandle, BodyHandle) -> bool,
+    ) {
+        let Self {
+            bodies, contacts, ..
+        } = self;
+        for contact in contacts.contacts() {
+            let (a, b) = (contact.key.body_a, contact.key.body_b);
+            if dropped(bodies, a, b) {
+                for handle in [a, b] {
+                    if let Some(body) = bodies.get_mut(handle.0) {
+                        body.wake();
+                    }
+                }
+            }
+        }
+        contacts.retain_pairs(|a, b| !dropped(bodies, a, b));
     }
 }
 

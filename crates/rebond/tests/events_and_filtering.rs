@@ -388,6 +388,30 @@ fn ignoring_a_pair_or_changing_groups_at_runtime_drops_its_contacts() {
 }
 
 #[test]
+fn bodies_asleep_on_a_floor_that_stops_interacting_wake_and_fall() {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    let ground = add_ground(&mut world, 0.5);
+    let bottom = world.add_body(unit_box(Vec3::new(0.0, 0.5, 0.0))).unwrap();
+    let top = world.add_body(unit_box(Vec3::new(0.0, 1.5, 0.0))).unwrap();
+    run(&mut world, 120);
+    assert!(world.body(top).unwrap().is_sleeping());
+    world
+        .set_collision_groups(ground, InteractionGroups::new(0b10, 0))
+        .unwrap();
+    run(&mut world, 60);
+    // 1 s of free fall: 4.9 m down; the pair of boxes still interacts and falls as a stack.
+    for (body, start) in [(bottom, 0.5), (top, 1.5)] {
+        let y = world.body(body).unwrap().position().y;
+        assert!(y < start - 4.0, "fell through the floor: y = {y}");
+    }
+    // In free fall the top box rests on the bottom one without weight, still stacked (to the
+    // soft contact's sink) and touching.
+    let gap = world.body(top).unwrap().position().y - world.body(bottom).unwrap().position().y;
+    assert!((gap - 1.0).abs() < 0.01, "stacked 1 m apart: {gap}");
+    assert_eq!(world.touching_pairs(), [(bottom, top)]);
+}
+
+#[test]
 fn a_resting_box_reports_its_weight_above_the_threshold_and_nothing_below() {
     // At rest the floor carries the box's weight: the normal impulse of each substep is m g h,
     // so the reported force Σλ/h is m g. Tolerance 1 %: the soft contact settles to rest within
