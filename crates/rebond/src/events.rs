@@ -143,18 +143,6 @@ impl EventTracker {
         self.sensor_candidates.push((sensor, body));
     }
 
-    /// A pair of a sensor and a body neither of which moves this step (asleep, static, or a
-    /// kinematic body at rest): it overlaps now exactly when it did after the last step.
-    pub fn keep_sensor_overlap(&mut self, sensor: BodyHandle, body: BodyHandle) {
-        if self
-            .previous_overlaps
-            .binary_search(&(sensor, body))
-            .is_ok()
-        {
-            self.overlaps.push((sensor, body));
-        }
-    }
-
     /// Ends the step: tests each sensor candidate's shapes at the bodies' new poses, and lists
     /// the bodies that entered and left sensors.
     pub fn finish_sensor_step(&mut self, bodies: &Arena<RigidBody>) {

@@ -395,21 +395,16 @@ impl World {
                 continue;
             };
             let (body_a_handle, body_b_handle) = (BodyHandle(index_a), BodyHandle(index_b));
-            let moves = body_a.is_awake_mover() || body_b.is_awake_mover();
             if body_a.sensor || body_b.sensor {
                 let (sensor, other) = if body_a.sensor {
                     (body_a_handle, body_b_handle)
                 } else {
                     (body_b_handle, body_a_handle)
                 };
-                if moves {
-                    events.add_sensor_candidate(sensor, other);
-                } else {
-                    events.keep_sensor_overlap(sensor, other);
-                }
+                events.add_sensor_candidate(sensor, other);
                 continue;
             }
-            if !moves {
+            if !body_a.is_awake_mover() && !body_b.is_awake_mover() {
                 if body_a.sleeping || body_b.sleeping {
                     contacts.keep_previous(body_a_handle, body_b_handle);
                 }

@@ -287,6 +287,25 @@ fn a_body_asleep_inside_a_sensor_stays_inside() {
     assert_eq!(world.sensor_overlaps(), [(zone, crate_box)]);
     assert_eq!(events.len(), 1, "entered once, never left: {events:?}");
     assert_eq!(events[0].kind, SensorEventKind::Entered);
+
+    // A sensor added around the sleeping box sees it at the next step, and lets it sleep.
+    let late = world
+        .add_body(
+            BodyDesc::fixed(Shape::sphere(1.0).unwrap())
+                .position(Vec3::new(0.0, 0.5, 0.0))
+                .sensor(true),
+        )
+        .unwrap();
+    world.step(DT).unwrap();
+    assert_eq!(
+        world.sensor_events(),
+        [SensorEvent {
+            sensor: late,
+            body: crate_box,
+            kind: SensorEventKind::Entered
+        }]
+    );
+    assert!(world.body(crate_box).unwrap().is_sleeping());
 }
 
 /// Two boxes flying head-on at each other along x in zero gravity, 4 m apart, at 2 m/s each.
