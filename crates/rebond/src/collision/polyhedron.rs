@@ -6,13 +6,17 @@
 //! builds a face of the Minkowski difference; other pairs cannot give the deepest axis). If an
 //! axis separates the shapes by more than the margin there is no contact. Otherwise the axis of
 //! least overlap, with a bias toward faces and toward A (see [`collide_polyhedra`]), gives either
-//! a face contact (the other shape's most anti-parallel face clipped against the reference face,
-//! see [`crate::collision::clipping`]) or an edge contact (one point between the two edges).
+//! a face contact (the other shape's most anti-parallel face through its deepest vertex clipped
+//! against the reference face, see [`crate::collision::clipping`]) or an edge contact (one point
+//! between the two edges). Shapes apart whose closest points no axis measures (a vertex near a
+//! vertex or an edge) get one point between their closest points, found by GJK.
 
 use crate::collision::clipping::{
-    clip_polygon, reduce_contacts, ClipFeature, MAX_CLIP_VERTICES, MAX_POLYGON_VERTICES,
+    clip_polygon, reduce_contacts_on_face, ClipFeature, MAX_CLIP_VERTICES, MAX_POLYGON_VERTICES,
 };
+use crate::collision::gjk;
 use crate::collision::manifold::{ContactPoint, Manifold};
+use crate::collision::SupportMap;
 use crate::math::{Mat3, Pose, Vec3};
 use crate::shape::{ConvexHull, Cuboid, Shape};
 
@@ -38,6 +42,23 @@ const EDGE_CHUNK: usize = 32;
 
 /// Squared length below which an edge counts as a point when closest points are computed, m².
 const DEGENERATE_EDGE_SQUARED: f32 = 1.0e-12;
+
+/// A contact built on an axis is kept for overlapping shapes only when its deepest point reaches
+/// the penetration depth (the best axis's separation) to within this, metres; and for shapes
+/// apart only when its deepest point is their distance to within this. Above the f32 rounding of
+/// the clipped points (1e-6 m) and GJK's precision on polyhedra a few metres across (1e-5 of the
+/// problem's size), below the 0.1 mm to which contact depths are checked.
+const DEPTH_TOLERANCE: f32 = 5.0e-5;
+
+/// The angle, radians, between a reference face's first edge and the direction along which its
+/// contact points are first picked ([`reduce_contacts_on_face`]): 15°, away from the symmetry
+/// axes of the squares, hexagons and octagons that clipping faces of boxes and prisms makes, where
+/// two points would be equally far along it.
+const REDUCTION_ANGLE: f32 = 0.261_799_4;
+
+/// The id of the one point of a contact made from the closest points of shapes apart (no edge
+/// contact takes it while hulls have fewer than 32 767 edges).
+const CLOSEST_POINTS_ID: u32 = u32::MAX;
 
 /// Box vertex `i` is `(±hx, ±hy, ±hz)` with the sign of x from bit 0 of `i`, y from bit 1 and z
 /// from bit 2 (set = positive).
@@ -241,6 +262,36 @@ impl<'a> Polyhedron<'a> {
         }
     }
 
+    /// The index of the vertex farthest along `direction` (as [`Polyhedron::support`]).
+    fn support_index(&self, direction: Vec3) -> usize {
+        match self.topology {
+            Topology::Cuboid(_) => [direction.x, direction.y, direction.z]
+                .iter()
+                .enumerate()
+                .filter(|(_, component)| component.is_sign_positive())
+                .map(|(axis, _)| 1 << axis)
+                .sum(),
+            Topology::Hull(hull) => {
+                let mut best = (0, f32::NEG_INFINITY);
+                for (index, vertex) in hull.vertices().iter().enumerate() {
+                    let reach = vertex.dot(direction);
+                    if reach > best.1 {
+                        best = (index, reach);
+                    }
+                }
+                best.0
+            }
+        }
+    }
+
+    /// Whether vertex `vertex` is a corner of face `face`.
+    fn face_has_vertex(&self, face: usize, vertex: usize) -> bool {
+        match self.topology {
+            Topology::Cuboid(_) => BOX_FACE_LOOPS[face].contains(&(vertex as u8)),
+            Topology::Hull(hull) => hull.faces()[face].vertices.contains(&(vertex as u32)),
+        }
+    }
+
     /// The loop of face `face` mapped by `frame` into `out`, returning how many vertices were
     /// written. A loop longer than [`MAX_POLYGON_VERTICES`] is read at evenly spaced corners,
     /// which spans a convex polygon inside the face.
@@ -263,6 +314,20 @@ impl<'a> Polyhedron<'a> {
 fn box_vertex(half_extents: Vec3, index: usize) -> Vec3 {
     let sign = |bit: usize| if index & bit != 0 { 1.0 } else { -1.0 };
     Vec3::new(sign(1), sign(2), sign(4)) * half_extents
+}
+
+/// A polyhedron placed in the world, for GJK.
+#[derive(Debug, Clone, Copy)]
+struct PosedPolyhedron<'p, 'a> {
+    polyhedron: &'p Polyhedron<'a>,
+    frame: Frame,
+}
+
+impl SupportMap for PosedPolyhedron<'_, '_> {
+    fn support(&self, direction: Vec3) -> Vec3 {
+        let local = self.frame.inverse_vector(direction);
+        self.frame.point(self.polyhedron.support(local))
+    }
 }
 
 /// A rigid transform as a rotation matrix and a translation: `rotation · p + translation`.
@@ -450,6 +515,21 @@ impl ContactAxis {
             ContactAxis::Edges(edge) => edge.separation,
         }
     }
+
+    /// The axis in the world, pointing from A to B.
+    fn world_normal(
+        &self,
+        a: &Polyhedron,
+        world_a: &Frame,
+        b: &Polyhedron,
+        world_b: &Frame,
+    ) -> Vec3 {
+        match self {
+            ContactAxis::FaceOfA(face) => world_a.vector(a.face_plane(face.face).normal),
+            ContactAxis::FaceOfB(face) => -world_b.vector(b.face_plane(face.face).normal),
+            ContactAxis::Edges(edge) => world_a.vector(edge.axis),
+        }
+    }
 }
 
 /// Whether `candidate` beats `incumbent` by more than the tolerance `relative · |incumbent| +`
@@ -459,23 +539,29 @@ fn clearly_larger(candidate: f32, incumbent: f32, relative: f32) -> bool {
 }
 
 /// The contact manifold between polyhedra `a` at `pose_a` and `b` at `pose_b`, with the normal
-/// pointing from A to B; `None` when they are apart by more than `margin` metres along some axis,
-/// when no contact point lies within `margin` (possible only while they are apart), or when
-/// either has no face.
+/// pointing from A to B; `None` when they are apart by more than `margin` metres, or when either
+/// has no face.
 ///
 /// The axis of least overlap is chosen with a bias so that the choice holds still while bodies
 /// jiggle: B's best face is the reference only if its separation beats A's by 5 % (of A's, in
 /// absolute value) plus 0.5 mm, and the best edge pair is used instead of that face only if its
 /// separation beats the face's by 10 % plus 0.5 mm. The chosen axis thus trails the true
-/// least-overlap axis by at most one of these tolerances; should it give no point, the true
-/// axis makes the contact.
+/// least-overlap axis by at most one of these tolerances. While the shapes overlap, the best
+/// axis's separation is the penetration depth; should the chosen axis's contact not reach it
+/// (within [`DEPTH_TOLERANCE`]) or give no point, the best axis makes the contact. While they are
+/// apart, the axes' separations may fall short of the distance, which GJK then measures: a contact
+/// on the chosen or the best axis is kept only if its deepest point is that distance (within
+/// [`DEPTH_TOLERANCE`]), else the contact is one point midway between the closest points, with
+/// the direction between them as the normal and the id [`CLOSEST_POINTS_ID`].
 ///
-/// Face contact: the reference face's side planes clip the incident face (the other body's face
-/// most anti-parallel to the reference normal); points whose separation from the reference plane
-/// is at most `margin` are kept and reduced to four ([`reduce_contacts`]). Each point sits halfway
-/// between the incident point and its projection on the reference plane. Its id packs, from the
-/// top bit down: 0, whether B holds the reference face, the reference and incident face indices
-/// (7 bits each, wrapping) and the [`ClipFeature::key`] of the clipped point.
+/// Face contact: the reference face's side planes clip the incident face (the face of the other
+/// body, among those through its vertex deepest below the reference plane, most anti-parallel to
+/// the reference normal); points whose separation from the reference plane is at most `margin`
+/// are kept and reduced to four ([`reduce_contacts_on_face`], along a direction fixed to the
+/// reference face, [`REDUCTION_ANGLE`] from its first edge). Each point sits halfway between the
+/// incident point and its projection on the reference plane. Its id packs, from the top bit down:
+/// 0, whether B holds the reference face, the reference and incident face indices (7 bits each,
+/// wrapping) and the [`ClipFeature::key`] of the clipped point.
 ///
 /// Edge contact: one point halfway between the closest points of the two edges; its id is 1 in
 /// the top bit, then 15 bits of A's edge index and 16 bits of B's (wrapping).
@@ -542,15 +628,68 @@ pub fn collide_polyhedra(
         }
         ContactAxis::Edges(edge) => edge_contact(a, &world_a, b, &world_b, &edge, margin),
     };
-    // The axis kept by the bias may clip to nothing where it trails the best one (two edges
-    // crossing near a corner, outside the kept face's side planes): the best axis then makes
-    // the contact.
-    contact(chosen).or_else(|| if best == chosen { None } else { contact(best) })
+    if best.separation() > 0.0 {
+        // Apart: the separations along the axes may fall short of the distance (two edges whose
+        // closest points are their ends, a vertex near a vertex), so a contact is kept only if it
+        // measures the distance, found by GJK from the best axis. Touching within GJK's
+        // tolerance, the best axis's separation is as near the distance as GJK gets.
+        let axis_normal = best.world_normal(a, &world_a, b, &world_b);
+        let closest = gjk::distance_from_direction(
+            &PosedPolyhedron {
+                polyhedron: a,
+                frame: world_a,
+            },
+            &PosedPolyhedron {
+                polyhedron: b,
+                frame: world_b,
+            },
+            axis_normal,
+        );
+        let (distance, normal) = if closest.overlapping {
+            (best.separation(), axis_normal)
+        } else {
+            (closest.distance, closest.normal().unwrap_or(axis_normal))
+        };
+        if distance > margin {
+            return None;
+        }
+        let measures_distance = |manifold: &Manifold| {
+            (manifold.deepest_separation() - distance).abs() <= DEPTH_TOLERANCE
+        };
+        let built = contact(chosen).filter(measures_distance).or_else(|| {
+            (best != chosen)
+                .then(|| contact(best))
+                .flatten()
+                .filter(measures_distance)
+        });
+        return Some(built.unwrap_or_else(|| {
+            let mut manifold = Manifold::new(normal);
+            manifold.push(ContactPoint {
+                position: 0.5 * (closest.point_a + closest.point_b),
+                separation: distance,
+                id: CLOSEST_POINTS_ID,
+            });
+            manifold
+        }));
+    }
+    // Overlapping, the best axis's separation is the penetration depth. The axis kept by the
+    // bias may fall short of it where it trails the best one (its deepest vertex lies outside the
+    // kept face's side planes) or clip to nothing (two edges crossing near a corner): the best
+    // axis, whose deepest vertex always lies inside its face, then makes the contact.
+    match contact(chosen) {
+        Some(manifold)
+            if best == chosen
+                || manifold.deepest_separation() <= best.separation() + DEPTH_TOLERANCE =>
+        {
+            Some(manifold)
+        }
+        kept => contact(best).or(kept),
+    }
 }
 
-/// Clips the incident face of `incident` against face `reference_face` of `reference` (both
-/// placed in the world by their frames). `reference_is_b` says which side of the manifold the
-/// reference is on.
+/// Clips the incident face of `incident` (through its vertex deepest below the reference plane,
+/// the most anti-parallel) against face `reference_face` of `reference` (both placed in the world
+/// by their frames). `reference_is_b` says which side of the manifold the reference is on.
 fn face_contact(
     reference: &Polyhedron,
     reference_frame: &Frame,
@@ -565,9 +704,13 @@ fn face_contact(
     let offset = plane.offset + normal.dot(reference_frame.translation);
 
     let toward_incident = incident_frame.inverse_vector(normal);
+    let deepest_vertex = incident.support_index(-toward_incident);
     let mut incident_face = 0;
     let mut most_opposed = f32::INFINITY;
     for face in 0..incident.face_count() {
+        if !incident.face_has_vertex(face, deepest_vertex) {
+            continue;
+        }
         let alignment = incident.face_plane(face).normal.dot(toward_incident);
         if alignment < most_opposed {
             most_opposed = alignment;
@@ -607,7 +750,13 @@ fn face_contact(
         return None;
     }
     let manifold_normal = if reference_is_b { -normal } else { normal };
-    Some(reduce_contacts(manifold_normal, &candidates[..count]))
+    let edge = (reference_loop[1] - reference_loop[0]).normalize_or_zero();
+    let tangent = edge * REDUCTION_ANGLE.cos() + normal.cross(edge) * REDUCTION_ANGLE.sin();
+    Some(reduce_contacts_on_face(
+        manifold_normal,
+        tangent,
+        &candidates[..count],
+    ))
 }
 
 /// The id of a face-contact point; layout in [`collide_polyhedra`].
