@@ -423,8 +423,144 @@ struct MovedEdge {
 }
 
 /// Over the edge pairs that build a face of the Minkowski difference A − B, the largest
-/// separation along their cross product, computed in A's frame (`b_in_a` places B there). B's
-/// edges are moved into A's frame [`EDGE_CHUNK`] at a time, on the stack.
+/// separation along their cross product, in A's frame (`b_in_a` places B there, `a_in_b` A in
+/// B's): by [`best_box_box_edge_axis`] for two boxes, by [`best_box_edge_axis`] when A or B is a
+/// box (the roles swapped when only B is), else by [`best_edge_axis`] over every pair.
+fn edge_query(a: &Polyhedron, b: &Polyhedron, b_in_a: &Frame, a_in_b: &Frame) -> Option<EdgeAxis> {
+    match (a.topology, b.topology) {
+        (Topology::Cuboid(half_a), Topology::Cuboid(half_b)) => {
+            best_box_box_edge_axis(half_a, half_b, b_in_a)
+        }
+        (Topology::Cuboid(half_extents), _) => best_box_edge_axis(half_extents, b, b_in_a),
+        (_, Topology::Cuboid(half_extents)) => {
+            best_box_edge_axis(half_extents, a, a_in_b).map(|swapped| EdgeAxis {
+                edge_a: swapped.edge_b,
+                edge_b: swapped.edge_a,
+                axis: -b_in_a.vector(swapped.axis),
+                separation: swapped.separation,
+            })
+        }
+        _ => best_edge_axis(a, b, b_in_a),
+    }
+}
+
+/// [`best_edge_axis`] for two boxes (half extents `half_a`, `half_b`): one candidate per pair of
+/// axes `eᵢ` of A and `fⱼ` of B. Of the two Minkowski faces along `±(eᵢ × fⱼ)`, the one facing B's
+/// centre is the larger separation, `|n · c| − Σₖ aₖ |n · eₖ| − Σₖ bₖ |n · fₖ|` (`c` B's centre in
+/// A's frame), between A's edge along `eᵢ` supporting `n` and B's edge along `fⱼ` supporting
+/// `−n`, read from the signs of the other components. A crossing on a face normal (a zero
+/// component) is left to the face axes, as a parallel pair is.
+fn best_box_box_edge_axis(half_a: Vec3, half_b: Vec3, b_in_a: &Frame) -> Option<EdgeAxis> {
+    let mut best: Option<EdgeAxis> = None;
+    let centre = b_in_a.translation;
+    let axes_b = [
+        b_in_a.rotation.x_axis,
+        b_in_a.rotation.y_axis,
+        b_in_a.rotation.z_axis,
+    ];
+    for (index_a, &axis_a) in Vec3::AXES.iter().enumerate() {
+        for (index_b, &axis_b) in axes_b.iter().enumerate() {
+            let cross = axis_a.cross(axis_b);
+            let length_squared = cross.length_squared();
+            // Written so that a NaN (from overflow on absurdly large shapes) also rejects it.
+            let crosses = length_squared > PARALLEL_SINE * PARALLEL_SINE;
+            if !crosses {
+                continue;
+            }
+            let mut axis = cross / length_squared.sqrt();
+            if axis.dot(centre) < 0.0 {
+                axis = -axis;
+            }
+            let against_in_b = b_in_a.inverse_vector(-axis);
+            let (Some(edge_a), Some(edge_b)) = (
+                box_edge_along(index_a, axis),
+                box_edge_along(index_b, against_in_b),
+            ) else {
+                continue;
+            };
+            let separation =
+                axis.dot(centre) - half_a.dot(axis.abs()) - half_b.dot(against_in_b.abs());
+            if best.is_none_or(|best| separation > best.separation) {
+                best = Some(EdgeAxis {
+                    edge_a,
+                    edge_b,
+                    axis,
+                    separation,
+                });
+            }
+        }
+    }
+    best
+}
+
+/// The box edge along axis `axis_index` that is the box's support along `direction` (local),
+/// read from the signs of `direction`'s other two components; `None` when one is zero (the
+/// support is then a face).
+fn box_edge_along(axis_index: usize, direction: Vec3) -> Option<usize> {
+    let (first, second) = match axis_index {
+        0 => (1, 2),
+        1 => (0, 2),
+        _ => (0, 1),
+    };
+    (direction[first] != 0.0 && direction[second] != 0.0).then(|| {
+        4 * axis_index
+            + usize::from(direction[first] > 0.0)
+            + 2 * usize::from(direction[second] > 0.0)
+    })
+}
+
+/// [`best_edge_axis`] for a box A (half extents `half_extents`) and any polyhedron B, with one
+/// candidate per edge of B and box axis instead of one per pair of edges. The box's four edges
+/// along axis `i` have arcs on the Gauss map that together make the great circle normal to `i`:
+/// B's negated arc crosses it when the ends' `i` components differ in sign, at the point
+/// `±(eᵢ × e_B)` lying on B's arc, and the box edge whose arc holds that point is the one whose
+/// two faces have the signs of the point's other two components. A crossing on a face normal of
+/// the box is left to the face axes, as a parallel pair is.
+fn best_box_edge_axis(half_extents: Vec3, b: &Polyhedron, b_in_a: &Frame) -> Option<EdgeAxis> {
+    let mut best: Option<EdgeAxis> = None;
+    for edge_b in 0..b.edge_count() {
+        let local = b.edge(edge_b);
+        let start = b_in_a.point(local.start);
+        let direction = b_in_a.vector(local.direction());
+        let [m1, m2] = local.face_normals.map(|normal| -b_in_a.vector(normal));
+        let parallel_limit = PARALLEL_SINE * PARALLEL_SINE * direction.length_squared();
+        for (axis_index, &box_axis) in Vec3::AXES.iter().enumerate() {
+            if m1[axis_index] * m2[axis_index] >= 0.0 {
+                continue;
+            }
+            let mut axis = box_axis.cross(direction);
+            let length_squared = axis.length_squared();
+            // Written so that a NaN (from overflow on absurdly large shapes) also rejects it.
+            let crosses = length_squared > parallel_limit;
+            let toward_b_arc = axis.dot(m1 + m2);
+            if !crosses || toward_b_arc == 0.0 {
+                continue;
+            }
+            if toward_b_arc < 0.0 {
+                axis = -axis;
+            }
+            let Some(edge_a) = box_edge_along(axis_index, axis) else {
+                continue;
+            };
+            let on_edge_a = box_vertex(half_extents, usize::from(BOX_EDGES[edge_a].0[0]));
+            let axis = axis / length_squared.sqrt();
+            let separation = axis.dot(start - on_edge_a);
+            if best.is_none_or(|best| separation > best.separation) {
+                best = Some(EdgeAxis {
+                    edge_a,
+                    edge_b,
+                    axis,
+                    separation,
+                });
+            }
+        }
+    }
+    best
+}
+
+/// Over the edge pairs that build a face of the Minkowski difference A − B, the largest
+/// separation along their cross product, computed in A's frame (`b_in_a` places B there) by
+/// trying every pair. B's edges are moved into A's frame [`EDGE_CHUNK`] at a time, on the stack.
 fn best_edge_axis(a: &Polyhedron, b: &Polyhedron, b_in_a: &Frame) -> Option<EdgeAxis> {
     let mut best: Option<EdgeAxis> = None;
     let mut chunk = [MovedEdge::default(); EDGE_CHUNK];
@@ -586,7 +722,7 @@ pub fn collide_polyhedra(
     if face_b.separation > margin {
         return None;
     }
-    let edge = best_edge_axis(a, b, &b_in_a);
+    let edge = edge_query(a, b, &b_in_a, &a_in_b);
     if edge.is_some_and(|edge| edge.separation > margin) {
         return None;
     }
@@ -886,6 +1022,67 @@ mod tests {
             let vertex = polyhedron.vertex(index);
             assert_eq!(cuboid.support(vertex), vertex);
         }
+    }
+
+    /// The box route of the edge query finds the same edge pair, axis and separation as trying
+    /// every pair, for boxes and a hull, either way round.
+    #[test]
+    fn box_edge_query_matches_every_pair() {
+        let other = unit_box();
+        let points: Vec<Vec3> = (0..12)
+            .map(|index| {
+                let angle = index as f32 * std::f32::consts::TAU / 6.0;
+                let y = if index < 6 { -0.4 } else { 0.3 };
+                Vec3::new(0.5 * angle.cos(), y, 0.6 * angle.sin())
+            })
+            .collect();
+        let hull = ConvexHull::new(&points).expect("a prism");
+        let cuboid = Cuboid::new(Vec3::new(0.4, 0.3, 0.7)).expect("valid box");
+        let shapes = [
+            Polyhedron::cuboid(&cuboid),
+            Polyhedron::cuboid(&other),
+            Polyhedron::hull(&hull),
+        ];
+        let (mut compared, mut same_pair) = (0, 0);
+        for step in 0..200 {
+            let t = step as f32;
+            let pose_a = Pose::new(
+                Vec3::new(0.1 * t.sin(), 0.2, -0.1),
+                crate::math::Quat::from_scaled_axis(Vec3::new(0.3 * t, 0.7 * t.cos(), 0.11 * t)),
+            );
+            let pose_b = Pose::new(
+                Vec3::new(
+                    0.9 * (0.37 * t).cos(),
+                    1.1 * (0.53 * t).sin(),
+                    0.8 * (0.29 * t).cos(),
+                ),
+                crate::math::Quat::from_scaled_axis(Vec3::new(0.05 * t, -0.2 * t, 0.4 * t.sin())),
+            );
+            for a in &shapes[..2] {
+                for b in &shapes {
+                    for (a, b, pose_a, pose_b) in [(a, b, pose_a, pose_b), (b, a, pose_b, pose_a)] {
+                        let b_in_a = Frame::relative(&pose_a, &pose_b);
+                        let a_in_b = Frame::relative(&pose_b, &pose_a);
+                        let fast = edge_query(a, b, &b_in_a, &a_in_b);
+                        let slow = best_edge_axis(a, b, &b_in_a);
+                        assert_eq!(fast.is_some(), slow.is_some());
+                        if let (Some(fast), Some(slow)) = (fast, slow) {
+                            assert!((fast.separation - slow.separation).abs() < 1e-5);
+                            if (fast.edge_a, fast.edge_b) == (slow.edge_a, slow.edge_b) {
+                                assert!((fast.axis - slow.axis).length() < 1e-5);
+                                same_pair += 1;
+                            }
+                            compared += 1;
+                        }
+                    }
+                }
+            }
+        }
+        // Only exact ties between pairs (boxes turned alike) may pick another pair.
+        assert!(
+            same_pair * 100 >= compared * 95,
+            "{same_pair} of {compared}"
+        );
     }
 
     #[test]
