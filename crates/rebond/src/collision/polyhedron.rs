@@ -233,23 +233,28 @@ impl<'a> Polyhedron<'a> {
 
     /// Edge `index` (below [`Polyhedron::edge_count`]).
     pub fn edge(&self, index: usize) -> PolyhedronEdge {
-        let (ends, faces) = match self.topology {
-            Topology::Cuboid(_) => {
-                let (ends, faces) = BOX_EDGES[index];
-                (ends.map(usize::from), faces.map(usize::from))
+        match self.topology {
+            Topology::Cuboid(half_extents) => {
+                let ([start, end], [first, second]) = BOX_EDGES[index];
+                PolyhedronEdge {
+                    start: box_vertex(half_extents, usize::from(start)),
+                    end: box_vertex(half_extents, usize::from(end)),
+                    face_normals: [
+                        self.face_plane(usize::from(first)).normal,
+                        self.face_plane(usize::from(second)).normal,
+                    ],
+                }
             }
             Topology::Hull(hull) => {
-                let edge = hull.edges()[index];
-                (
-                    edge.vertices.map(|vertex| vertex as usize),
-                    edge.faces.map(|face| face as usize),
-                )
+                let edge = &hull.edges()[index];
+                let vertex = |end: usize| hull.vertices()[edge.vertices[end] as usize];
+                let normal = |side: usize| hull.faces()[edge.faces[side] as usize].normal;
+                PolyhedronEdge {
+                    start: vertex(0),
+                    end: vertex(1),
+                    face_normals: [normal(0), normal(1)],
+                }
             }
-        };
-        PolyhedronEdge {
-            start: self.vertex(ends[0]),
-            end: self.vertex(ends[1]),
-            face_normals: faces.map(|face| self.face_plane(face).normal),
         }
     }
 
@@ -413,6 +418,13 @@ fn best_face_axis(
     best
 }
 
+/// Replaces `best` by `candidate` when there is none yet or the candidate's separation is larger.
+fn keep_larger(best: &mut Option<EdgeAxis>, candidate: EdgeAxis) {
+    if best.is_none_or(|best| candidate.separation > best.separation) {
+        *best = Some(candidate);
+    }
+}
+
 /// An edge of B placed in A's frame, with its face normals negated: its arc on the Gauss map of
 /// the Minkowski difference A − B.
 #[derive(Debug, Clone, Copy, Default)]
@@ -480,14 +492,15 @@ fn best_box_box_edge_axis(half_a: Vec3, half_b: Vec3, b_in_a: &Frame) -> Option<
             };
             let separation =
                 axis.dot(centre) - half_a.dot(axis.abs()) - half_b.dot(against_in_b.abs());
-            if best.is_none_or(|best| separation > best.separation) {
-                best = Some(EdgeAxis {
+            keep_larger(
+                &mut best,
+                EdgeAxis {
                     edge_a,
                     edge_b,
                     axis,
                     separation,
-                });
-            }
+                },
+            );
         }
     }
     best
@@ -517,15 +530,18 @@ fn box_edge_along(axis_index: usize, direction: Vec3) -> Option<usize> {
 /// two faces have the signs of the point's other two components. A crossing on a face normal of
 /// the box is left to the face axes, as a parallel pair is.
 fn best_box_edge_axis(half_extents: Vec3, b: &Polyhedron, b_in_a: &Frame) -> Option<EdgeAxis> {
+    // Worked in B's frame, where B's edges need no moving: the box axes `eᵢ` are the rows of the
+    // rotation, and only a crossing's axis is moved to A's frame.
+    let rotation = b_in_a.rotation.transpose();
+    let box_axes = [rotation.x_axis, rotation.y_axis, rotation.z_axis];
     let mut best: Option<EdgeAxis> = None;
     for edge_b in 0..b.edge_count() {
         let local = b.edge(edge_b);
-        let start = b_in_a.point(local.start);
-        let direction = b_in_a.vector(local.direction());
-        let [m1, m2] = local.face_normals.map(|normal| -b_in_a.vector(normal));
+        let direction = local.direction();
+        let [m1, m2] = [-local.face_normals[0], -local.face_normals[1]];
         let parallel_limit = PARALLEL_SINE * PARALLEL_SINE * direction.length_squared();
-        for (axis_index, &box_axis) in Vec3::AXES.iter().enumerate() {
-            if m1[axis_index] * m2[axis_index] >= 0.0 {
+        for (axis_index, &box_axis) in box_axes.iter().enumerate() {
+            if m1.dot(box_axis) * m2.dot(box_axis) >= 0.0 {
                 continue;
             }
             let mut axis = box_axis.cross(direction);
@@ -539,20 +555,22 @@ fn best_box_edge_axis(half_extents: Vec3, b: &Polyhedron, b_in_a: &Frame) -> Opt
             if toward_b_arc < 0.0 {
                 axis = -axis;
             }
-            let Some(edge_a) = box_edge_along(axis_index, axis) else {
+            let axis_in_a = b_in_a.vector(axis);
+            let Some(edge_a) = box_edge_along(axis_index, axis_in_a) else {
                 continue;
             };
             let on_edge_a = box_vertex(half_extents, usize::from(BOX_EDGES[edge_a].0[0]));
-            let axis = axis / length_squared.sqrt();
-            let separation = axis.dot(start - on_edge_a);
-            if best.is_none_or(|best| separation > best.separation) {
-                best = Some(EdgeAxis {
+            let axis = axis_in_a / length_squared.sqrt();
+            let separation = axis.dot(b_in_a.point(local.start) - on_edge_a);
+            keep_larger(
+                &mut best,
+                EdgeAxis {
                     edge_a,
                     edge_b,
                     axis,
                     separation,
-                });
-            }
+                },
+            );
         }
     }
     best
@@ -571,7 +589,10 @@ fn best_edge_axis(a: &Polyhedron, b: &Polyhedron, b_in_a: &Frame) -> Option<Edge
             *slot = MovedEdge {
                 start: b_in_a.point(local.start),
                 direction: b_in_a.vector(local.direction()),
-                negated_normals: local.face_normals.map(|normal| -b_in_a.vector(normal)),
+                negated_normals: [
+                    -b_in_a.vector(local.face_normals[0]),
+                    -b_in_a.vector(local.face_normals[1]),
+                ],
             };
         }
         for edge_a in 0..a.edge_count() {
@@ -580,14 +601,15 @@ fn best_edge_axis(a: &Polyhedron, b: &Polyhedron, b_in_a: &Frame) -> Option<Edge
                 let Some((axis, separation)) = edge_pair_axis(&edge, moved) else {
                     continue;
                 };
-                if best.is_none_or(|best| separation > best.separation) {
-                    best = Some(EdgeAxis {
+                keep_larger(
+                    &mut best,
+                    EdgeAxis {
                         edge_a,
                         edge_b: chunk_start + offset,
                         axis,
                         separation,
-                    });
-                }
+                    },
+                );
             }
         }
     }
