@@ -396,8 +396,52 @@ struct EdgeAxis {
 }
 
 /// The face of `reference` beyond whose plane `other` (placed in the reference frame by
-/// `other_in_reference`) lies farthest, or reaches in least.
+/// `other_in_reference`) lies farthest, or reaches in least (the first of equals): in closed form
+/// for two boxes, else by [`best_face_axis_by_support`].
 fn best_face_axis(
+    reference: &Polyhedron,
+    other: &Polyhedron,
+    other_in_reference: &Frame,
+) -> FaceAxis {
+    match (reference.topology, other.topology) {
+        (Topology::Cuboid(half_reference), Topology::Cuboid(half_other)) => {
+            best_box_box_face_axis(half_reference, half_other, other_in_reference)
+        }
+        _ => best_face_axis_by_support(reference, other, other_in_reference),
+    }
+}
+
+/// [`best_face_axis`] for two boxes: along the reference's axis `eᵢ`, the other box (centre `c`,
+/// axes `fₖ`, half extents `bₖ`) reaches down to `cᵢ − Σₖ bₖ |eᵢ · fₖ|`, so the face facing its
+/// centre (`+eᵢ` when `cᵢ ≥ 0`) has the larger separation, `|cᵢ| − aᵢ − Σₖ bₖ |eᵢ · fₖ|`.
+fn best_box_box_face_axis(
+    half_reference: Vec3,
+    half_other: Vec3,
+    other_in_reference: &Frame,
+) -> FaceAxis {
+    let rows = other_in_reference.rotation.transpose();
+    let mut best = FaceAxis {
+        face: 0,
+        separation: f32::NEG_INFINITY,
+    };
+    for (axis, row) in [rows.x_axis, rows.y_axis, rows.z_axis]
+        .into_iter()
+        .enumerate()
+    {
+        let centre = other_in_reference.translation[axis];
+        let separation = centre.abs() - half_reference[axis] - half_other.dot(row.abs());
+        if separation > best.separation {
+            best = FaceAxis {
+                face: 2 * axis + usize::from(centre < 0.0),
+                separation,
+            };
+        }
+    }
+    best
+}
+
+/// [`best_face_axis`] for any two polyhedra, from the other's support point against each face.
+fn best_face_axis_by_support(
     reference: &Polyhedron,
     other: &Polyhedron,
     other_in_reference: &Frame,
@@ -1046,10 +1090,10 @@ mod tests {
         }
     }
 
-    /// The box route of the edge query finds the same edge pair, axis and separation as trying
-    /// every pair, for boxes and a hull, either way round.
+    /// The box routes find the same face as every support point, and the same edge pair, axis
+    /// and separation as trying every pair, for boxes and a hull, either way round.
     #[test]
-    fn box_edge_query_matches_every_pair() {
+    fn box_queries_match_the_general_ones() {
         let other = unit_box();
         let points: Vec<Vec3> = (0..12)
             .map(|index| {
@@ -1085,6 +1129,10 @@ mod tests {
                     for (a, b, pose_a, pose_b) in [(a, b, pose_a, pose_b), (b, a, pose_b, pose_a)] {
                         let b_in_a = Frame::relative(&pose_a, &pose_b);
                         let a_in_b = Frame::relative(&pose_b, &pose_a);
+                        let face = best_face_axis(a, b, &b_in_a);
+                        let by_support = best_face_axis_by_support(a, b, &b_in_a);
+                        assert_eq!(face.face, by_support.face);
+                        assert!((face.separation - by_support.separation).abs() < 1e-5);
                         let fast = edge_query(a, b, &b_in_a, &a_in_b);
                         let slow = best_edge_axis(a, b, &b_in_a);
                         assert_eq!(fast.is_some(), slow.is_some());
