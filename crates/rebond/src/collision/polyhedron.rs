@@ -289,6 +289,17 @@ impl<'a> Polyhedron<'a> {
         }
     }
 
+    /// A point inside the polyhedron: a box's centre, the mean of a hull's vertices.
+    fn interior_point(&self) -> Vec3 {
+        match self.topology {
+            Topology::Cuboid(_) => Vec3::ZERO,
+            Topology::Hull(hull) => {
+                let vertices = hull.vertices();
+                vertices.iter().copied().sum::<Vec3>() / vertices.len().max(1) as f32
+            }
+        }
+    }
+
     /// Whether vertex `vertex` is a corner of face `face`.
     fn face_has_vertex(&self, face: usize, vertex: usize) -> bool {
         match self.topology {
@@ -473,6 +484,7 @@ fn keep_larger(best: &mut Option<EdgeAxis>, candidate: EdgeAxis) {
 /// the Minkowski difference A − B.
 #[derive(Debug, Clone, Copy, Default)]
 struct MovedEdge {
+    index: usize,
     start: Vec3,
     direction: Vec3,
     negated_normals: [Vec3; 2],
@@ -481,23 +493,67 @@ struct MovedEdge {
 /// Over the edge pairs that build a face of the Minkowski difference A − B, the largest
 /// separation along their cross product, in A's frame (`b_in_a` places B there, `a_in_b` A in
 /// B's): by [`best_box_box_edge_axis`] for two boxes, by [`best_box_edge_axis`] when A or B is a
-/// box (the roles swapped when only B is), else by [`best_edge_axis`] over every pair.
-fn edge_query(a: &Polyhedron, b: &Polyhedron, b_in_a: &Frame, a_in_b: &Frame) -> Option<EdgeAxis> {
+/// box (the roles swapped when only B is), else by [`best_edge_axis`] over every pair. Edges
+/// whose pairs cannot separate the shapes by more than `threshold` may be skipped
+/// ([`edge_reach`]), so a pair at or below it may be missed.
+fn edge_query(
+    a: &Polyhedron,
+    b: &Polyhedron,
+    b_in_a: &Frame,
+    a_in_b: &Frame,
+    threshold: f32,
+) -> Option<EdgeAxis> {
     match (a.topology, b.topology) {
         (Topology::Cuboid(half_a), Topology::Cuboid(half_b)) => {
             best_box_box_edge_axis(half_a, half_b, b_in_a)
         }
-        (Topology::Cuboid(half_extents), _) => best_box_edge_axis(half_extents, b, b_in_a),
+        (Topology::Cuboid(half_extents), _) => {
+            best_box_edge_axis(half_extents, b, b_in_a, threshold)
+        }
         (_, Topology::Cuboid(half_extents)) => {
-            best_box_edge_axis(half_extents, a, a_in_b).map(|swapped| EdgeAxis {
+            best_box_edge_axis(half_extents, a, a_in_b, threshold).map(|swapped| EdgeAxis {
                 edge_a: swapped.edge_b,
                 edge_b: swapped.edge_a,
                 axis: -b_in_a.vector(swapped.axis),
                 separation: swapped.separation,
             })
         }
-        _ => best_edge_axis(a, b, b_in_a),
+        _ => best_edge_axis(a, b, b_in_a, threshold),
     }
+}
+
+/// An upper bound on the separation of any edge pair with this edge: the largest `n · (p − s)`
+/// over the unit normals `n` on the edge's arc between its face normals `n₁, n₂`, for `s` a point
+/// of the edge and `p` a point inside the other shape (`toward = p − s`). The pair's separation
+/// along its axis `n` is the other shape's extent along `∓n` less this shape's, which is reached
+/// at the edge, so it is at most `n · (p − s)`. The largest is `|v|` for `v` the part of `toward`
+/// in the arc's plane when `v` lies between `n₁` and `n₂` (`v = α n₁ + β n₂`, `α, β ≥ 0`), else
+/// at an end; infinite for a degenerate arc.
+fn edge_reach(face_normals: [Vec3; 2], toward: Vec3) -> f32 {
+    let [first, second] = face_normals;
+    let (along_first, along_second) = (first.dot(toward), second.dot(toward));
+    let cosine = first.dot(second);
+    let sine_squared = 1.0 - cosine * cosine;
+    // Written so that a NaN also counts as degenerate.
+    let proper_arc = sine_squared > 1.0e-6;
+    if !proper_arc {
+        return f32::INFINITY;
+    }
+    let alpha = along_first - along_second * cosine;
+    let beta = along_second - along_first * cosine;
+    if alpha >= 0.0 && beta >= 0.0 {
+        ((alpha * along_first + beta * along_second) / sine_squared)
+            .max(0.0)
+            .sqrt()
+    } else {
+        along_first.max(along_second)
+    }
+}
+
+/// Whether an edge whose [`edge_reach`] is `reach` can be skipped: its pairs cannot beat
+/// `threshold` (less [`ABSOLUTE_TOLERANCE`], against the rounding of the two computations).
+fn out_of_reach(reach: f32, threshold: f32) -> bool {
+    reach < threshold - ABSOLUTE_TOLERANCE
 }
 
 /// [`best_edge_axis`] for two boxes (half extents `half_a`, `half_b`): one candidate per pair of
@@ -573,14 +629,26 @@ fn box_edge_along(axis_index: usize, direction: Vec3) -> Option<usize> {
 /// `±(eᵢ × e_B)` lying on B's arc, and the box edge whose arc holds that point is the one whose
 /// two faces have the signs of the point's other two components. A crossing on a face normal of
 /// the box is left to the face axes, as a parallel pair is.
-fn best_box_edge_axis(half_extents: Vec3, b: &Polyhedron, b_in_a: &Frame) -> Option<EdgeAxis> {
+fn best_box_edge_axis(
+    half_extents: Vec3,
+    b: &Polyhedron,
+    b_in_a: &Frame,
+    threshold: f32,
+) -> Option<EdgeAxis> {
     // Worked in B's frame, where B's edges need no moving: the box axes `eᵢ` are the rows of the
     // rotation, and only a crossing's axis is moved to A's frame.
     let rotation = b_in_a.rotation.transpose();
     let box_axes = [rotation.x_axis, rotation.y_axis, rotation.z_axis];
+    let box_centre = b_in_a.inverse_vector(-b_in_a.translation);
     let mut best: Option<EdgeAxis> = None;
     for edge_b in 0..b.edge_count() {
         let local = b.edge(edge_b);
+        if out_of_reach(
+            edge_reach(local.face_normals, box_centre - local.start),
+            threshold,
+        ) {
+            continue;
+        }
         let direction = local.direction();
         let [m1, m2] = [-local.face_normals[0], -local.face_normals[1]];
         let parallel_limit = PARALLEL_SINE * PARALLEL_SINE * direction.length_squared();
@@ -623,25 +691,43 @@ fn best_box_edge_axis(half_extents: Vec3, b: &Polyhedron, b_in_a: &Frame) -> Opt
 /// Over the edge pairs that build a face of the Minkowski difference A − B, the largest
 /// separation along their cross product, computed in A's frame (`b_in_a` places B there) by
 /// trying every pair. B's edges are moved into A's frame [`EDGE_CHUNK`] at a time, on the stack.
-fn best_edge_axis(a: &Polyhedron, b: &Polyhedron, b_in_a: &Frame) -> Option<EdgeAxis> {
+fn best_edge_axis(
+    a: &Polyhedron,
+    b: &Polyhedron,
+    b_in_a: &Frame,
+    threshold: f32,
+) -> Option<EdgeAxis> {
+    let inside_a = a.interior_point();
+    let inside_b = b_in_a.point(b.interior_point());
     let mut best: Option<EdgeAxis> = None;
     let mut chunk = [MovedEdge::default(); EDGE_CHUNK];
-    for chunk_start in (0..b.edge_count()).step_by(EDGE_CHUNK) {
-        let chunk_len = (b.edge_count() - chunk_start).min(EDGE_CHUNK);
-        for (offset, slot) in chunk[..chunk_len].iter_mut().enumerate() {
-            let local = b.edge(chunk_start + offset);
-            *slot = MovedEdge {
-                start: b_in_a.point(local.start),
-                direction: b_in_a.vector(local.direction()),
-                negated_normals: [
-                    -b_in_a.vector(local.face_normals[0]),
-                    -b_in_a.vector(local.face_normals[1]),
-                ],
-            };
+    let mut next_b = 0;
+    while next_b < b.edge_count() {
+        let mut chunk_len = 0;
+        while chunk_len < EDGE_CHUNK && next_b < b.edge_count() {
+            let local = b.edge(next_b);
+            let start = b_in_a.point(local.start);
+            let face_normals = local.face_normals.map(|normal| b_in_a.vector(normal));
+            if !out_of_reach(edge_reach(face_normals, inside_a - start), threshold) {
+                chunk[chunk_len] = MovedEdge {
+                    index: next_b,
+                    start,
+                    direction: b_in_a.vector(local.direction()),
+                    negated_normals: [-face_normals[0], -face_normals[1]],
+                };
+                chunk_len += 1;
+            }
+            next_b += 1;
         }
         for edge_a in 0..a.edge_count() {
             let edge = a.edge(edge_a);
-            for (offset, moved) in chunk[..chunk_len].iter().enumerate() {
+            if out_of_reach(
+                edge_reach(edge.face_normals, inside_b - edge.start),
+                threshold,
+            ) {
+                continue;
+            }
+            for moved in &chunk[..chunk_len] {
                 let Some((axis, separation)) = edge_pair_axis(&edge, moved) else {
                     continue;
                 };
@@ -649,7 +735,7 @@ fn best_edge_axis(a: &Polyhedron, b: &Polyhedron, b_in_a: &Frame) -> Option<Edge
                     &mut best,
                     EdgeAxis {
                         edge_a,
-                        edge_b: chunk_start + offset,
+                        edge_b: moved.index,
                         axis,
                         separation,
                     },
@@ -788,13 +874,6 @@ pub fn collide_polyhedra(
     if face_b.separation > margin {
         return None;
     }
-    let edge = edge_query(a, b, &b_in_a, &a_in_b);
-    if edge.is_some_and(|edge| edge.separation > margin) {
-        return None;
-    }
-
-    let world_a = Frame::from_pose(pose_a);
-    let world_b = Frame::from_pose(pose_b);
     let face = if clearly_larger(
         face_b.separation,
         face_a.separation,
@@ -804,6 +883,15 @@ pub fn collide_polyhedra(
     } else {
         ContactAxis::FaceOfA(face_a)
     };
+    // An edge pair matters only if it beats the kept face (below, an edge pair is chosen or
+    // best only then), so edges that cannot are skipped.
+    let edge = edge_query(a, b, &b_in_a, &a_in_b, face.separation());
+    if edge.is_some_and(|edge| edge.separation > margin) {
+        return None;
+    }
+
+    let world_a = Frame::from_pose(pose_a);
+    let world_b = Frame::from_pose(pose_b);
     let chosen = match edge {
         Some(edge)
             if clearly_larger(edge.separation, face.separation(), EDGE_RELATIVE_TOLERANCE) =>
@@ -1090,8 +1178,9 @@ mod tests {
         }
     }
 
-    /// The box routes find the same face as every support point, and the same edge pair, axis
-    /// and separation as trying every pair, for boxes and a hull, either way round.
+    /// The box routes find the same face as every support point, and the box routes and the
+    /// skipping of edges out of reach the same edge pair, axis and separation as trying every
+    /// pair, for boxes and a hull, either way round.
     #[test]
     fn box_queries_match_the_general_ones() {
         let other = unit_box();
@@ -1124,7 +1213,7 @@ mod tests {
                 ),
                 crate::math::Quat::from_scaled_axis(Vec3::new(0.05 * t, -0.2 * t, 0.4 * t.sin())),
             );
-            for a in &shapes[..2] {
+            for a in &shapes {
                 for b in &shapes {
                     for (a, b, pose_a, pose_b) in [(a, b, pose_a, pose_b), (b, a, pose_b, pose_a)] {
                         let b_in_a = Frame::relative(&pose_a, &pose_b);
@@ -1133,10 +1222,14 @@ mod tests {
                         let by_support = best_face_axis_by_support(a, b, &b_in_a);
                         assert_eq!(face.face, by_support.face);
                         assert!((face.separation - by_support.separation).abs() < 1e-5);
-                        let fast = edge_query(a, b, &b_in_a, &a_in_b);
-                        let slow = best_edge_axis(a, b, &b_in_a);
-                        assert_eq!(fast.is_some(), slow.is_some());
-                        if let (Some(fast), Some(slow)) = (fast, slow) {
+                        let slow = best_edge_axis(a, b, &b_in_a, f32::NEG_INFINITY);
+                        let Some(slow) = slow else {
+                            assert!(edge_query(a, b, &b_in_a, &a_in_b, f32::NEG_INFINITY).is_none());
+                            continue;
+                        };
+                        for threshold in [f32::NEG_INFINITY, slow.separation - 0.01] {
+                            let fast = edge_query(a, b, &b_in_a, &a_in_b, threshold)
+                                .expect("the best pair beats the threshold");
                             assert!((fast.separation - slow.separation).abs() < 1e-5);
                             if (fast.edge_a, fast.edge_b) == (slow.edge_a, slow.edge_b) {
                                 assert!((fast.axis - slow.axis).length() < 1e-5);
@@ -1144,6 +1237,9 @@ mod tests {
                             }
                             compared += 1;
                         }
+                        // Above the best pair, whatever is found is no better.
+                        let above = edge_query(a, b, &b_in_a, &a_in_b, slow.separation + 0.01);
+                        assert!(above.is_none_or(|fast| fast.separation <= slow.separation + 1e-5));
                     }
                 }
             }
