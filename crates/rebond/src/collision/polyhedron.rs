@@ -697,7 +697,8 @@ fn best_edge_axis(
     b_in_a: &Frame,
     threshold: f32,
 ) -> Option<EdgeAxis> {
-    let inside_a = a.interior_point();
+    // A's inside point in B's frame, where B's edges are tested before being moved.
+    let inside_a = b_in_a.inverse_vector(a.interior_point() - b_in_a.translation);
     let inside_b = b_in_a.point(b.interior_point());
     let mut best: Option<EdgeAxis> = None;
     let mut chunk = [MovedEdge::default(); EDGE_CHUNK];
@@ -706,14 +707,18 @@ fn best_edge_axis(
         let mut chunk_len = 0;
         while chunk_len < EDGE_CHUNK && next_b < b.edge_count() {
             let local = b.edge(next_b);
-            let start = b_in_a.point(local.start);
-            let face_normals = local.face_normals.map(|normal| b_in_a.vector(normal));
-            if !out_of_reach(edge_reach(face_normals, inside_a - start), threshold) {
+            if !out_of_reach(
+                edge_reach(local.face_normals, inside_a - local.start),
+                threshold,
+            ) {
                 chunk[chunk_len] = MovedEdge {
                     index: next_b,
-                    start,
+                    start: b_in_a.point(local.start),
                     direction: b_in_a.vector(local.direction()),
-                    negated_normals: [-face_normals[0], -face_normals[1]],
+                    negated_normals: [
+                        -b_in_a.vector(local.face_normals[0]),
+                        -b_in_a.vector(local.face_normals[1]),
+                    ],
                 };
                 chunk_len += 1;
             }
