@@ -6,8 +6,8 @@
 //! reference polygon's side planes), measures what is left against the reference plane, and keeps
 //! at most [`MAX_MANIFOLD_POINTS`] well-spread points ([`reduce_contacts`] starting from the
 //! deepest, [`reduce_contacts_on_face`] by position on the face, which small motions keep). Every
-//! clipped point carries a
-//! [`ClipFeature`] naming how it was made, from which callers build stable contact ids.
+//! clipped point carries a [`ClipFeature`] naming how it was made, from which callers build
+//! stable contact ids.
 
 use crate::collision::manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
 use crate::math::Vec3;

@@ -832,8 +832,9 @@ fn clearly_larger(candidate: f32, incumbent: f32, relative: f32) -> bool {
 }
 
 /// The contact manifold between polyhedra `a` at `pose_a` and `b` at `pose_b`, with the normal
-/// pointing from A to B; `None` when they are apart by more than `margin` metres, or when either
-/// has no face.
+/// pointing from A to B; `None` when they are apart by more than `margin` metres, when either
+/// has no face, or when clipping leaves no point (only for degenerate faces, of zero area or of
+/// more than [`MAX_POLYGON_VERTICES`] corners, of which a subset is clipped).
 ///
 /// The axis of least overlap is chosen with a bias so that the choice holds still while bodies
 /// jiggle: B's best face is the reference only if its separation beats A's by 5 % (of A's, in
