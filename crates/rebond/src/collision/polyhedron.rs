@@ -925,48 +925,15 @@ pub fn collide_polyhedra(
         ContactAxis::Edges(edge) => edge_contact(a, &world_a, b, &world_b, &edge, margin),
     };
     if best.separation() > 0.0 {
-        // Apart: the separations along the axes may fall short of the distance (two edges whose
-        // closest points are their ends, a vertex near a vertex), so a contact is kept only if it
-        // measures the distance, found by GJK from the best axis. Touching within GJK's
-        // tolerance, the best axis's separation is as near the distance as GJK gets.
-        let axis_normal = best.world_normal(a, &world_a, b, &world_b);
-        let closest = gjk::distance_from_direction(
-            &PosedPolyhedron {
-                polyhedron: a,
-                frame: world_a,
-            },
-            &PosedPolyhedron {
-                polyhedron: b,
-                frame: world_b,
-            },
-            axis_normal,
-        );
-        let (distance, normal) = if closest.overlapping {
-            (best.separation(), axis_normal)
-        } else {
-            (closest.distance, closest.normal().unwrap_or(axis_normal))
+        let posed_a = PosedPolyhedron {
+            polyhedron: a,
+            frame: world_a,
         };
-        if distance > margin {
-            return None;
-        }
-        let measures_distance = |manifold: &Manifold| {
-            (manifold.deepest_separation() - distance).abs() <= DEPTH_TOLERANCE
+        let posed_b = PosedPolyhedron {
+            polyhedron: b,
+            frame: world_b,
         };
-        let built = contact(chosen).filter(measures_distance).or_else(|| {
-            (best != chosen)
-                .then(|| contact(best))
-                .flatten()
-                .filter(measures_distance)
-        });
-        return Some(built.unwrap_or_else(|| {
-            let mut manifold = Manifold::new(normal);
-            manifold.push(ContactPoint {
-                position: 0.5 * (closest.point_a + closest.point_b),
-                separation: distance,
-                id: CLOSEST_POINTS_ID,
-            });
-            manifold
-        }));
+        return apart_contact(&posed_a, &posed_b, chosen, best, margin, contact);
     }
     // Overlapping, the best axis's separation is the penetration depth. The axis kept by the
     // bias may fall short of it where it trails the best one (its deepest vertex lies outside the
@@ -981,6 +948,61 @@ pub fn collide_polyhedra(
         }
         kept => contact(best).or(kept),
     }
+}
+
+/// The contact of polyhedra `a` and `b` (placed in the world) while they are apart (`best`'s
+/// separation positive): built by `contact` on the `chosen` or the `best` axis when it measures
+/// their distance, else one point between their closest points. The separations along the axes
+/// may fall short of the distance (two edges whose closest points are their ends, a vertex near a
+/// vertex), so GJK measures it, starting from the best axis; touching within GJK's tolerance, the
+/// best axis's separation is as near the distance as GJK gets. A face contact needs no GJK when
+/// its deepest point is within [`DEPTH_TOLERANCE`] of the best axis's separation: each of its
+/// points pairs a point of one shape with its projection on the other's face, a distance that
+/// bounds the shapes' distance from above, as any axis's separation bounds it from below.
+fn apart_contact(
+    a: &PosedPolyhedron,
+    b: &PosedPolyhedron,
+    chosen: ContactAxis,
+    best: ContactAxis,
+    margin: f32,
+    contact: impl Fn(ContactAxis) -> Option<Manifold>,
+) -> Option<Manifold> {
+    let lower_bound = best.separation();
+    let chosen_contact = contact(chosen);
+    let is_face = matches!(chosen, ContactAxis::FaceOfA(_) | ContactAxis::FaceOfB(_));
+    if is_face
+        && chosen_contact
+            .is_some_and(|manifold| manifold.deepest_separation() <= lower_bound + DEPTH_TOLERANCE)
+    {
+        return chosen_contact;
+    }
+    let axis_normal = best.world_normal(a.polyhedron, &a.frame, b.polyhedron, &b.frame);
+    let closest = gjk::distance_from_direction(a, b, axis_normal);
+    let (distance, normal) = if closest.overlapping {
+        (lower_bound, axis_normal)
+    } else {
+        (closest.distance, closest.normal().unwrap_or(axis_normal))
+    };
+    if distance > margin {
+        return None;
+    }
+    let measures_distance =
+        |manifold: &Manifold| (manifold.deepest_separation() - distance).abs() <= DEPTH_TOLERANCE;
+    let built = chosen_contact.filter(measures_distance).or_else(|| {
+        (best != chosen)
+            .then(|| contact(best))
+            .flatten()
+            .filter(measures_distance)
+    });
+    Some(built.unwrap_or_else(|| {
+        let mut manifold = Manifold::new(normal);
+        manifold.push(ContactPoint {
+            position: 0.5 * (closest.point_a + closest.point_b),
+            separation: distance,
+            id: CLOSEST_POINTS_ID,
+        });
+        manifold
+    }))
 }
 
 /// Clips the incident face of `incident` (through its vertex deepest below the reference plane,
