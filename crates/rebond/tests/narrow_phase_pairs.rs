@@ -665,10 +665,9 @@ fn box_on_a_hull_keeps_its_ids() {
     check_ids_hold_still(&shape(Kind::Hull), &block, Quat::IDENTITY);
 }
 
-/// The hexagonal face gives six points, which `clipping::reduce_contacts` cuts to four starting
-/// from the deepest: a 0.5° tilt makes another corner the deepest and keeps a different subset.
+/// The hexagonal face gives six points, which `clipping::reduce_contacts_on_face` cuts to four by
+/// their place on the face, not by their depth, which a 0.5° tilt changes.
 #[test]
-#[ignore = "clipping.rs: reduce_contacts starts from the deepest point; a 0.5° tilt changes it"]
 fn hull_on_a_box_keeps_its_ids() {
     check_ids_hold_still(&ground_box(), &shape(Kind::Hull), Quat::IDENTITY);
 }

@@ -18,12 +18,12 @@
 //!
 //! When it returns `None`, σ exceeds the margin.
 //!
-//! The separating-axis routine (boxes and hulls) deviates from some of these in ways the tests
-//! below name; the strict versions of those tests are ignored, with the reason.
+//! The separating-axis routine (boxes and hulls) biases its choice of axis for stability, which
+//! [`separating_axis_floor`] allows for.
 
 use proptest::prelude::*;
 use rebond::collision::narrow_phase::collide_convex;
-use rebond::collision::{gjk, Manifold, PosedCore, SupportMap, SPECULATIVE_DISTANCE};
+use rebond::collision::{gjk, PosedCore, SupportMap, SPECULATIVE_DISTANCE};
 use rebond::shape::ConvexHull;
 use rebond::{Pose, Quat, Shape, Vec3};
 use std::f32::consts::{FRAC_PI_2, PI};
@@ -405,14 +405,6 @@ fn distance_from_above(a: &Solid, b: &Solid) -> Option<f32> {
     })
 }
 
-fn deepest_separation(manifold: &Manifold) -> f32 {
-    manifold
-        .points()
-        .iter()
-        .map(|point| point.separation)
-        .fold(f32::INFINITY, f32::min)
-}
-
 /// A random scene: A at a random pose; B turned at random and placed so that its extent along
 /// `direction` begins `gap` beyond A's, shifted sideways by up to 0.25 m.
 fn scenes(kind_a: Kind, kind_b: Kind) -> impl Strategy<Value = (Solid, Solid)> {
@@ -449,38 +441,8 @@ fn scenes(kind_a: Kind, kind_b: Kind) -> impl Strategy<Value = (Solid, Solid)> {
         )
 }
 
-/// Which of the properties a test asserts in full: the separating-axis routine deviates from some.
-#[derive(Debug, Clone, Copy)]
-struct Strictness {
-    /// Shapes apart within the margin give a contact, whose deepest separation is their distance
-    /// and whose points lie midway between their surfaces. The separating-axis routine measures
-    /// separations along its axes instead (face normals and edge-pair cross products), and for
-    /// shapes apart the best of these may fall short of the distance (two edges whose closest
-    /// points are their ends), while the points clipped on a face may lie beyond it (the closest
-    /// point clipped away); it documents a contact whenever no axis separates the shapes by more
-    /// than the margin, but may then clip every point away. Without this, such scenes are only
-    /// checked not to claim an overlap.
-    apart_matches_distance: bool,
-    /// Overlapping shapes always give a contact, as deep as their penetration. The separating-axis
-    /// routine clips the other shape's face most opposed to the reference face, which on a hull
-    /// need not hold the deepest vertex: the clip then misses it, or finds nothing. Without this,
-    /// overlapping hulls are only checked not to be reported deeper than they are.
-    overlap_reaches_depth: bool,
-}
-
-const STRICT: Strictness = Strictness {
-    apart_matches_distance: true,
-    overlap_reaches_depth: true,
-};
-
 /// Checks every property of one scene.
-fn check_scene(
-    kind_a: Kind,
-    kind_b: Kind,
-    a: &Solid,
-    b: &Solid,
-    strictness: Strictness,
-) -> Result<(), TestCaseError> {
+fn check_scene(kind_a: Kind, kind_b: Kind, a: &Solid, b: &Solid) -> Result<(), TestCaseError> {
     let margin = SPECULATIVE_DISTANCE;
     let routine = routine(kind_a, kind_b);
     let manifold = collide_convex(&a.shape, &a.pose, &b.shape, &b.pose, margin);
@@ -488,22 +450,14 @@ fn check_scene(
     let hints: Vec<Vec3> = manifold.iter().map(|manifold| manifold.normal).collect();
     let signed_distance = signed_distance_from_below(a, b, &hints);
     let apart = signed_distance > 0.0;
-    // Whether a contact must be found (by both orders of the pair) whenever σ is within the margin.
-    let promised = if apart {
-        strictness.apart_matches_distance
-    } else {
-        strictness.overlap_reaches_depth
-    };
     let Some(manifold) = manifold else {
-        if promised {
+        prop_assert!(
+            signed_distance > margin - TOLERANCE,
+            "no contact, yet the signed distance is {signed_distance} m"
+        );
+        if let Some(swapped) = swapped {
             prop_assert!(
-                signed_distance > margin - TOLERANCE,
-                "no contact, yet the signed distance is {signed_distance} m"
-            );
-        }
-        if let Some(swapped) = swapped.filter(|_| promised) {
-            prop_assert!(
-                deepest_separation(&swapped) > margin - TOLERANCE,
+                swapped.deepest_separation() > margin - TOLERANCE,
                 "only the swapped pair touches: {swapped:?}"
             );
         }
@@ -514,58 +468,48 @@ fn check_scene(
         "normal {}",
         manifold.normal
     );
-    let deepest = deepest_separation(&manifold);
+    let deepest = manifold.deepest_separation();
     let slack = match routine {
         Routine::ClosedForm | Routine::SeparatingAxes => TOLERANCE,
         Routine::Features => FEATURE_SLACK + TOLERANCE,
     };
-    let separating_axes_apart = routine == Routine::SeparatingAxes && apart;
-    if separating_axes_apart && !strictness.apart_matches_distance {
+    if let Some(distance) = distance_from_above(a, b) {
         prop_assert!(
-            deepest >= separating_axis_floor(0.0) - TOLERANCE,
-            "shapes apart, yet deepest separation {deepest}\n{manifold:?}"
+            deepest <= distance + slack,
+            "deepest separation {deepest} beyond the distance {distance}\n{manifold:?}"
         );
-    } else {
-        if let Some(distance) = distance_from_above(a, b) {
-            prop_assert!(
-                deepest <= distance + slack,
-                "deepest separation {deepest} beyond the distance {distance}\n{manifold:?}"
-            );
-        }
-        for point in manifold.points() {
-            let allowed = 0.5 * point.separation.abs() + slack;
-            let (to_a, to_b) = (a.distance_to(point.position), b.distance_to(point.position));
-            prop_assert!(
-                to_a <= allowed && to_b <= allowed,
-                "{point:?} lies {to_a} m from A and {to_b} m from B\n{manifold:?}"
-            );
-        }
-        let floor = match routine {
-            Routine::SeparatingAxes if !apart => separating_axis_floor(signed_distance),
-            _ => signed_distance,
-        };
-        prop_assert!(
-            deepest >= floor - TOLERANCE,
-            "deepest separation {deepest} deeper than the shapes allow (signed distance at least \
-             {signed_distance}, {routine:?})\n{manifold:?}"
-        );
-        if strictness.overlap_reaches_depth {
-            prop_assert!(
-                deepest <= signed_distance + slack,
-                "deepest separation {deepest} short of the signed distance {signed_distance} \
-                 ({routine:?})\n{manifold:?}"
-            );
-        }
     }
+    for point in manifold.points() {
+        let allowed = 0.5 * point.separation.abs() + slack;
+        let (to_a, to_b) = (a.distance_to(point.position), b.distance_to(point.position));
+        prop_assert!(
+            to_a <= allowed && to_b <= allowed,
+            "{point:?} lies {to_a} m from A and {to_b} m from B\n{manifold:?}"
+        );
+    }
+    let floor = match routine {
+        Routine::SeparatingAxes if !apart => separating_axis_floor(signed_distance),
+        _ => signed_distance,
+    };
+    prop_assert!(
+        deepest >= floor - TOLERANCE,
+        "deepest separation {deepest} deeper than the shapes allow (signed distance at least \
+         {signed_distance}, {routine:?})\n{manifold:?}"
+    );
+    prop_assert!(
+        deepest <= signed_distance + slack,
+        "deepest separation {deepest} short of the signed distance {signed_distance} \
+         ({routine:?})\n{manifold:?}"
+    );
 
     let Some(swapped) = swapped else {
         prop_assert!(
-            !promised || deepest > margin - TOLERANCE,
+            deepest > margin - TOLERANCE,
             "the swapped pair does not touch"
         );
         return Ok(());
     };
-    let swapped_deepest = deepest_separation(&swapped);
+    let swapped_deepest = swapped.deepest_separation();
     let flipped = (swapped.normal + manifold.normal).length();
     match routine {
         Routine::SeparatingAxes => {
@@ -601,69 +545,38 @@ fn check_scene(
 /// seconds.
 const CASES: u32 = 1024;
 
-/// Cases per ignored strict test: the deviations they show are rare (one scene in some thousands
-/// for boxes apart), so they need many scenes to show up when run with `--ignored`.
-const DEVIATION_CASES: u32 = 20_000;
-
 macro_rules! pair_properties {
-    (
-        cases: $cases:expr;
-        $($(#[$attribute:meta])* $name:ident: $a:expr, $b:expr, $strictness:expr;)*
-    ) => {
+    ($($name:ident: $a:expr, $b:expr;)*) => {
         proptest! {
             #![proptest_config(ProptestConfig {
-                cases: $cases,
+                cases: CASES,
                 failure_persistence: None,
                 ..ProptestConfig::default()
             })]
             $(
-                $(#[$attribute])*
                 #[test]
                 fn $name((a, b) in scenes($a, $b)) {
-                    check_scene($a, $b, &a, &b, $strictness)?;
+                    check_scene($a, $b, &a, &b)?;
                 }
             )*
         }
     };
 }
 
-/// The separating-axis routine's separations for shapes apart are along its axes.
-const AXES_APART: Strictness = Strictness {
-    apart_matches_distance: false,
-    ..STRICT
-};
-
-/// As [`AXES_APART`], and a hull's incident face may miss the deepest vertex.
-const HULL_INCIDENT_FACE: Strictness = Strictness {
-    apart_matches_distance: false,
-    overlap_reaches_depth: false,
-};
-
 pair_properties! {
-    cases: CASES;
-    sphere_sphere: Kind::Sphere, Kind::Sphere, STRICT;
-    sphere_box: Kind::Sphere, Kind::Box, STRICT;
-    sphere_capsule: Kind::Sphere, Kind::Capsule, STRICT;
-    sphere_cylinder: Kind::Sphere, Kind::Cylinder, STRICT;
-    sphere_hull: Kind::Sphere, Kind::Hull, STRICT;
-    box_capsule: Kind::Box, Kind::Capsule, STRICT;
-    box_cylinder: Kind::Box, Kind::Cylinder, STRICT;
-    capsule_capsule: Kind::Capsule, Kind::Capsule, STRICT;
-    capsule_cylinder: Kind::Capsule, Kind::Cylinder, STRICT;
-    capsule_hull: Kind::Capsule, Kind::Hull, STRICT;
-    cylinder_cylinder: Kind::Cylinder, Kind::Cylinder, STRICT;
-    cylinder_hull: Kind::Cylinder, Kind::Hull, STRICT;
-    box_box: Kind::Box, Kind::Box, AXES_APART;
-    box_hull: Kind::Box, Kind::Hull, HULL_INCIDENT_FACE;
-    hull_hull: Kind::Hull, Kind::Hull, HULL_INCIDENT_FACE;
-}
-
-pair_properties! {
-    cases: DEVIATION_CASES;
-    #[ignore = "polyhedron.rs: polyhedra apart are measured along an axis, not by distance"]
-    box_box_strict: Kind::Box, Kind::Box, STRICT;
-    #[ignore = "polyhedron.rs: a hull's incident face may miss the deepest vertex"]
-    box_hull_strict: Kind::Box, Kind::Hull, STRICT;
-    #[ignore = "polyhedron.rs: a hull's incident face may miss the deepest vertex"]
-    hull_hull_strict: Kind::Hull, Kind::Hull, STRICT;
+    sphere_sphere: Kind::Sphere, Kind::Sphere;
+    sphere_box: Kind::Sphere, Kind::Box;
+    sphere_capsule: Kind::Sphere, Kind::Capsule;
+    sphere_cylinder: Kind::Sphere, Kind::Cylinder;
+    sphere_hull: Kind::Sphere, Kind::Hull;
+    box_capsule: Kind::Box, Kind::Capsule;
+    box_cylinder: Kind::Box, Kind::Cylinder;
+    capsule_capsule: Kind::Capsule, Kind::Capsule;
+    capsule_cylinder: Kind::Capsule, Kind::Cylinder;
+    capsule_hull: Kind::Capsule, Kind::Hull;
+    cylinder_cylinder: Kind::Cylinder, Kind::Cylinder;
+    cylinder_hull: Kind::Cylinder, Kind::Hull;
+    box_box: Kind::Box, Kind::Box;
+    box_hull: Kind::Box, Kind::Hull;
+    hull_hull: Kind::Hull, Kind::Hull;
 }

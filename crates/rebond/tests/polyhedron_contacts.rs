@@ -221,6 +221,38 @@ fn apart_by_more_than_the_margin_gives_none() {
     assert!(edge_apart.is_none());
 }
 
+/// Two unit boxes corner to corner along their diagonal, 1 cm apart: every axis of the separating-
+/// axis test (faces and edge pairs) measures less than the distance (0.01/√3 along a face normal),
+/// so the contact is the one point midway between the corners, along the diagonal, 1 cm apart.
+#[test]
+fn corners_apart_are_measured_by_their_distance() {
+    let diagonal = Vec3::ONE.normalize();
+    let corner = Vec3::splat(0.5);
+    for (pose_a, pose_b) in [
+        (
+            Pose::IDENTITY,
+            Pose::from_position(2.0 * corner + diagonal * 0.01),
+        ),
+        (
+            Pose::new(Vec3::new(0.3, -0.2, 0.1), Quat::from_rotation_y(0.7)),
+            Pose::new(
+                Vec3::new(0.3, -0.2, 0.1)
+                    + Quat::from_rotation_y(0.7) * (2.0 * corner + diagonal * 0.01),
+                Quat::from_rotation_y(0.7),
+            ),
+        ),
+    ] {
+        let unit = cuboid(0.5, 0.5, 0.5);
+        let manifold = collide_boxes(&unit, pose_a, &unit, pose_b).expect("within the margin");
+        let expected = pose_a.transform_point(corner + diagonal * 0.005);
+        assert_near(manifold.normal, pose_a.rotation * diagonal, 1e-4);
+        assert_points(&manifold, &[expected], 0.01);
+        let swapped = collide_boxes(&unit, pose_b, &unit, pose_a).expect("within the margin");
+        assert_near(swapped.normal, -manifold.normal, 1e-4);
+        assert_points(&swapped, &[expected], 0.01);
+    }
+}
+
 #[test]
 fn within_the_margin_gives_speculative_points() {
     let manifold = collide_boxes(

@@ -4,8 +4,10 @@
 //! A face contact takes the *incident* feature of one shape (a polygon or a segment), cuts away
 //! what lies outside the *reference* face of the other shape (Sutherland–Hodgman against the
 //! reference polygon's side planes), measures what is left against the reference plane, and keeps
-//! at most [`MAX_MANIFOLD_POINTS`] well-spread points. Every clipped point carries a
-//! [`ClipFeature`] naming how it was made, from which callers build stable contact ids.
+//! at most [`MAX_MANIFOLD_POINTS`] well-spread points ([`reduce_contacts`] starting from the
+//! deepest, [`reduce_contacts_on_face`] by position on the face, which small motions keep). Every
+//! clipped point carries a [`ClipFeature`] naming how it was made, from which callers build
+//! stable contact ids.
 
 use crate::collision::manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
 use crate::math::Vec3;
@@ -348,85 +350,177 @@ fn signed_double_area(a: Vec3, b: Vec3, c: Vec3, normal: Vec3) -> f32 {
 
 /// Builds a manifold with `normal` from `candidates`, keeping all of them when there are at most
 /// [`MAX_MANIFOLD_POINTS`], else four that hold the contact best: the deepest point (it must be
-/// resolved), the point farthest from it, the point making the largest triangle with those two,
-/// and the point farthest outside that triangle (the largest area added). Points too close to the
-/// line or triangle already chosen are not added, so a manifold of a thin patch may have two or
-/// three points. The order is the order of choice.
+/// resolved), then points spread from it ([`spread`]). Points too close to the line or triangle
+/// already chosen are not added, so a manifold of a thin patch may have two or three points. The
+/// order is the order of choice.
 pub fn reduce_contacts(normal: Vec3, candidates: &[ContactPoint]) -> Manifold {
-    let mut manifold = Manifold::new(normal);
     if candidates.len() <= MAX_MANIFOLD_POINTS {
-        for &candidate in candidates {
-            manifold.push(candidate);
+        return manifold_of(normal, candidates, 0..candidates.len());
+    }
+    let mut chosen = Chosen::default();
+    chosen.push(deepest_index(candidates));
+    spread(normal, candidates, &mut chosen);
+    manifold_of(normal, candidates, chosen.indices().iter().copied())
+}
+
+/// As [`reduce_contacts`], but choosing the four points by where they lie on the face rather than
+/// by depth, so that small motions, which shift depths more than positions, keep the same ids: the
+/// points farthest along `tangent`, along `normal × tangent`, against `tangent` and against
+/// `normal × tangent` (counter-clockwise about `normal`), any still missing added by [`spread`].
+/// `tangent` is a unit direction in the face's plane fixed to the reference body.
+///
+/// When a dropped point is deeper than every kept one by more than [`DEEPEST_SLACK`], the kept
+/// point nearest it moves onto it (position and separation), keeping its id: the manifold reaches
+/// the full depth and its set of ids stays the same.
+pub fn reduce_contacts_on_face(
+    normal: Vec3,
+    tangent: Vec3,
+    candidates: &[ContactPoint],
+) -> Manifold {
+    if candidates.len() <= MAX_MANIFOLD_POINTS {
+        return manifold_of(normal, candidates, 0..candidates.len());
+    }
+    let bitangent = normal.cross(tangent);
+    let mut chosen = Chosen::default();
+    for direction in [tangent, bitangent, -tangent, -bitangent] {
+        let extreme = candidates
+            .iter()
+            .map(|candidate| candidate.position.dot(direction))
+            .enumerate()
+            .max_by(|(_, a), (_, b)| a.total_cmp(b))
+            .map_or(0, |(index, _)| index);
+        if !chosen.indices().contains(&extreme) {
+            chosen.push(extreme);
         }
-        return manifold;
     }
+    spread(normal, candidates, &mut chosen);
+    let mut manifold = manifold_of(normal, candidates, chosen.indices().iter().copied());
 
-    let deepest = candidates
-        .iter()
-        .enumerate()
-        .min_by(|(_, a), (_, b)| a.separation.total_cmp(&b.separation))
-        .map_or(0, |(index, _)| index);
-    let first = candidates[deepest];
-    manifold.push(first);
-
-    let farthest = candidates
-        .iter()
-        .map(|candidate| candidate.position.distance_squared(first.position))
-        .enumerate()
-        .max_by(|(_, a), (_, b)| a.total_cmp(b));
-    let Some((farthest, span_squared)) = farthest else {
-        return manifold;
-    };
-    if span_squared <= 0.0 {
-        return manifold;
-    }
-    let second = candidates[farthest];
-    manifold.push(second);
-    let min_double_area = MIN_AREA_FRACTION * span_squared;
-
-    let widest = candidates
-        .iter()
-        .map(|candidate| {
-            signed_double_area(first.position, second.position, candidate.position, normal)
-        })
-        .enumerate()
-        .max_by(|(_, a), (_, b)| a.abs().total_cmp(&b.abs()));
-    let Some((widest, widest_area)) = widest else {
-        return manifold;
-    };
-    if widest_area.abs() <= min_double_area {
-        return manifold;
-    }
-    let third = candidates[widest];
-    manifold.push(third);
-
-    // With the triangle wound counter-clockwise, a point outside edge (p, q) has a negative
-    // area with it; the most negative is the point that adds the most area.
-    let winding = widest_area.signum();
-    let triangle = [first.position, second.position, third.position];
-    let outside = candidates
-        .iter()
-        .map(|candidate| {
-            (0..3)
-                .map(|edge| {
-                    winding
-                        * signed_double_area(
-                            triangle[edge],
-                            triangle[(edge + 1) % 3],
-                            candidate.position,
-                            normal,
-                        )
-                })
-                .fold(f32::INFINITY, f32::min)
-        })
-        .enumerate()
-        .min_by(|(_, a), (_, b)| a.total_cmp(b));
-    if let Some((fourth, area)) = outside {
-        if area < -min_double_area {
-            manifold.push(candidates[fourth]);
+    let deepest = candidates[deepest_index(candidates)];
+    if deepest.separation < manifold.deepest_separation() - DEEPEST_SLACK {
+        let nearest = manifold.points_mut().iter_mut().min_by(|a, b| {
+            let distance = |point: &ContactPoint| point.position.distance_squared(deepest.position);
+            distance(a).total_cmp(&distance(b))
+        });
+        if let Some(nearest) = nearest {
+            nearest.position = deepest.position;
+            nearest.separation = deepest.separation;
         }
     }
     manifold
+}
+
+/// A dropped point deeper than every kept point by more than this, metres, is reached by moving
+/// the nearest kept point onto it ([`reduce_contacts_on_face`]). Well below the solver's 1 mm slop
+/// and the 0.1 mm to which contact depths are checked, well above the f32 rounding (1e-6 m) that
+/// makes the corners of a face resting flat differ in depth.
+pub const DEEPEST_SLACK: f32 = 2.0e-5;
+
+/// Indices of the candidates chosen so far, in order of choice.
+#[derive(Debug, Clone, Copy, Default)]
+struct Chosen {
+    indices: [usize; MAX_MANIFOLD_POINTS],
+    len: usize,
+}
+
+impl Chosen {
+    fn push(&mut self, index: usize) {
+        if self.len < MAX_MANIFOLD_POINTS {
+            self.indices[self.len] = index;
+            self.len += 1;
+        }
+    }
+
+    fn indices(&self) -> &[usize] {
+        &self.indices[..self.len]
+    }
+}
+
+/// The manifold of the candidates at `indices`, in that order.
+fn manifold_of(
+    normal: Vec3,
+    candidates: &[ContactPoint],
+    indices: impl Iterator<Item = usize>,
+) -> Manifold {
+    let mut manifold = Manifold::new(normal);
+    for index in indices {
+        manifold.push(candidates[index]);
+    }
+    manifold
+}
+
+/// The index of the deepest candidate (the first among equals); 0 for none.
+fn deepest_index(candidates: &[ContactPoint]) -> usize {
+    candidates
+        .iter()
+        .enumerate()
+        .min_by(|(_, a), (_, b)| a.separation.total_cmp(&b.separation))
+        .map_or(0, |(index, _)| index)
+}
+
+/// Adds to the one to three points already chosen (none: nothing is added) until there are four,
+/// each time the point adding the most: after one point, the point farthest from it; after two,
+/// the point making the largest triangle with them; after three, the point farthest outside that
+/// triangle (the largest area added). A point within [`MIN_AREA_FRACTION`] of the line or triangle
+/// already chosen adds nothing and ends the choice.
+fn spread(normal: Vec3, candidates: &[ContactPoint], chosen: &mut Chosen) {
+    if chosen.len == 1 {
+        let first = candidates[chosen.indices[0]].position;
+        let farthest = candidates
+            .iter()
+            .map(|candidate| candidate.position.distance_squared(first))
+            .enumerate()
+            .max_by(|(_, a), (_, b)| a.total_cmp(b));
+        match farthest {
+            Some((farthest, span_squared)) if span_squared > 0.0 => chosen.push(farthest),
+            _ => return,
+        }
+    }
+    if chosen.len == 2 {
+        let [first, second] = [0, 1].map(|slot| candidates[chosen.indices[slot]].position);
+        let min_double_area = MIN_AREA_FRACTION * first.distance_squared(second);
+        let widest = candidates
+            .iter()
+            .map(|candidate| signed_double_area(first, second, candidate.position, normal))
+            .enumerate()
+            .max_by(|(_, a), (_, b)| a.abs().total_cmp(&b.abs()));
+        match widest {
+            Some((widest, area)) if area.abs() > min_double_area => chosen.push(widest),
+            _ => return,
+        }
+    }
+    if chosen.len == 3 {
+        let triangle = [0, 1, 2].map(|slot| candidates[chosen.indices[slot]].position);
+        let area = signed_double_area(triangle[0], triangle[1], triangle[2], normal);
+        let span_squared = (0..3)
+            .map(|edge| triangle[edge].distance_squared(triangle[(edge + 1) % 3]))
+            .fold(0.0, f32::max);
+        // With the triangle wound counter-clockwise, a point outside edge (p, q) has a negative
+        // area with it; the most negative is the point that adds the most area.
+        let winding = area.signum();
+        let outside = candidates
+            .iter()
+            .map(|candidate| {
+                (0..3)
+                    .map(|edge| {
+                        winding
+                            * signed_double_area(
+                                triangle[edge],
+                                triangle[(edge + 1) % 3],
+                                candidate.position,
+                                normal,
+                            )
+                    })
+                    .fold(f32::INFINITY, f32::min)
+            })
+            .enumerate()
+            .min_by(|(_, a), (_, b)| a.total_cmp(b));
+        if let Some((fourth, added)) = outside {
+            if added < -MIN_AREA_FRACTION * span_squared {
+                chosen.push(fourth);
+            }
+        }
+    }
 }
 
 #[cfg(test)]
@@ -597,6 +691,36 @@ mod tests {
             })
             .collect();
         assert!(sides[0] * sides[1] < 0.0);
+    }
+
+    #[test]
+    fn face_reduction_keeps_its_ids_and_reaches_the_deepest() {
+        // A regular hexagon, first flat, then tilted so that each corner in turn is the deepest
+        // by 4 mm: the same four ids every time, and the deepest depth always in the manifold.
+        let tangent = Vec3::new(15f32.to_radians().cos(), 15f32.to_radians().sin(), 0.0);
+        let hexagon = |tilt: Option<usize>| -> Vec<ContactPoint> {
+            (0..6)
+                .map(|k| {
+                    let angle = std::f32::consts::FRAC_PI_3 * k as f32;
+                    let depth = tilt.map_or(0.0, |deepest| {
+                        0.004 * (angle - std::f32::consts::FRAC_PI_3 * deepest as f32).cos()
+                    });
+                    contact(0.5 * angle.cos(), 0.5 * angle.sin(), -0.01 - depth, k)
+                })
+                .collect()
+        };
+        let ids = |manifold: &Manifold| {
+            let mut ids: Vec<u32> = manifold.points().iter().map(|point| point.id).collect();
+            ids.sort_unstable();
+            ids
+        };
+        let flat = reduce_contacts_on_face(Vec3::Z, tangent, &hexagon(None));
+        assert_eq!(flat.len(), 4);
+        for deepest in 0..6 {
+            let tilted = reduce_contacts_on_face(Vec3::Z, tangent, &hexagon(Some(deepest)));
+            assert_eq!(ids(&tilted), ids(&flat));
+            assert_eq!(tilted.deepest_separation(), -0.014);
+        }
     }
 
     #[test]

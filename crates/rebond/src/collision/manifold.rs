@@ -64,6 +64,15 @@ impl Manifold {
         self.count
     }
 
+    /// The smallest separation of its points, metres (how deep the contact reaches); infinity
+    /// with no point.
+    pub fn deepest_separation(&self) -> f32 {
+        self.points()
+            .iter()
+            .map(|point| point.separation)
+            .fold(f32::INFINITY, f32::min)
+    }
+
     /// Whether the manifold has no point.
     pub fn is_empty(&self) -> bool {
         self.count == 0

@@ -6,13 +6,17 @@
 //! builds a face of the Minkowski difference; other pairs cannot give the deepest axis). If an
 //! axis separates the shapes by more than the margin there is no contact. Otherwise the axis of
 //! least overlap, with a bias toward faces and toward A (see [`collide_polyhedra`]), gives either
-//! a face contact (the other shape's most anti-parallel face clipped against the reference face,
-//! see [`crate::collision::clipping`]) or an edge contact (one point between the two edges).
+//! a face contact (the other shape's most anti-parallel face through its deepest vertex clipped
+//! against the reference face, see [`crate::collision::clipping`]) or an edge contact (one point
+//! between the two edges). Shapes apart whose closest points no axis measures (a vertex near a
+//! vertex or an edge) get one point between their closest points, found by GJK.
 
 use crate::collision::clipping::{
-    clip_polygon, reduce_contacts, ClipFeature, MAX_CLIP_VERTICES, MAX_POLYGON_VERTICES,
+    clip_polygon, reduce_contacts_on_face, ClipFeature, MAX_CLIP_VERTICES, MAX_POLYGON_VERTICES,
 };
+use crate::collision::gjk;
 use crate::collision::manifold::{ContactPoint, Manifold};
+use crate::collision::SupportMap;
 use crate::math::{Mat3, Pose, Vec3};
 use crate::shape::{ConvexHull, Cuboid, Shape};
 
@@ -38,6 +42,23 @@ const EDGE_CHUNK: usize = 32;
 
 /// Squared length below which an edge counts as a point when closest points are computed, m².
 const DEGENERATE_EDGE_SQUARED: f32 = 1.0e-12;
+
+/// A contact built on an axis is kept for overlapping shapes only when its deepest point reaches
+/// the penetration depth (the best axis's separation) to within this, metres; and for shapes
+/// apart only when its deepest point is their distance to within this. Above the f32 rounding of
+/// the clipped points (1e-6 m) and GJK's precision on polyhedra a few metres across (1e-5 of the
+/// problem's size), below the 0.1 mm to which contact depths are checked.
+const DEPTH_TOLERANCE: f32 = 5.0e-5;
+
+/// The angle, radians, between a reference face's first edge and the direction along which its
+/// contact points are first picked ([`reduce_contacts_on_face`]): 15°, away from the symmetry
+/// axes of the squares, hexagons and octagons that clipping faces of boxes and prisms makes, where
+/// two points would be equally far along it.
+const REDUCTION_ANGLE: f32 = 0.261_799_4;
+
+/// The id of the one point of a contact made from the closest points of shapes apart (no edge
+/// contact takes it while hulls have fewer than 32 767 edges).
+const CLOSEST_POINTS_ID: u32 = u32::MAX;
 
 /// Box vertex `i` is `(±hx, ±hy, ±hz)` with the sign of x from bit 0 of `i`, y from bit 1 and z
 /// from bit 2 (set = positive).
@@ -212,23 +233,28 @@ impl<'a> Polyhedron<'a> {
 
     /// Edge `index` (below [`Polyhedron::edge_count`]).
     pub fn edge(&self, index: usize) -> PolyhedronEdge {
-        let (ends, faces) = match self.topology {
-            Topology::Cuboid(_) => {
-                let (ends, faces) = BOX_EDGES[index];
-                (ends.map(usize::from), faces.map(usize::from))
+        match self.topology {
+            Topology::Cuboid(half_extents) => {
+                let ([start, end], [first, second]) = BOX_EDGES[index];
+                PolyhedronEdge {
+                    start: box_vertex(half_extents, usize::from(start)),
+                    end: box_vertex(half_extents, usize::from(end)),
+                    face_normals: [
+                        self.face_plane(usize::from(first)).normal,
+                        self.face_plane(usize::from(second)).normal,
+                    ],
+                }
             }
             Topology::Hull(hull) => {
-                let edge = hull.edges()[index];
-                (
-                    edge.vertices.map(|vertex| vertex as usize),
-                    edge.faces.map(|face| face as usize),
-                )
+                let edge = &hull.edges()[index];
+                let vertex = |end: usize| hull.vertices()[edge.vertices[end] as usize];
+                let normal = |side: usize| hull.faces()[edge.faces[side] as usize].normal;
+                PolyhedronEdge {
+                    start: vertex(0),
+                    end: vertex(1),
+                    face_normals: [normal(0), normal(1)],
+                }
             }
-        };
-        PolyhedronEdge {
-            start: self.vertex(ends[0]),
-            end: self.vertex(ends[1]),
-            face_normals: faces.map(|face| self.face_plane(face).normal),
         }
     }
 
@@ -238,6 +264,47 @@ impl<'a> Polyhedron<'a> {
         match self.topology {
             Topology::Cuboid(half_extents) => Vec3::ONE.copysign(direction) * half_extents,
             Topology::Hull(hull) => hull.support(direction),
+        }
+    }
+
+    /// The index of the vertex farthest along `direction` (as [`Polyhedron::support`]).
+    fn support_index(&self, direction: Vec3) -> usize {
+        match self.topology {
+            Topology::Cuboid(_) => [direction.x, direction.y, direction.z]
+                .iter()
+                .enumerate()
+                .filter(|(_, component)| component.is_sign_positive())
+                .map(|(axis, _)| 1 << axis)
+                .sum(),
+            Topology::Hull(hull) => {
+                let mut best = (0, f32::NEG_INFINITY);
+                for (index, vertex) in hull.vertices().iter().enumerate() {
+                    let reach = vertex.dot(direction);
+                    if reach > best.1 {
+                        best = (index, reach);
+                    }
+                }
+                best.0
+            }
+        }
+    }
+
+    /// A point inside the polyhedron: a box's centre, the mean of a hull's vertices.
+    fn interior_point(&self) -> Vec3 {
+        match self.topology {
+            Topology::Cuboid(_) => Vec3::ZERO,
+            Topology::Hull(hull) => {
+                let vertices = hull.vertices();
+                vertices.iter().copied().sum::<Vec3>() / vertices.len().max(1) as f32
+            }
+        }
+    }
+
+    /// Whether vertex `vertex` is a corner of face `face`.
+    fn face_has_vertex(&self, face: usize, vertex: usize) -> bool {
+        match self.topology {
+            Topology::Cuboid(_) => BOX_FACE_LOOPS[face].contains(&(vertex as u8)),
+            Topology::Hull(hull) => hull.faces()[face].vertices.contains(&(vertex as u32)),
         }
     }
 
@@ -263,6 +330,20 @@ impl<'a> Polyhedron<'a> {
 fn box_vertex(half_extents: Vec3, index: usize) -> Vec3 {
     let sign = |bit: usize| if index & bit != 0 { 1.0 } else { -1.0 };
     Vec3::new(sign(1), sign(2), sign(4)) * half_extents
+}
+
+/// A polyhedron placed in the world, for GJK.
+#[derive(Debug, Clone, Copy)]
+struct PosedPolyhedron<'p, 'a> {
+    polyhedron: &'p Polyhedron<'a>,
+    frame: Frame,
+}
+
+impl SupportMap for PosedPolyhedron<'_, '_> {
+    fn support(&self, direction: Vec3) -> Vec3 {
+        let local = self.frame.inverse_vector(direction);
+        self.frame.point(self.polyhedron.support(local))
+    }
 }
 
 /// A rigid transform as a rotation matrix and a translation: `rotation · p + translation`.
@@ -326,8 +407,52 @@ struct EdgeAxis {
 }
 
 /// The face of `reference` beyond whose plane `other` (placed in the reference frame by
-/// `other_in_reference`) lies farthest, or reaches in least.
+/// `other_in_reference`) lies farthest, or reaches in least (the first of equals): in closed form
+/// for two boxes, else by [`best_face_axis_by_support`].
 fn best_face_axis(
+    reference: &Polyhedron,
+    other: &Polyhedron,
+    other_in_reference: &Frame,
+) -> FaceAxis {
+    match (reference.topology, other.topology) {
+        (Topology::Cuboid(half_reference), Topology::Cuboid(half_other)) => {
+            best_box_box_face_axis(half_reference, half_other, other_in_reference)
+        }
+        _ => best_face_axis_by_support(reference, other, other_in_reference),
+    }
+}
+
+/// [`best_face_axis`] for two boxes: along the reference's axis `eᵢ`, the other box (centre `c`,
+/// axes `fₖ`, half extents `bₖ`) reaches down to `cᵢ − Σₖ bₖ |eᵢ · fₖ|`, so the face facing its
+/// centre (`+eᵢ` when `cᵢ ≥ 0`) has the larger separation, `|cᵢ| − aᵢ − Σₖ bₖ |eᵢ · fₖ|`.
+fn best_box_box_face_axis(
+    half_reference: Vec3,
+    half_other: Vec3,
+    other_in_reference: &Frame,
+) -> FaceAxis {
+    let rows = other_in_reference.rotation.transpose();
+    let mut best = FaceAxis {
+        face: 0,
+        separation: f32::NEG_INFINITY,
+    };
+    for (axis, row) in [rows.x_axis, rows.y_axis, rows.z_axis]
+        .into_iter()
+        .enumerate()
+    {
+        let centre = other_in_reference.translation[axis];
+        let separation = centre.abs() - half_reference[axis] - half_other.dot(row.abs());
+        if separation > best.separation {
+            best = FaceAxis {
+                face: 2 * axis + usize::from(centre < 0.0),
+                separation,
+            };
+        }
+    }
+    best
+}
+
+/// [`best_face_axis`] for any two polyhedra, from the other's support point against each face.
+fn best_face_axis_by_support(
     reference: &Polyhedron,
     other: &Polyhedron,
     other_in_reference: &Frame,
@@ -348,45 +473,278 @@ fn best_face_axis(
     best
 }
 
+/// Replaces `best` by `candidate` when there is none yet or the candidate's separation is larger.
+fn keep_larger(best: &mut Option<EdgeAxis>, candidate: EdgeAxis) {
+    if best.is_none_or(|best| candidate.separation > best.separation) {
+        *best = Some(candidate);
+    }
+}
+
 /// An edge of B placed in A's frame, with its face normals negated: its arc on the Gauss map of
 /// the Minkowski difference A − B.
 #[derive(Debug, Clone, Copy, Default)]
 struct MovedEdge {
+    index: usize,
     start: Vec3,
     direction: Vec3,
     negated_normals: [Vec3; 2],
 }
 
 /// Over the edge pairs that build a face of the Minkowski difference A − B, the largest
-/// separation along their cross product, computed in A's frame (`b_in_a` places B there). B's
-/// edges are moved into A's frame [`EDGE_CHUNK`] at a time, on the stack.
-fn best_edge_axis(a: &Polyhedron, b: &Polyhedron, b_in_a: &Frame) -> Option<EdgeAxis> {
+/// separation along their cross product, in A's frame (`b_in_a` places B there, `a_in_b` A in
+/// B's): by [`best_box_box_edge_axis`] for two boxes, by [`best_box_edge_axis`] when A or B is a
+/// box (the roles swapped when only B is), else by [`best_edge_axis`] over every pair. Edges
+/// whose pairs cannot separate the shapes by more than `threshold` may be skipped
+/// ([`edge_reach`]), so a pair at or below it may be missed.
+fn edge_query(
+    a: &Polyhedron,
+    b: &Polyhedron,
+    b_in_a: &Frame,
+    a_in_b: &Frame,
+    threshold: f32,
+) -> Option<EdgeAxis> {
+    match (a.topology, b.topology) {
+        (Topology::Cuboid(half_a), Topology::Cuboid(half_b)) => {
+            best_box_box_edge_axis(half_a, half_b, b_in_a)
+        }
+        (Topology::Cuboid(half_extents), _) => {
+            best_box_edge_axis(half_extents, b, b_in_a, threshold)
+        }
+        (_, Topology::Cuboid(half_extents)) => {
+            best_box_edge_axis(half_extents, a, a_in_b, threshold).map(|swapped| EdgeAxis {
+                edge_a: swapped.edge_b,
+                edge_b: swapped.edge_a,
+                axis: -b_in_a.vector(swapped.axis),
+                separation: swapped.separation,
+            })
+        }
+        _ => best_edge_axis(a, b, b_in_a, threshold),
+    }
+}
+
+/// An upper bound on the separation of any edge pair with this edge: the largest `n · (p − s)`
+/// over the unit normals `n` on the edge's arc between its face normals `n₁, n₂`, for `s` a point
+/// of the edge and `p` a point inside the other shape (`toward = p − s`). The pair's separation
+/// along its axis `n` is the other shape's extent along `∓n` less this shape's, which is reached
+/// at the edge, so it is at most `n · (p − s)`. The largest is `|v|` for `v` the part of `toward`
+/// in the arc's plane when `v` lies between `n₁` and `n₂` (`v = α n₁ + β n₂`, `α, β ≥ 0`), else
+/// at an end; infinite for a degenerate arc.
+fn edge_reach(face_normals: [Vec3; 2], toward: Vec3) -> f32 {
+    let [first, second] = face_normals;
+    let (along_first, along_second) = (first.dot(toward), second.dot(toward));
+    let cosine = first.dot(second);
+    let sine_squared = 1.0 - cosine * cosine;
+    // Written so that a NaN also counts as degenerate.
+    let proper_arc = sine_squared > 1.0e-6;
+    if !proper_arc {
+        return f32::INFINITY;
+    }
+    let alpha = along_first - along_second * cosine;
+    let beta = along_second - along_first * cosine;
+    if alpha >= 0.0 && beta >= 0.0 {
+        ((alpha * along_first + beta * along_second) / sine_squared)
+            .max(0.0)
+            .sqrt()
+    } else {
+        along_first.max(along_second)
+    }
+}
+
+/// Whether an edge whose [`edge_reach`] is `reach` can be skipped: its pairs cannot beat
+/// `threshold` (less [`ABSOLUTE_TOLERANCE`], against the rounding of the two computations).
+fn out_of_reach(reach: f32, threshold: f32) -> bool {
+    reach < threshold - ABSOLUTE_TOLERANCE
+}
+
+/// [`best_edge_axis`] for two boxes (half extents `half_a`, `half_b`): one candidate per pair of
+/// axes `eᵢ` of A and `fⱼ` of B. Of the two Minkowski faces along `±(eᵢ × fⱼ)`, the one facing B's
+/// centre is the larger separation, `|n · c| − Σₖ aₖ |n · eₖ| − Σₖ bₖ |n · fₖ|` (`c` B's centre in
+/// A's frame), between A's edge along `eᵢ` supporting `n` and B's edge along `fⱼ` supporting
+/// `−n`, read from the signs of the other components. A crossing on a face normal (a zero
+/// component) is left to the face axes, as a parallel pair is.
+fn best_box_box_edge_axis(half_a: Vec3, half_b: Vec3, b_in_a: &Frame) -> Option<EdgeAxis> {
+    let mut best: Option<EdgeAxis> = None;
+    let centre = b_in_a.translation;
+    let axes_b = [
+        b_in_a.rotation.x_axis,
+        b_in_a.rotation.y_axis,
+        b_in_a.rotation.z_axis,
+    ];
+    for (index_a, &axis_a) in Vec3::AXES.iter().enumerate() {
+        for (index_b, &axis_b) in axes_b.iter().enumerate() {
+            let cross = axis_a.cross(axis_b);
+            let length_squared = cross.length_squared();
+            // Written so that a NaN (from overflow on absurdly large shapes) also rejects it.
+            let crosses = length_squared > PARALLEL_SINE * PARALLEL_SINE;
+            if !crosses {
+                continue;
+            }
+            let mut axis = cross / length_squared.sqrt();
+            if axis.dot(centre) < 0.0 {
+                axis = -axis;
+            }
+            let against_in_b = b_in_a.inverse_vector(-axis);
+            let (Some(edge_a), Some(edge_b)) = (
+                box_edge_along(index_a, axis),
+                box_edge_along(index_b, against_in_b),
+            ) else {
+                continue;
+            };
+            let separation =
+                axis.dot(centre) - half_a.dot(axis.abs()) - half_b.dot(against_in_b.abs());
+            keep_larger(
+                &mut best,
+                EdgeAxis {
+                    edge_a,
+                    edge_b,
+                    axis,
+                    separation,
+                },
+            );
+        }
+    }
+    best
+}
+
+/// The box edge along axis `axis_index` that is the box's support along `direction` (local),
+/// read from the signs of `direction`'s other two components; `None` when one is zero (the
+/// support is then a face).
+fn box_edge_along(axis_index: usize, direction: Vec3) -> Option<usize> {
+    let (first, second) = match axis_index {
+        0 => (1, 2),
+        1 => (0, 2),
+        _ => (0, 1),
+    };
+    (direction[first] != 0.0 && direction[second] != 0.0).then(|| {
+        4 * axis_index
+            + usize::from(direction[first] > 0.0)
+            + 2 * usize::from(direction[second] > 0.0)
+    })
+}
+
+/// [`best_edge_axis`] for a box A (half extents `half_extents`) and any polyhedron B, with one
+/// candidate per edge of B and box axis instead of one per pair of edges. The box's four edges
+/// along axis `i` have arcs on the Gauss map that together make the great circle normal to `i`:
+/// B's negated arc crosses it when the ends' `i` components differ in sign, at the point
+/// `±(eᵢ × e_B)` lying on B's arc, and the box edge whose arc holds that point is the one whose
+/// two faces have the signs of the point's other two components. A crossing on a face normal of
+/// the box is left to the face axes, as a parallel pair is.
+fn best_box_edge_axis(
+    half_extents: Vec3,
+    b: &Polyhedron,
+    b_in_a: &Frame,
+    threshold: f32,
+) -> Option<EdgeAxis> {
+    // Worked in B's frame, where B's edges need no moving: the box axes `eᵢ` are the rows of the
+    // rotation, and only a crossing's axis is moved to A's frame.
+    let rotation = b_in_a.rotation.transpose();
+    let box_axes = [rotation.x_axis, rotation.y_axis, rotation.z_axis];
+    let box_centre = b_in_a.inverse_vector(-b_in_a.translation);
+    let mut best: Option<EdgeAxis> = None;
+    for edge_b in 0..b.edge_count() {
+        let local = b.edge(edge_b);
+        if out_of_reach(
+            edge_reach(local.face_normals, box_centre - local.start),
+            threshold,
+        ) {
+            continue;
+        }
+        let direction = local.direction();
+        let [m1, m2] = [-local.face_normals[0], -local.face_normals[1]];
+        let parallel_limit = PARALLEL_SINE * PARALLEL_SINE * direction.length_squared();
+        for (axis_index, &box_axis) in box_axes.iter().enumerate() {
+            if m1.dot(box_axis) * m2.dot(box_axis) >= 0.0 {
+                continue;
+            }
+            let mut axis = box_axis.cross(direction);
+            let length_squared = axis.length_squared();
+            // Written so that a NaN (from overflow on absurdly large shapes) also rejects it.
+            let crosses = length_squared > parallel_limit;
+            let toward_b_arc = axis.dot(m1 + m2);
+            if !crosses || toward_b_arc == 0.0 {
+                continue;
+            }
+            if toward_b_arc < 0.0 {
+                axis = -axis;
+            }
+            let axis_in_a = b_in_a.vector(axis);
+            let Some(edge_a) = box_edge_along(axis_index, axis_in_a) else {
+                continue;
+            };
+            let on_edge_a = box_vertex(half_extents, usize::from(BOX_EDGES[edge_a].0[0]));
+            let axis = axis_in_a / length_squared.sqrt();
+            let separation = axis.dot(b_in_a.point(local.start) - on_edge_a);
+            keep_larger(
+                &mut best,
+                EdgeAxis {
+                    edge_a,
+                    edge_b,
+                    axis,
+                    separation,
+                },
+            );
+        }
+    }
+    best
+}
+
+/// Over the edge pairs that build a face of the Minkowski difference A − B, the largest
+/// separation along their cross product, computed in A's frame (`b_in_a` places B there) by
+/// trying every pair. B's edges are moved into A's frame [`EDGE_CHUNK`] at a time, on the stack.
+fn best_edge_axis(
+    a: &Polyhedron,
+    b: &Polyhedron,
+    b_in_a: &Frame,
+    threshold: f32,
+) -> Option<EdgeAxis> {
+    // A's inside point in B's frame, where B's edges are tested before being moved.
+    let inside_a = b_in_a.inverse_vector(a.interior_point() - b_in_a.translation);
+    let inside_b = b_in_a.point(b.interior_point());
     let mut best: Option<EdgeAxis> = None;
     let mut chunk = [MovedEdge::default(); EDGE_CHUNK];
-    for chunk_start in (0..b.edge_count()).step_by(EDGE_CHUNK) {
-        let chunk_len = (b.edge_count() - chunk_start).min(EDGE_CHUNK);
-        for (offset, slot) in chunk[..chunk_len].iter_mut().enumerate() {
-            let local = b.edge(chunk_start + offset);
-            *slot = MovedEdge {
-                start: b_in_a.point(local.start),
-                direction: b_in_a.vector(local.direction()),
-                negated_normals: local.face_normals.map(|normal| -b_in_a.vector(normal)),
-            };
+    let mut next_b = 0;
+    while next_b < b.edge_count() {
+        let mut chunk_len = 0;
+        while chunk_len < EDGE_CHUNK && next_b < b.edge_count() {
+            let local = b.edge(next_b);
+            if !out_of_reach(
+                edge_reach(local.face_normals, inside_a - local.start),
+                threshold,
+            ) {
+                chunk[chunk_len] = MovedEdge {
+                    index: next_b,
+                    start: b_in_a.point(local.start),
+                    direction: b_in_a.vector(local.direction()),
+                    negated_normals: [
+                        -b_in_a.vector(local.face_normals[0]),
+                        -b_in_a.vector(local.face_normals[1]),
+                    ],
+                };
+                chunk_len += 1;
+            }
+            next_b += 1;
         }
         for edge_a in 0..a.edge_count() {
             let edge = a.edge(edge_a);
-            for (offset, moved) in chunk[..chunk_len].iter().enumerate() {
+            if out_of_reach(
+                edge_reach(edge.face_normals, inside_b - edge.start),
+                threshold,
+            ) {
+                continue;
+            }
+            for moved in &chunk[..chunk_len] {
                 let Some((axis, separation)) = edge_pair_axis(&edge, moved) else {
                     continue;
                 };
-                if best.is_none_or(|best| separation > best.separation) {
-                    best = Some(EdgeAxis {
+                keep_larger(
+                    &mut best,
+                    EdgeAxis {
                         edge_a,
-                        edge_b: chunk_start + offset,
+                        edge_b: moved.index,
                         axis,
                         separation,
-                    });
-                }
+                    },
+                );
             }
         }
     }
@@ -450,6 +808,21 @@ impl ContactAxis {
             ContactAxis::Edges(edge) => edge.separation,
         }
     }
+
+    /// The axis in the world, pointing from A to B.
+    fn world_normal(
+        &self,
+        a: &Polyhedron,
+        world_a: &Frame,
+        b: &Polyhedron,
+        world_b: &Frame,
+    ) -> Vec3 {
+        match self {
+            ContactAxis::FaceOfA(face) => world_a.vector(a.face_plane(face.face).normal),
+            ContactAxis::FaceOfB(face) => -world_b.vector(b.face_plane(face.face).normal),
+            ContactAxis::Edges(edge) => world_a.vector(edge.axis),
+        }
+    }
 }
 
 /// Whether `candidate` beats `incumbent` by more than the tolerance `relative · |incumbent| +`
@@ -459,23 +832,30 @@ fn clearly_larger(candidate: f32, incumbent: f32, relative: f32) -> bool {
 }
 
 /// The contact manifold between polyhedra `a` at `pose_a` and `b` at `pose_b`, with the normal
-/// pointing from A to B; `None` when they are apart by more than `margin` metres along some axis,
-/// when no contact point lies within `margin` (possible only while they are apart), or when
-/// either has no face.
+/// pointing from A to B; `None` when they are apart by more than `margin` metres, when either
+/// has no face, or when clipping leaves no point (only for degenerate faces, of zero area or of
+/// more than [`MAX_POLYGON_VERTICES`] corners, of which a subset is clipped).
 ///
 /// The axis of least overlap is chosen with a bias so that the choice holds still while bodies
 /// jiggle: B's best face is the reference only if its separation beats A's by 5 % (of A's, in
 /// absolute value) plus 0.5 mm, and the best edge pair is used instead of that face only if its
 /// separation beats the face's by 10 % plus 0.5 mm. The chosen axis thus trails the true
-/// least-overlap axis by at most one of these tolerances; should it give no point, the true
-/// axis makes the contact.
+/// least-overlap axis by at most one of these tolerances. While the shapes overlap, the best
+/// axis's separation is the penetration depth; should the chosen axis's contact not reach it
+/// (within [`DEPTH_TOLERANCE`]) or give no point, the best axis makes the contact. While they are
+/// apart, the axes' separations may fall short of the distance, which GJK then measures: a contact
+/// on the chosen or the best axis is kept only if its deepest point is that distance (within
+/// [`DEPTH_TOLERANCE`]), else the contact is one point midway between the closest points, with
+/// the direction between them as the normal and the id [`CLOSEST_POINTS_ID`].
 ///
-/// Face contact: the reference face's side planes clip the incident face (the other body's face
-/// most anti-parallel to the reference normal); points whose separation from the reference plane
-/// is at most `margin` are kept and reduced to four ([`reduce_contacts`]). Each point sits halfway
-/// between the incident point and its projection on the reference plane. Its id packs, from the
-/// top bit down: 0, whether B holds the reference face, the reference and incident face indices
-/// (7 bits each, wrapping) and the [`ClipFeature::key`] of the clipped point.
+/// Face contact: the reference face's side planes clip the incident face (the face of the other
+/// body, among those through its vertex deepest below the reference plane, most anti-parallel to
+/// the reference normal); points whose separation from the reference plane is at most `margin`
+/// are kept and reduced to four ([`reduce_contacts_on_face`], along a direction fixed to the
+/// reference face, [`REDUCTION_ANGLE`] from its first edge). Each point sits halfway between the
+/// incident point and its projection on the reference plane. Its id packs, from the top bit down:
+/// 0, whether B holds the reference face, the reference and incident face indices (7 bits each,
+/// wrapping) and the [`ClipFeature::key`] of the clipped point.
 ///
 /// Edge contact: one point halfway between the closest points of the two edges; its id is 1 in
 /// the top bit, then 15 bits of A's edge index and 16 bits of B's (wrapping).
@@ -500,13 +880,6 @@ pub fn collide_polyhedra(
     if face_b.separation > margin {
         return None;
     }
-    let edge = best_edge_axis(a, b, &b_in_a);
-    if edge.is_some_and(|edge| edge.separation > margin) {
-        return None;
-    }
-
-    let world_a = Frame::from_pose(pose_a);
-    let world_b = Frame::from_pose(pose_b);
     let face = if clearly_larger(
         face_b.separation,
         face_a.separation,
@@ -516,6 +889,15 @@ pub fn collide_polyhedra(
     } else {
         ContactAxis::FaceOfA(face_a)
     };
+    // An edge pair matters only if it beats the kept face (below, an edge pair is chosen or
+    // best only then), so edges that cannot are skipped.
+    let edge = edge_query(a, b, &b_in_a, &a_in_b, face.separation());
+    if edge.is_some_and(|edge| edge.separation > margin) {
+        return None;
+    }
+
+    let world_a = Frame::from_pose(pose_a);
+    let world_b = Frame::from_pose(pose_b);
     let chosen = match edge {
         Some(edge)
             if clearly_larger(edge.separation, face.separation(), EDGE_RELATIVE_TOLERANCE) =>
@@ -542,15 +924,90 @@ pub fn collide_polyhedra(
         }
         ContactAxis::Edges(edge) => edge_contact(a, &world_a, b, &world_b, &edge, margin),
     };
-    // The axis kept by the bias may clip to nothing where it trails the best one (two edges
-    // crossing near a corner, outside the kept face's side planes): the best axis then makes
-    // the contact.
-    contact(chosen).or_else(|| if best == chosen { None } else { contact(best) })
+    if best.separation() > 0.0 {
+        let posed_a = PosedPolyhedron {
+            polyhedron: a,
+            frame: world_a,
+        };
+        let posed_b = PosedPolyhedron {
+            polyhedron: b,
+            frame: world_b,
+        };
+        return apart_contact(&posed_a, &posed_b, chosen, best, margin, contact);
+    }
+    // Overlapping, the best axis's separation is the penetration depth. The axis kept by the
+    // bias may fall short of it where it trails the best one (its deepest vertex lies outside the
+    // kept face's side planes) or clip to nothing (two edges crossing near a corner): the best
+    // axis, whose deepest vertex always lies inside its face, then makes the contact.
+    match contact(chosen) {
+        Some(manifold)
+            if best == chosen
+                || manifold.deepest_separation() <= best.separation() + DEPTH_TOLERANCE =>
+        {
+            Some(manifold)
+        }
+        kept => contact(best).or(kept),
+    }
 }
 
-/// Clips the incident face of `incident` against face `reference_face` of `reference` (both
-/// placed in the world by their frames). `reference_is_b` says which side of the manifold the
-/// reference is on.
+/// The contact of polyhedra `a` and `b` (placed in the world) while they are apart (`best`'s
+/// separation positive): built by `contact` on the `chosen` or the `best` axis when it measures
+/// their distance, else one point between their closest points. The separations along the axes
+/// may fall short of the distance (two edges whose closest points are their ends, a vertex near a
+/// vertex), so GJK measures it, starting from the best axis; touching within GJK's tolerance, the
+/// best axis's separation is as near the distance as GJK gets. A face contact needs no GJK when
+/// its deepest point is within [`DEPTH_TOLERANCE`] of the best axis's separation: each of its
+/// points pairs a point of one shape with its projection on the other's face, a distance that
+/// bounds the shapes' distance from above, as any axis's separation bounds it from below.
+fn apart_contact(
+    a: &PosedPolyhedron,
+    b: &PosedPolyhedron,
+    chosen: ContactAxis,
+    best: ContactAxis,
+    margin: f32,
+    contact: impl Fn(ContactAxis) -> Option<Manifold>,
+) -> Option<Manifold> {
+    let lower_bound = best.separation();
+    let chosen_contact = contact(chosen);
+    let is_face = matches!(chosen, ContactAxis::FaceOfA(_) | ContactAxis::FaceOfB(_));
+    if is_face
+        && chosen_contact
+            .is_some_and(|manifold| manifold.deepest_separation() <= lower_bound + DEPTH_TOLERANCE)
+    {
+        return chosen_contact;
+    }
+    let axis_normal = best.world_normal(a.polyhedron, &a.frame, b.polyhedron, &b.frame);
+    let closest = gjk::distance_from_direction(a, b, axis_normal);
+    let (distance, normal) = if closest.overlapping {
+        (lower_bound, axis_normal)
+    } else {
+        (closest.distance, closest.normal().unwrap_or(axis_normal))
+    };
+    if distance > margin {
+        return None;
+    }
+    let measures_distance =
+        |manifold: &Manifold| (manifold.deepest_separation() - distance).abs() <= DEPTH_TOLERANCE;
+    let built = chosen_contact.filter(measures_distance).or_else(|| {
+        (best != chosen)
+            .then(|| contact(best))
+            .flatten()
+            .filter(measures_distance)
+    });
+    Some(built.unwrap_or_else(|| {
+        let mut manifold = Manifold::new(normal);
+        manifold.push(ContactPoint {
+            position: 0.5 * (closest.point_a + closest.point_b),
+            separation: distance,
+            id: CLOSEST_POINTS_ID,
+        });
+        manifold
+    }))
+}
+
+/// Clips the incident face of `incident` (through its vertex deepest below the reference plane,
+/// the most anti-parallel) against face `reference_face` of `reference` (both placed in the world
+/// by their frames). `reference_is_b` says which side of the manifold the reference is on.
 fn face_contact(
     reference: &Polyhedron,
     reference_frame: &Frame,
@@ -565,9 +1022,13 @@ fn face_contact(
     let offset = plane.offset + normal.dot(reference_frame.translation);
 
     let toward_incident = incident_frame.inverse_vector(normal);
+    let deepest_vertex = incident.support_index(-toward_incident);
     let mut incident_face = 0;
     let mut most_opposed = f32::INFINITY;
     for face in 0..incident.face_count() {
+        if !incident.face_has_vertex(face, deepest_vertex) {
+            continue;
+        }
         let alignment = incident.face_plane(face).normal.dot(toward_incident);
         if alignment < most_opposed {
             most_opposed = alignment;
@@ -607,7 +1068,13 @@ fn face_contact(
         return None;
     }
     let manifold_normal = if reference_is_b { -normal } else { normal };
-    Some(reduce_contacts(manifold_normal, &candidates[..count]))
+    let edge = (reference_loop[1] - reference_loop[0]).normalize_or_zero();
+    let tangent = edge * REDUCTION_ANGLE.cos() + normal.cross(edge) * REDUCTION_ANGLE.sin();
+    Some(reduce_contacts_on_face(
+        manifold_normal,
+        tangent,
+        &candidates[..count],
+    ))
 }
 
 /// The id of a face-contact point; layout in [`collide_polyhedra`].
@@ -737,6 +1204,79 @@ mod tests {
             let vertex = polyhedron.vertex(index);
             assert_eq!(cuboid.support(vertex), vertex);
         }
+    }
+
+    /// The box routes find the same face as every support point, and the box routes and the
+    /// skipping of edges out of reach the same edge pair, axis and separation as trying every
+    /// pair, for boxes and a hull, either way round.
+    #[test]
+    fn box_queries_match_the_general_ones() {
+        let other = unit_box();
+        let points: Vec<Vec3> = (0..12)
+            .map(|index| {
+                let angle = index as f32 * std::f32::consts::TAU / 6.0;
+                let y = if index < 6 { -0.4 } else { 0.3 };
+                Vec3::new(0.5 * angle.cos(), y, 0.6 * angle.sin())
+            })
+            .collect();
+        let hull = ConvexHull::new(&points).expect("a prism");
+        let cuboid = Cuboid::new(Vec3::new(0.4, 0.3, 0.7)).expect("valid box");
+        let shapes = [
+            Polyhedron::cuboid(&cuboid),
+            Polyhedron::cuboid(&other),
+            Polyhedron::hull(&hull),
+        ];
+        let (mut compared, mut same_pair) = (0, 0);
+        for step in 0..200 {
+            let t = step as f32;
+            let pose_a = Pose::new(
+                Vec3::new(0.1 * t.sin(), 0.2, -0.1),
+                crate::math::Quat::from_scaled_axis(Vec3::new(0.3 * t, 0.7 * t.cos(), 0.11 * t)),
+            );
+            let pose_b = Pose::new(
+                Vec3::new(
+                    0.9 * (0.37 * t).cos(),
+                    1.1 * (0.53 * t).sin(),
+                    0.8 * (0.29 * t).cos(),
+                ),
+                crate::math::Quat::from_scaled_axis(Vec3::new(0.05 * t, -0.2 * t, 0.4 * t.sin())),
+            );
+            for a in &shapes {
+                for b in &shapes {
+                    for (a, b, pose_a, pose_b) in [(a, b, pose_a, pose_b), (b, a, pose_b, pose_a)] {
+                        let b_in_a = Frame::relative(&pose_a, &pose_b);
+                        let a_in_b = Frame::relative(&pose_b, &pose_a);
+                        let face = best_face_axis(a, b, &b_in_a);
+                        let by_support = best_face_axis_by_support(a, b, &b_in_a);
+                        assert_eq!(face.face, by_support.face);
+                        assert!((face.separation - by_support.separation).abs() < 1e-5);
+                        let slow = best_edge_axis(a, b, &b_in_a, f32::NEG_INFINITY);
+                        let Some(slow) = slow else {
+                            assert!(edge_query(a, b, &b_in_a, &a_in_b, f32::NEG_INFINITY).is_none());
+                            continue;
+                        };
+                        for threshold in [f32::NEG_INFINITY, slow.separation - 0.01] {
+                            let fast = edge_query(a, b, &b_in_a, &a_in_b, threshold)
+                                .expect("the best pair beats the threshold");
+                            assert!((fast.separation - slow.separation).abs() < 1e-5);
+                            if (fast.edge_a, fast.edge_b) == (slow.edge_a, slow.edge_b) {
+                                assert!((fast.axis - slow.axis).length() < 1e-5);
+                                same_pair += 1;
+                            }
+                            compared += 1;
+                        }
+                        // Above the best pair, whatever is found is no better.
+                        let above = edge_query(a, b, &b_in_a, &a_in_b, slow.separation + 0.01);
+                        assert!(above.is_none_or(|fast| fast.separation <= slow.separation + 1e-5));
+                    }
+                }
+            }
+        }
+        // Only exact ties between pairs (boxes turned alike) may pick another pair.
+        assert!(
+            same_pair * 100 >= compared * 95,
+            "{same_pair} of {compared}"
+        );
     }
 
     #[test]
