@@ -11,32 +11,11 @@ fn main() {
 /// Number of boxes in the world, and of rays cast per iteration.
 const COUNT: usize = 10_000;
 
-/// SplitMix64: a tiny deterministic generator for the scene.
-struct Random(u64);
+#[path = "../tests/common/random.rs"]
+mod random;
+use random::Random;
 
 impl Random {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[low, high)`.
-    fn range(&mut self, low: f32, high: f32) -> f32 {
-        let unit = (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32;
-        low + (high - low) * unit
-    }
-
-    fn vec3(&mut self, low: f32, high: f32) -> Vec3 {
-        Vec3::new(
-            self.range(low, high),
-            self.range(low, high),
-            self.range(low, high),
-        )
-    }
-
     fn unit_vector(&mut self) -> Vec3 {
         loop {
             let v = self.vec3(-1.0, 1.0);

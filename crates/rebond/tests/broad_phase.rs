@@ -1,44 +1,14 @@
 //! The broad phase against brute force on randomised scenes: thousands of boxes moving, appearing
 //! and disappearing over hundreds of steps.
 
+#[path = "common/random.rs"]
+mod random;
+
+use random::Random;
+
 use rebond::collision::broad_phase::{BroadPhase, ProxyHandle};
 use rebond::collision::dynamic_tree::AABB_MARGIN;
 use rebond::{Aabb, Vec3};
-
-/// SplitMix64: a tiny deterministic generator, so every run sees the same scene.
-struct Random(u64);
-
-impl Random {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[low, high)`.
-    fn range(&mut self, low: f32, high: f32) -> f32 {
-        let unit = (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32;
-        low + (high - low) * unit
-    }
-
-    fn chance(&mut self, probability: f32) -> bool {
-        self.range(0.0, 1.0) < probability
-    }
-
-    fn below(&mut self, bound: usize) -> usize {
-        (self.next_u64() % bound as u64) as usize
-    }
-
-    fn vec3(&mut self, low: f32, high: f32) -> Vec3 {
-        Vec3::new(
-            self.range(low, high),
-            self.range(low, high),
-            self.range(low, high),
-        )
-    }
-}
 
 /// Half the side of the cube the boxes live in, metres.
 const EXTENT: f32 = 20.0;

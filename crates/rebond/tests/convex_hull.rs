@@ -13,24 +13,11 @@ use rebond::math::rotate_tensor;
 use rebond::shape::{ConvexHull, Cuboid};
 use rebond::{ErrorKind, MassProperties, Mat3, Pose, Quat, Vec3};
 
-/// SplitMix64: a tiny deterministic generator.
-struct Rng(u64);
+#[path = "common/random.rs"]
+mod random;
+use random::Random as Rng;
 
 impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[lo, hi)`.
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        let unit = (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32;
-        lo + (hi - lo) * unit
-    }
-
     fn in_cube(&mut self, half: f32) -> Vec3 {
         Vec3::new(
             self.range(-half, half),
@@ -57,10 +44,6 @@ impl Rng {
                 return v;
             }
         }
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        (self.next_u64() % n as u64) as usize
     }
 
     fn shuffle<T>(&mut self, items: &mut [T]) {

@@ -9,6 +9,11 @@
 //! and shrunk by `GROW`: a hit on the shrunk shape must be found, a miss of the grown shape must
 //! not be, and distances are compared where the grown and shrunk answers agree closely.
 
+#[path = "common/random.rs"]
+mod random;
+
+use random::Random;
+
 use std::ops::ControlFlow;
 
 use glam::DVec3;
@@ -22,36 +27,7 @@ use rebond::{
 /// How far references grow and shrink shapes to tell clear cases from grazing ones, metres.
 const GROW: f64 = 1e-4;
 
-/// SplitMix64: a tiny deterministic generator, so every run sees the same cases.
-struct Random(u64);
-
 impl Random {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[low, high)`.
-    fn range(&mut self, low: f32, high: f32) -> f32 {
-        let unit = (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32;
-        low + (high - low) * unit
-    }
-
-    fn chance(&mut self, probability: f32) -> bool {
-        self.range(0.0, 1.0) < probability
-    }
-
-    fn vec3(&mut self, low: f32, high: f32) -> Vec3 {
-        Vec3::new(
-            self.range(low, high),
-            self.range(low, high),
-            self.range(low, high),
-        )
-    }
-
     fn unit_vector(&mut self) -> Vec3 {
         loop {
             let v = self.vec3(-1.0, 1.0);
@@ -69,7 +45,6 @@ impl Random {
         Pose::new(self.vec3(-extent, extent), self.rotation())
     }
 
-    /// A random convex shape of each kind but halfspace, about a metre across.
     fn convex_shape(&mut self, kind: usize) -> Shape {
         match kind % 5 {
             0 => Shape::sphere(self.range(0.2, 1.0)).unwrap(),

@@ -704,39 +704,16 @@ impl SweepSlabs {
 }
 
 #[cfg(test)]
+#[path = "../../tests/common/random.rs"]
+mod random;
+
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    /// SplitMix64: a tiny deterministic generator, enough to scatter boxes.
-    struct Random(u64);
+    use super::random::Random;
 
     impl Random {
-        fn next_u64(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            z ^ (z >> 31)
-        }
-
-        /// Uniform in `[low, high)`.
-        fn range(&mut self, low: f32, high: f32) -> f32 {
-            let unit = (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32;
-            low + (high - low) * unit
-        }
-
-        fn below(&mut self, bound: usize) -> usize {
-            (self.next_u64() % bound as u64) as usize
-        }
-
-        fn vec3(&mut self, low: f32, high: f32) -> Vec3 {
-            Vec3::new(
-                self.range(low, high),
-                self.range(low, high),
-                self.range(low, high),
-            )
-        }
-
         fn aabb(&mut self, extent: f32) -> Aabb {
             Aabb::from_center_half_extents(self.vec3(-extent, extent), self.vec3(0.05, 1.0))
         }
