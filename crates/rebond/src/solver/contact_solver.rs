@@ -13,7 +13,7 @@ use super::{BodyMotion, BodyState};
 use crate::body::RigidBody;
 use crate::collision::contact_cache::Contact;
 use crate::collision::MAX_MANIFOLD_POINTS;
-use crate::math::{Mat3, Vec3};
+use crate::math::{Mat3, Vec3, Vec3A};
 
 /// Penetration allowed without correction, metres: resting contacts settle this deep instead of
 /// jittering in and out of touch. Stacks sink by about this much per layer.
@@ -60,11 +60,11 @@ pub fn combine_restitution(a: f32, b: f32) -> f32 {
 #[derive(Debug, Clone, Copy, Default)]
 struct Jacobian {
     /// `r_A × d` and `r_B × d`: how each body's spin moves the contact along `d`.
-    arm_a: Vec3,
-    arm_b: Vec3,
+    arm_a: Vec3A,
+    arm_b: Vec3A,
     /// `I_A⁻¹ (r_A × d)` and `I_B⁻¹ (r_B × d)`: the spin a unit impulse along `d` gives.
-    spin_a: Vec3,
-    spin_b: Vec3,
+    spin_a: Vec3A,
+    spin_b: Vec3A,
     /// `1 / (m_A⁻¹ + m_B⁻¹ + (r_A × d)·I_A⁻¹(r_A × d) + (r_B × d)·I_B⁻¹(r_B × d))`, or zero when
     /// nothing can move along `d`.
     mass: f32,
@@ -78,24 +78,24 @@ impl Jacobian {
         let spin_b = b.world_inverse_inertia * arm_b;
         let k = a.inverse_mass + b.inverse_mass + arm_a.dot(spin_a) + arm_b.dot(spin_b);
         Self {
-            arm_a,
-            arm_b,
-            spin_a,
-            spin_b,
+            arm_a: arm_a.into(),
+            arm_b: arm_b.into(),
+            spin_a: spin_a.into(),
+            spin_b: spin_b.into(),
             mass: inverse_or_zero(k),
         }
     }
 
     /// Relative velocity of B's point with respect to A's along the direction:
     /// `d·(v_B − v_A) + ω_B·(r_B × d) − ω_A·(r_A × d)`.
-    fn velocity(&self, a: &BodyState, b: &BodyState, direction: Vec3) -> f32 {
+    fn velocity(&self, a: &BodyState, b: &BodyState, direction: Vec3A) -> f32 {
         direction.dot(b.linear_velocity - a.linear_velocity) + b.angular_velocity.dot(self.arm_b)
             - a.angular_velocity.dot(self.arm_a)
     }
 
     /// Applies `impulse` along the direction to B and its opposite to A:
     /// `Δv = ±λ d / m`, `Δω = ±λ I⁻¹ (r × d)`.
-    fn apply(&self, a: &mut BodyState, b: &mut BodyState, direction: Vec3, impulse: f32) {
+    fn apply(&self, a: &mut BodyState, b: &mut BodyState, direction: Vec3A, impulse: f32) {
         a.linear_velocity -= (a.inverse_mass * impulse) * direction;
         a.angular_velocity -= impulse * self.spin_a;
         b.linear_velocity += (b.inverse_mass * impulse) * direction;
@@ -118,8 +118,8 @@ impl Body {
             center_of_mass: motion.center_of_mass,
             inverse_mass: state.inverse_mass,
             world_inverse_inertia: motion.world_inverse_inertia,
-            linear_velocity: state.linear_velocity,
-            angular_velocity: state.angular_velocity,
+            linear_velocity: state.linear_velocity.into(),
+            angular_velocity: state.angular_velocity.into(),
         }
     }
 
@@ -154,7 +154,7 @@ struct ConstraintPoint {
 impl ConstraintPoint {
     /// The separation now: the start value plus how the bodies moved along the normal since,
     /// `s₀ + n·(Δc_B − Δc_A) + Δθ_B·(r_B × n) − Δθ_A·(r_A × n)` (rotation to first order).
-    fn current_separation(&self, a: &BodyState, b: &BodyState, normal: Vec3) -> f32 {
+    fn current_separation(&self, a: &BodyState, b: &BodyState, normal: Vec3A) -> f32 {
         self.base_separation
             + normal.dot(b.delta_position - a.delta_position)
             + b.delta_rotation.dot(self.normal.arm_b)
@@ -169,8 +169,8 @@ pub(crate) struct ContactConstraint {
     body_b: usize,
     /// Index of the contact in the contact cache, to store impulses back.
     contact: usize,
-    normal: Vec3,
-    tangents: [Vec3; 2],
+    normal: Vec3A,
+    tangents: [Vec3A; 2],
     friction: f32,
     restitution: f32,
     points: [ConstraintPoint; MAX_MANIFOLD_POINTS],
@@ -186,8 +186,8 @@ pub(crate) struct ContactConstraint {
     /// Whether the friction cone clamped the friction impulse this step.
     slid: bool,
     /// `I_A⁻¹ n` and `I_B⁻¹ n`: the spin a unit twist impulse gives.
-    twist_spin_a: Vec3,
-    twist_spin_b: Vec3,
+    twist_spin_a: Vec3A,
+    twist_spin_b: Vec3A,
     /// `1 / (n · (I_A⁻¹ + I_B⁻¹) n)`: effective inertia for turning about the normal.
     twist_mass: f32,
     /// Mean distance of the points from their centre, m: the lever of twist friction.
@@ -267,8 +267,8 @@ impl ContactConstraint {
             body_a,
             body_b,
             contact: contact_index,
-            normal,
-            tangents,
+            normal: normal.into(),
+            tangents: tangents.map(Vec3A::from),
             friction: combine_friction(materials.0.friction, materials.1.friction),
             restitution: combine_restitution(materials.0.restitution, materials.1.restitution),
             points,
@@ -278,8 +278,8 @@ impl ContactConstraint {
             friction_anchors,
             anchor_offset: tangents.map(|tangent| offset.dot(tangent)),
             slid: false,
-            twist_spin_a,
-            twist_spin_b,
+            twist_spin_a: twist_spin_a.into(),
+            twist_spin_b: twist_spin_b.into(),
             twist_mass: inverse_or_zero(normal.dot(twist_spin_a) + normal.dot(twist_spin_b)),
             twist_radius,
             twist_impulse: contact.twist_impulse,
@@ -291,7 +291,8 @@ impl ContactConstraint {
     }
 
     fn friction_impulse(&self) -> Vec3 {
-        self.tangent_impulse[0] * self.tangents[0] + self.tangent_impulse[1] * self.tangents[1]
+        (self.tangent_impulse[0] * self.tangents[0] + self.tangent_impulse[1] * self.tangents[1])
+            .into()
     }
 
     /// How far B's friction anchor is from A's along tangent `axis` now, m: the offset at the
@@ -311,7 +312,8 @@ impl ContactConstraint {
 
     /// Applies last step's accumulated impulses again (warm starting).
     pub fn warm_start(&self, states: &mut [BodyState]) {
-        let (a, b) = pair_mut(states, self.body_a, self.body_b);
+        let (mut a, mut b) = (states[self.body_a], states[self.body_b]);
+        let (a, b) = (&mut a, &mut b);
         for point in self.points() {
             point.normal.apply(a, b, self.normal, point.normal_impulse);
         }
@@ -319,6 +321,8 @@ impl ContactConstraint {
             self.tangent[axis].apply(a, b, self.tangents[axis], self.tangent_impulse[axis]);
         }
         self.apply_twist(a, b, self.twist_impulse);
+        states[self.body_a] = *a;
+        states[self.body_b] = *b;
     }
 
     /// One sequential-impulse pass: the normal impulse of each point with accumulated clamping
@@ -336,7 +340,8 @@ impl ContactConstraint {
         inverse_h: f32,
         use_bias: bool,
     ) {
-        let (a, b) = pair_mut(states, self.body_a, self.body_b);
+        let (mut a, mut b) = (states[self.body_a], states[self.body_b]);
+        let (a, b) = (&mut a, &mut b);
         let normal = self.normal;
         let mut total_normal_impulse = 0.0;
         for point in &mut self.points[..self.point_count] {
@@ -386,6 +391,8 @@ impl ContactConstraint {
         let old_twist = self.twist_impulse;
         self.twist_impulse = (old_twist - self.twist_mass * spin).clamp(-twist_limit, twist_limit);
         self.apply_twist(a, b, self.twist_impulse - old_twist);
+        states[self.body_a] = *a;
+        states[self.body_b] = *b;
     }
 
     /// After the substeps: points that were approaching faster than [`RESTITUTION_THRESHOLD`] and
@@ -394,7 +401,8 @@ impl ContactConstraint {
         if self.restitution == 0.0 {
             return;
         }
-        let (a, b) = pair_mut(states, self.body_a, self.body_b);
+        let (mut a, mut b) = (states[self.body_a], states[self.body_b]);
+        let (a, b) = (&mut a, &mut b);
         let normal = self.normal;
         for point in &mut self.points[..self.point_count] {
             if point.approach_velocity > -RESTITUTION_THRESHOLD || point.max_normal_impulse == 0.0 {
@@ -408,6 +416,8 @@ impl ContactConstraint {
             point.normal_impulse = total;
             point.normal.apply(a, b, normal, applied);
         }
+        states[self.body_a] = *a;
+        states[self.body_b] = *b;
     }
 
     /// Writes the accumulated impulses back to the contact cache for the next step's warm start.
@@ -421,20 +431,5 @@ impl ContactConstraint {
         contact.friction_impulse = self.friction_impulse();
         contact.twist_impulse = self.twist_impulse;
         contact.friction_anchors = (!self.slid).then_some(self.friction_anchors);
-    }
-}
-
-/// Mutable access to two different solver bodies.
-fn pair_mut(
-    states: &mut [BodyState],
-    index_a: usize,
-    index_b: usize,
-) -> (&mut BodyState, &mut BodyState) {
-    if index_a < index_b {
-        let (low, high) = states.split_at_mut(index_b);
-        (&mut low[index_a], &mut high[0])
-    } else {
-        let (low, high) = states.split_at_mut(index_a);
-        (&mut high[0], &mut low[index_b])
     }
 }
