@@ -243,10 +243,12 @@ impl ContactConstraint {
             / count;
         let (center_a, center_b) = (center - a.center_of_mass, center - b.center_of_mass);
         let (material_a, material_b) = materials;
-        let fresh_anchors = [
-            material_a.rotation.inverse() * (center - material_a.center_of_mass),
-            material_b.rotation.inverse() * (center - material_b.center_of_mass),
-        ];
+        let fresh_anchors = || {
+            [
+                material_a.rotation.inverse() * (center - material_a.center_of_mass),
+                material_b.rotation.inverse() * (center - material_b.center_of_mass),
+            ]
+        };
         let carried = contact.friction_anchors.map(|[on_a, on_b]| {
             let anchor_a = material_a.center_of_mass + material_a.rotation * on_a;
             let anchor_b = material_b.center_of_mass + material_b.rotation * on_b;
@@ -259,7 +261,7 @@ impl ContactConstraint {
             {
                 (anchors, offset)
             }
-            _ => (fresh_anchors, Vec3::ZERO),
+            _ => (fresh_anchors(), Vec3::ZERO),
         };
         let twist_spin_a = a.world_inverse_inertia * normal;
         let twist_spin_b = b.world_inverse_inertia * normal;
@@ -321,8 +323,8 @@ impl ContactConstraint {
             self.tangent[axis].apply(a, b, self.tangents[axis], self.tangent_impulse[axis]);
         }
         self.apply_twist(a, b, self.twist_impulse);
-        states[self.body_a] = *a;
-        states[self.body_b] = *b;
+        store_velocities(states, self.body_a, a);
+        store_velocities(states, self.body_b, b);
     }
 
     /// One sequential-impulse pass: the normal impulse of each point with accumulated clamping
@@ -391,8 +393,8 @@ impl ContactConstraint {
         let old_twist = self.twist_impulse;
         self.twist_impulse = (old_twist - self.twist_mass * spin).clamp(-twist_limit, twist_limit);
         self.apply_twist(a, b, self.twist_impulse - old_twist);
-        states[self.body_a] = *a;
-        states[self.body_b] = *b;
+        store_velocities(states, self.body_a, a);
+        store_velocities(states, self.body_b, b);
     }
 
     /// After the substeps: points that were approaching faster than [`RESTITUTION_THRESHOLD`] and
@@ -416,8 +418,8 @@ impl ContactConstraint {
             point.normal_impulse = total;
             point.normal.apply(a, b, normal, applied);
         }
-        states[self.body_a] = *a;
-        states[self.body_b] = *b;
+        store_velocities(states, self.body_a, a);
+        store_velocities(states, self.body_b, b);
     }
 
     /// Writes the accumulated impulses back to the contact cache for the next step's warm start.
@@ -432,4 +434,11 @@ impl ContactConstraint {
         contact.twist_impulse = self.twist_impulse;
         contact.friction_anchors = (!self.slid).then_some(self.friction_anchors);
     }
+}
+
+/// Writes back what solving a contact changes of a body: its velocities.
+fn store_velocities(states: &mut [BodyState], index: usize, solved: &BodyState) {
+    let state = &mut states[index];
+    state.linear_velocity = solved.linear_velocity;
+    state.angular_velocity = solved.angular_velocity;
 }
