@@ -71,17 +71,17 @@ struct Jacobian {
 }
 
 impl Jacobian {
-    fn new(a: &Body, b: &Body, anchor_a: Vec3, anchor_b: Vec3, direction: Vec3) -> Self {
+    fn new(a: &Body, b: &Body, anchor_a: Vec3A, anchor_b: Vec3A, direction: Vec3A) -> Self {
         let arm_a = anchor_a.cross(direction);
         let arm_b = anchor_b.cross(direction);
-        let spin_a = a.world_inverse_inertia * arm_a;
-        let spin_b = b.world_inverse_inertia * arm_b;
+        let spin_a = a.world_inverse_inertia.mul_vec3a(arm_a);
+        let spin_b = b.world_inverse_inertia.mul_vec3a(arm_b);
         let k = a.inverse_mass + b.inverse_mass + arm_a.dot(spin_a) + arm_b.dot(spin_b);
         Self {
-            arm_a: arm_a.into(),
-            arm_b: arm_b.into(),
-            spin_a: spin_a.into(),
-            spin_b: spin_b.into(),
+            arm_a,
+            arm_b,
+            spin_a,
+            spin_b,
             mass: inverse_or_zero(k),
         }
     }
@@ -105,25 +105,25 @@ impl Jacobian {
 
 /// A body as the constraint builder sees it.
 struct Body {
-    center_of_mass: Vec3,
+    center_of_mass: Vec3A,
     inverse_mass: f32,
     world_inverse_inertia: Mat3,
-    linear_velocity: Vec3,
-    angular_velocity: Vec3,
+    linear_velocity: Vec3A,
+    angular_velocity: Vec3A,
 }
 
 impl Body {
     fn new(state: &BodyState, motion: &BodyMotion) -> Self {
         Self {
-            center_of_mass: motion.center_of_mass,
+            center_of_mass: motion.center_of_mass.into(),
             inverse_mass: state.inverse_mass,
             world_inverse_inertia: motion.world_inverse_inertia,
-            linear_velocity: state.linear_velocity.into(),
-            angular_velocity: state.angular_velocity.into(),
+            linear_velocity: state.linear_velocity,
+            angular_velocity: state.angular_velocity,
         }
     }
 
-    fn velocity_at(&self, anchor: Vec3) -> Vec3 {
+    fn velocity_at(&self, anchor: Vec3A) -> Vec3A {
         self.linear_velocity + self.angular_velocity.cross(anchor)
     }
 }
@@ -209,7 +209,7 @@ impl ContactConstraint {
     ) -> Self {
         let a = Body::new(&states[body_a], &motions[body_a]);
         let b = Body::new(&states[body_b], &motions[body_b]);
-        let normal = contact.manifold.normal;
+        let normal = Vec3A::from(contact.manifold.normal);
         let (tangent_1, tangent_2) = normal.any_orthonormal_pair();
         let tangents = [tangent_1, tangent_2];
         let manifold_points = contact.manifold.points();
@@ -219,8 +219,9 @@ impl ContactConstraint {
             .zip(&contact.normal_impulses)
             .zip(&mut points)
         {
-            let anchor_a = point.position - a.center_of_mass;
-            let anchor_b = point.position - b.center_of_mass;
+            let position = Vec3A::from(point.position);
+            let anchor_a = position - a.center_of_mass;
+            let anchor_b = position - b.center_of_mass;
             let relative_velocity = b.velocity_at(anchor_b) - a.velocity_at(anchor_a);
             *constraint_point = ConstraintPoint {
                 normal: Jacobian::new(&a, &b, anchor_a, anchor_b, normal),
@@ -233,26 +234,26 @@ impl ContactConstraint {
         let count = manifold_points.len().max(1) as f32;
         let center = manifold_points
             .iter()
-            .map(|point| point.position)
-            .sum::<Vec3>()
+            .map(|point| Vec3A::from(point.position))
+            .sum::<Vec3A>()
             / count;
         let twist_radius = manifold_points
             .iter()
-            .map(|point| point.position.distance(center))
+            .map(|point| Vec3A::from(point.position).distance(center))
             .sum::<f32>()
             / count;
         let (center_a, center_b) = (center - a.center_of_mass, center - b.center_of_mass);
         let (material_a, material_b) = materials;
         let fresh_anchors = || {
             [
-                material_a.rotation.inverse() * (center - material_a.center_of_mass),
-                material_b.rotation.inverse() * (center - material_b.center_of_mass),
+                material_a.rotation.inverse() * (Vec3::from(center) - material_a.center_of_mass),
+                material_b.rotation.inverse() * (Vec3::from(center) - material_b.center_of_mass),
             ]
         };
         let carried = contact.friction_anchors.map(|[on_a, on_b]| {
             let anchor_a = material_a.center_of_mass + material_a.rotation * on_a;
             let anchor_b = material_b.center_of_mass + material_b.rotation * on_b;
-            ([on_a, on_b], anchor_b - anchor_a)
+            ([on_a, on_b], Vec3A::from(anchor_b - anchor_a))
         });
         let (friction_anchors, offset) = match carried {
             Some((anchors, offset))
@@ -261,27 +262,28 @@ impl ContactConstraint {
             {
                 (anchors, offset)
             }
-            _ => (fresh_anchors(), Vec3::ZERO),
+            _ => (fresh_anchors(), Vec3A::ZERO),
         };
-        let twist_spin_a = a.world_inverse_inertia * normal;
-        let twist_spin_b = b.world_inverse_inertia * normal;
+        let twist_spin_a = a.world_inverse_inertia.mul_vec3a(normal);
+        let twist_spin_b = b.world_inverse_inertia.mul_vec3a(normal);
         Self {
             body_a,
             body_b,
             contact: contact_index,
-            normal: normal.into(),
-            tangents: tangents.map(Vec3A::from),
+            normal,
+            tangents,
             friction: combine_friction(materials.0.friction, materials.1.friction),
             restitution: combine_restitution(materials.0.restitution, materials.1.restitution),
             points,
             point_count: manifold_points.len(),
             tangent: tangents.map(|tangent| Jacobian::new(&a, &b, center_a, center_b, tangent)),
-            tangent_impulse: tangents.map(|tangent| contact.friction_impulse.dot(tangent)),
+            tangent_impulse: tangents
+                .map(|tangent| Vec3A::from(contact.friction_impulse).dot(tangent)),
             friction_anchors,
             anchor_offset: tangents.map(|tangent| offset.dot(tangent)),
             slid: false,
-            twist_spin_a: twist_spin_a.into(),
-            twist_spin_b: twist_spin_b.into(),
+            twist_spin_a,
+            twist_spin_b,
             twist_mass: inverse_or_zero(normal.dot(twist_spin_a) + normal.dot(twist_spin_b)),
             twist_radius,
             twist_impulse: contact.twist_impulse,
