@@ -276,7 +276,10 @@ impl ContactConstraint {
             restitution: combine_restitution(materials.0.restitution, materials.1.restitution),
             points,
             point_count: manifold_points.len(),
-            tangent: tangents.map(|tangent| Jacobian::new(&a, &b, center_a, center_b, tangent)),
+            tangent: [
+                Jacobian::new(&a, &b, center_a, center_b, tangent_1),
+                Jacobian::new(&a, &b, center_a, center_b, tangent_2),
+            ],
             tangent_impulse: tangents
                 .map(|tangent| Vec3A::from(contact.friction_impulse).dot(tangent)),
             friction_anchors,
