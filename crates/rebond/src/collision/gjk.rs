@@ -351,8 +351,7 @@ where
     A: SupportMap + ?Sized,
     B: SupportMap + ?Sized,
 {
-    distance_within(a, b, direction, f32::INFINITY)
-        .unwrap_or_else(|| unreachable!("no lower bound exceeds an infinite limit"))
+    search(a, b, direction, f32::INFINITY).unwrap_or_else(|partial| partial)
 }
 
 /// [`distance_from_direction`], or `None` as soon as the solids are known to be more than
@@ -360,6 +359,16 @@ where
 /// bound on the distance above `limit` ends the search (contact queries, where most pairs of
 /// overlapping boxes are farther apart than the margin, stop there after a few iterations).
 pub fn distance_within<A, B>(a: &A, b: &B, direction: Vec3, limit: f32) -> Option<Distance>
+where
+    A: SupportMap + ?Sized,
+    B: SupportMap + ?Sized,
+{
+    search(a, b, direction, limit).ok()
+}
+
+/// The GJK iteration: `Ok` with the answer, or `Err` with the simplex so far once a lower bound
+/// on the distance exceeds `limit`.
+fn search<A, B>(a: &A, b: &B, direction: Vec3, limit: f32) -> Result<Distance, Distance>
 where
     A: SupportMap + ?Sized,
     B: SupportMap + ?Sized,
@@ -378,7 +387,7 @@ where
         let upper = closest.length();
         let scale = simplex.scale();
         if upper <= TOLERANCE * scale {
-            return Some(Distance::from_simplex(simplex, true));
+            return Ok(Distance::from_simplex(simplex, true));
         }
         let point = SupportPoint::new(a, b, -closest);
         if !point.w.is_finite() {
@@ -389,7 +398,7 @@ where
         // length and in direction.
         let lower = closest.dot(point.w) / upper;
         if lower > limit {
-            return None;
+            return Err(Distance::from_simplex(simplex, false));
         }
         let gap = upper - lower;
         if gap < best.0 {
@@ -402,7 +411,7 @@ where
         points[simplex.len.min(3)] = point;
         let (grown, enclosed) = Simplex::reduced(&points[..=simplex.len.min(3)]);
         if enclosed {
-            return Some(Distance::from_simplex(grown, true));
+            return Ok(Distance::from_simplex(grown, true));
         }
         // Near the answer the distance improves only at second order, below rounding, while
         // the direction still improves at first order: a simplex no nearer is kept all the same,
@@ -417,7 +426,7 @@ where
         }
         simplex = grown;
     }
-    Some(Distance::from_simplex(best.1, false))
+    Ok(Distance::from_simplex(best.1, false))
 }
 
 #[cfg(test)]
