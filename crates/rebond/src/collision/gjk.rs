@@ -351,7 +351,9 @@ where
     A: SupportMap + ?Sized,
     B: SupportMap + ?Sized,
 {
-    search(a, b, direction, f32::INFINITY).unwrap_or_else(|partial| partial)
+    match search(a, b, direction, f32::INFINITY) {
+        Search::Done(found) | Search::Beyond(found) => found,
+    }
 }
 
 /// [`distance_from_direction`], or `None` as soon as the solids are known to be more than
@@ -363,12 +365,22 @@ where
     A: SupportMap + ?Sized,
     B: SupportMap + ?Sized,
 {
-    search(a, b, direction, limit).ok()
+    match search(a, b, direction, limit) {
+        Search::Done(found) => Some(found),
+        Search::Beyond(_) => None,
+    }
 }
 
-/// The GJK iteration: `Ok` with the answer, or `Err` with the simplex so far once a lower bound
-/// on the distance exceeds `limit`.
-fn search<A, B>(a: &A, b: &B, direction: Vec3, limit: f32) -> Result<Distance, Distance>
+/// How a GJK search ended.
+enum Search {
+    /// With the distance, to tolerance.
+    Done(Distance),
+    /// Early, with the simplex so far, once a lower bound on the distance exceeded the limit.
+    Beyond(Distance),
+}
+
+/// The GJK iteration, stopping early once the solids are known to be more than `limit` apart.
+fn search<A, B>(a: &A, b: &B, direction: Vec3, limit: f32) -> Search
 where
     A: SupportMap + ?Sized,
     B: SupportMap + ?Sized,
@@ -387,7 +399,7 @@ where
         let upper = closest.length();
         let scale = simplex.scale();
         if upper <= TOLERANCE * scale {
-            return Ok(Distance::from_simplex(simplex, true));
+            return Search::Done(Distance::from_simplex(simplex, true));
         }
         let point = SupportPoint::new(a, b, -closest);
         if !point.w.is_finite() {
@@ -398,7 +410,7 @@ where
         // length and in direction.
         let lower = closest.dot(point.w) / upper;
         if lower > limit {
-            return Err(Distance::from_simplex(simplex, false));
+            return Search::Beyond(Distance::from_simplex(simplex, false));
         }
         let gap = upper - lower;
         if gap < best.0 {
@@ -411,7 +423,7 @@ where
         points[simplex.len.min(3)] = point;
         let (grown, enclosed) = Simplex::reduced(&points[..=simplex.len.min(3)]);
         if enclosed {
-            return Ok(Distance::from_simplex(grown, true));
+            return Search::Done(Distance::from_simplex(grown, true));
         }
         // Near the answer the distance improves only at second order, below rounding, while
         // the direction still improves at first order: a simplex no nearer is kept all the same,
@@ -426,7 +438,7 @@ where
         }
         simplex = grown;
     }
-    Ok(Distance::from_simplex(best.1, false))
+    Search::Done(Distance::from_simplex(best.1, false))
 }
 
 #[cfg(test)]
