@@ -30,13 +30,17 @@ pub(crate) fn integrate_velocities(
     if !motion.is_dynamic {
         return;
     }
-    let linear = state.linear_velocity + h * (gravity + state.inverse_mass * motion.force);
-    let angular = state.angular_velocity + h * (motion.world_inverse_inertia * motion.torque);
+    let linear =
+        Vec3::from(state.linear_velocity) + h * (gravity + state.inverse_mass * motion.force);
+    let angular =
+        Vec3::from(state.angular_velocity) + h * (motion.world_inverse_inertia * motion.torque);
     let angular = implicit_gyroscopic_step(motion, angular, h);
-    state.linear_velocity =
-        (linear / (1.0 + h * motion.linear_damping)).clamp_length_max(limits.linear);
-    state.angular_velocity =
-        (angular / (1.0 + h * motion.angular_damping)).clamp_length_max(limits.angular);
+    state.linear_velocity = (linear / (1.0 + h * motion.linear_damping))
+        .clamp_length_max(limits.linear)
+        .into();
+    state.angular_velocity = (angular / (1.0 + h * motion.angular_damping))
+        .clamp_length_max(limits.angular)
+        .into();
 }
 
 /// Below this relative size the gyroscopic change `h ω × I ω` is lost in f32 rounding of `I ω`
@@ -76,7 +80,7 @@ fn implicit_gyroscopic_step(motion: &BodyMotion, world_angular_velocity: Vec3, h
 /// inertia is refreshed once, at the end of the step.
 pub(crate) fn integrate_pose(state: &mut BodyState, motion: &mut BodyMotion, h: f32) {
     let step = h * state.linear_velocity;
-    motion.center_of_mass += step;
+    motion.center_of_mass += Vec3::from(step);
     state.delta_position += step;
     state.delta_rotation += h * state.angular_velocity;
     let spin = Quat::from_xyzw(

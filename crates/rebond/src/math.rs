@@ -1,6 +1,6 @@
 //! Math types on top of glam (f32): poses, bounding boxes and the few helpers the engine shares.
 
-pub use glam::{Mat3, Quat, Vec3};
+pub use glam::{Mat3, Quat, Vec3, Vec3A};
 
 use crate::error::{Error, ErrorKind, Result};
 

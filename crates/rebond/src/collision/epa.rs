@@ -87,7 +87,8 @@ pub struct ContactInfo {
 pub fn contact(a: &PosedCore, b: &PosedCore, margin: f32) -> Option<ContactInfo> {
     let radius_a = a.shape.core_radius();
     let radius_b = b.shape.core_radius();
-    let cores = gjk::distance_from_direction(a, b, b.pose.position - a.pose.position);
+    let limit = margin + radius_a + radius_b;
+    let cores = gjk::distance_within(a, b, b.pose.position - a.pose.position, limit)?;
     if cores.distance - radius_a - radius_b >= margin {
         return None;
     }

@@ -351,6 +351,40 @@ where
     A: SupportMap + ?Sized,
     B: SupportMap + ?Sized,
 {
+    match search(a, b, direction, f32::INFINITY) {
+        Search::Done(found) | Search::Beyond(found) => found,
+    }
+}
+
+/// [`distance_from_direction`], or `None` as soon as the solids are known to be more than
+/// `limit` metres apart: a support point whose reach along the search direction leaves a lower
+/// bound on the distance above `limit` ends the search (contact queries, where most pairs of
+/// overlapping boxes are farther apart than the margin, stop there after a few iterations).
+pub fn distance_within<A, B>(a: &A, b: &B, direction: Vec3, limit: f32) -> Option<Distance>
+where
+    A: SupportMap + ?Sized,
+    B: SupportMap + ?Sized,
+{
+    match search(a, b, direction, limit) {
+        Search::Done(found) => Some(found),
+        Search::Beyond(_) => None,
+    }
+}
+
+/// How a GJK search ended.
+enum Search {
+    /// With the distance, to tolerance.
+    Done(Distance),
+    /// Early, with the simplex so far, once a lower bound on the distance exceeded the limit.
+    Beyond(Distance),
+}
+
+/// The GJK iteration, stopping early once the solids are known to be more than `limit` apart.
+fn search<A, B>(a: &A, b: &B, direction: Vec3, limit: f32) -> Search
+where
+    A: SupportMap + ?Sized,
+    B: SupportMap + ?Sized,
+{
     let start = if direction.length_squared() > 0.0 && direction.is_finite() {
         direction
     } else {
@@ -365,7 +399,7 @@ where
         let upper = closest.length();
         let scale = simplex.scale();
         if upper <= TOLERANCE * scale {
-            return Distance::from_simplex(simplex, true);
+            return Search::Done(Distance::from_simplex(simplex, true));
         }
         let point = SupportPoint::new(a, b, -closest);
         if !point.w.is_finite() {
@@ -374,7 +408,11 @@ where
         // `|closest|` is an upper bound on the distance, and the new point's reach along
         // `closest` a lower one: their gap measures how far the simplex is from the answer, in
         // length and in direction.
-        let gap = upper - closest.dot(point.w) / upper;
+        let lower = closest.dot(point.w) / upper;
+        if lower > limit {
+            return Search::Beyond(Distance::from_simplex(simplex, false));
+        }
+        let gap = upper - lower;
         if gap < best.0 {
             best = (gap, simplex);
         }
@@ -385,7 +423,7 @@ where
         points[simplex.len.min(3)] = point;
         let (grown, enclosed) = Simplex::reduced(&points[..=simplex.len.min(3)]);
         if enclosed {
-            return Distance::from_simplex(grown, true);
+            return Search::Done(Distance::from_simplex(grown, true));
         }
         // Near the answer the distance improves only at second order, below rounding, while
         // the direction still improves at first order: a simplex no nearer is kept all the same,
@@ -400,7 +438,7 @@ where
         }
         simplex = grown;
     }
-    Distance::from_simplex(best.1, false)
+    Search::Done(Distance::from_simplex(best.1, false))
 }
 
 #[cfg(test)]
