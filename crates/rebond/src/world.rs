@@ -4,7 +4,7 @@ use crate::arena::Arena;
 use crate::body::{BodyDesc, BodyHandle, BodyType, RigidBody};
 use crate::collision::broad_phase::BroadPhase;
 use crate::collision::contact_cache::{Contact, ContactCache, ContactKey};
-use crate::collision::narrow_phase::collide;
+use crate::collision::narrow_phase::NarrowPhase;
 use crate::collision::SPECULATIVE_DISTANCE;
 use crate::error::{check_finite_vector, check_positive, Error, ErrorKind, Result};
 use crate::events::{ContactEvent, ContactForceEvent, EventTracker, SensorEvent};
@@ -85,6 +85,7 @@ pub struct World {
     bodies: Arena<RigidBody>,
     broad_phase: BroadPhase,
     contacts: ContactCache,
+    narrow_phase: NarrowPhase,
     solver: Solver,
     islands: Islands,
     ignored_pairs: IgnoredPairs,
@@ -102,6 +103,7 @@ impl World {
             bodies: Arena::default(),
             broad_phase: BroadPhase::new(),
             contacts: ContactCache::default(),
+            narrow_phase: NarrowPhase::default(),
             solver: Solver::default(),
             islands: Islands::default(),
             ignored_pairs: IgnoredPairs::default(),
@@ -361,6 +363,7 @@ impl World {
             bodies,
             broad_phase,
             contacts,
+            narrow_phase,
             ignored_pairs,
             events,
             narrow_phase_pair_tests,
@@ -415,7 +418,7 @@ impl World {
                 continue;
             }
             *narrow_phase_pair_tests += 1;
-            collide(
+            narrow_phase.collide(
                 &body_a.shape,
                 &pose_a,
                 &body_b.shape,

@@ -1,54 +1,15 @@
 //! Contact events, force reports, sensors and collision filtering, against closed forms where
 //! there is one (bounce times, crossing times, a resting body's weight) and against the
-//! bookkeeping rules otherwise (each start stopped once, sorted lists, no allocation in a steady
-//! step).
+//! bookkeeping rules otherwise (each start stopped once, sorted lists); `tests/allocation.rs`
+//! checks that a steady step with events and sensors allocates nothing.
 
 mod common;
-
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 
 use common::{add_ground, run, unit_box, world, DT, G};
 use rebond::{
     BodyDesc, BodyHandle, ContactEvent, ContactEventKind, ErrorKind, InteractionGroups,
     QueryFilter, Ray, SensorEvent, SensorEventKind, Shape, Vec3, World,
 };
-
-/// Counts the allocations of the calling thread, so a test can prove a step allocates nothing
-/// while other tests run on other threads.
-struct CountingAllocator;
-
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-// SAFETY: forwards every call to the system allocator unchanged; the counter is a const-initialised
-// thread-local `Cell`, which never allocates.
-unsafe impl GlobalAlloc for CountingAllocator {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.with(|count| count.set(count.get() + 1));
-        // SAFETY: the caller's contract is passed on unchanged.
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn dealloc(&self, pointer: *mut u8, layout: Layout) {
-        // SAFETY: the caller's contract is passed on unchanged.
-        unsafe { System.dealloc(pointer, layout) }
-    }
-
-    unsafe fn realloc(&self, pointer: *mut u8, layout: Layout, size: usize) -> *mut u8 {
-        ALLOCATIONS.with(|count| count.set(count.get() + 1));
-        // SAFETY: the caller's contract is passed on unchanged.
-        unsafe { System.realloc(pointer, layout, size) }
-    }
-}
-
-#[global_allocator]
-static ALLOCATOR: CountingAllocator = CountingAllocator;
-
-fn allocations() -> usize {
-    ALLOCATIONS.with(Cell::get)
-}
 
 fn zero_gravity() -> World {
     world(Vec3::ZERO)
@@ -527,61 +488,6 @@ fn event_log(seed: u32) -> Vec<Vec<ContactEvent>> {
 #[test]
 fn events_are_sorted_balanced_and_the_same_on_every_run() {
     assert_eq!(event_log(3), event_log(3));
-}
-
-#[test]
-fn a_steady_step_with_events_and_sensors_allocates_nothing() {
-    let mut world = world(Vec3::new(0.0, -G, 0.0));
-    let ground = add_ground(&mut world, 0.5);
-    world
-        .body_mut(ground)
-        .unwrap()
-        .set_contact_force_threshold(0.0)
-        .unwrap();
-    for index in 0..6 {
-        world
-            .add_body(unit_box(Vec3::new(index as f32 * 1.5, 0.5, 0.0)).can_sleep(false))
-            .unwrap();
-    }
-    let gate = world
-        .add_body(
-            BodyDesc::kinematic(Shape::cuboid(Vec3::new(0.25, 1.0, 1.0)).unwrap())
-                .position(Vec3::new(-1.0, 1.0, 0.0))
-                .sensor(true),
-        )
-        .unwrap();
-    // The gate sweeps back and forth over the row of boxes, 2 s each way; returns how many
-    // sensor and force events it saw.
-    let sweep = |world: &mut World| {
-        let mut events = 0;
-        for step in 0..240 {
-            let direction = if step < 120 { 4.0 } else { -4.0 };
-            world
-                .body_mut(gate)
-                .unwrap()
-                .set_linear_velocity(Vec3::new(direction, 0.0, 0.0))
-                .unwrap();
-            world.step(DT).unwrap();
-            events += world.sensor_events().len() + world.contact_force_events().len();
-        }
-        events
-    };
-    sweep(&mut world);
-    sweep(&mut world);
-    let probe = allocations();
-    drop(std::hint::black_box(vec![0u8; 16]));
-    assert_eq!(
-        allocations(),
-        probe + 1,
-        "the counter sees this thread's allocations"
-    );
-    let before = allocations();
-    let events = sweep(&mut world) + sweep(&mut world);
-    assert_eq!(allocations(), before, "a steady step allocates nothing");
-    assert!(
-        events > 2 * 240,
-        "every step reports the boxes' weights, and the gate crosses"
-    );
 }
 
 #[test]

@@ -82,35 +82,9 @@ pub struct ContactInfo {
 }
 
 /// Contact between two convex shape cores when their rounded surfaces are less than `margin`
-/// apart (`margin` may be negative to ask for overlaps only). GJK measures the cores, EPA takes
-/// over when the cores overlap, and the rounding radii are then subtracted.
+/// apart: [`Polytope::contact`] with a polytope of its own, which allocates when EPA runs.
 pub fn contact(a: &PosedCore, b: &PosedCore, margin: f32) -> Option<ContactInfo> {
-    let radius_a = a.shape.core_radius();
-    let radius_b = b.shape.core_radius();
-    let limit = margin + radius_a + radius_b;
-    let cores = gjk::distance_within(a, b, b.pose.position - a.pose.position, limit)?;
-    if cores.distance - radius_a - radius_b >= margin {
-        return None;
-    }
-    let (normal, core_separation, core_a, core_b) = match cores.normal() {
-        Some(normal) => (normal, cores.distance, cores.point_a, cores.point_b),
-        None => {
-            let deepest = Polytope::default().penetration(a, b, &cores.simplex);
-            (
-                deepest.normal,
-                -deepest.depth,
-                deepest.point_a,
-                deepest.point_b,
-            )
-        }
-    };
-    let separation = core_separation - radius_a - radius_b;
-    (separation < margin).then_some(ContactInfo {
-        normal,
-        separation,
-        point_a: core_a + radius_a * normal,
-        point_b: core_b - radius_b * normal,
-    })
+    Polytope::default().contact(a, b, margin)
 }
 
 /// The penetration of A and B, or `None` when they are apart.
@@ -186,6 +160,40 @@ pub struct Polytope {
 }
 
 impl Polytope {
+    /// Contact between two convex shape cores when their rounded surfaces are less than `margin`
+    /// apart (`margin` may be negative to ask for overlaps only). GJK measures the cores, EPA takes
+    /// over when the cores overlap, growing this polytope, and the rounding radii are then
+    /// subtracted.
+    pub fn contact(&mut self, a: &PosedCore, b: &PosedCore, margin: f32) -> Option<ContactInfo> {
+        let radius_a = a.shape.core_radius();
+        let radius_b = b.shape.core_radius();
+        let limit = margin + radius_a + radius_b;
+        let cores = gjk::distance_within(a, b, b.pose.position - a.pose.position, limit)?;
+        // Overlapping cores are as far apart as EPA's depth says, checked below.
+        if !cores.overlapping && cores.distance - radius_a - radius_b >= margin {
+            return None;
+        }
+        let (normal, core_separation, core_a, core_b) = match cores.normal() {
+            Some(normal) => (normal, cores.distance, cores.point_a, cores.point_b),
+            None => {
+                let deepest = self.penetration(a, b, &cores.simplex);
+                (
+                    deepest.normal,
+                    -deepest.depth,
+                    deepest.point_a,
+                    deepest.point_b,
+                )
+            }
+        };
+        let separation = core_separation - radius_a - radius_b;
+        (separation < margin).then_some(ContactInfo {
+            normal,
+            separation,
+            point_a: core_a + radius_a * normal,
+            point_b: core_b - radius_b * normal,
+        })
+    }
+
     /// The penetration of A and B, starting from `simplex`, the final simplex of a GJK query that
     /// found them overlapping. Always answers: when rounding or the iteration budget defeats the
     /// algorithm, with the shallowest direction found so far.
@@ -671,6 +679,26 @@ mod tests {
             assert!(found.depth.abs() < CLOSE, "{found:?}");
             assert!((found.normal.length() - 1.0).abs() < CLOSE, "{found:?}");
         }
+    }
+
+    /// Cores that overlap are in contact whatever the margin: a margin of zero or below asks for
+    /// overlaps only, and these cylinders (no rounding) overlap by 0.5 m.
+    #[test]
+    fn overlapping_cores_report_with_margins_down_to_zero_and_below() {
+        let cylinder = Shape::cylinder(0.4, 0.35).unwrap();
+        let (low, high) = (
+            Pose::IDENTITY,
+            Pose::from_position(Vec3::new(0.1, 0.2, 0.0)),
+        );
+        let core = |pose| PosedCore {
+            shape: &cylinder,
+            pose,
+        };
+        for margin in [0.0, -0.4] {
+            let found = contact(&core(&low), &core(&high), margin).expect("they overlap");
+            assert!((found.separation + 0.5).abs() < CLOSE, "{found:?}");
+        }
+        assert!(contact(&core(&low), &core(&high), -0.6).is_none());
     }
 
     #[test]

@@ -10,7 +10,7 @@
 use std::f32::consts::TAU;
 
 use super::clipping::{clip_polygon, clip_segment, reduce_contacts, ClipVertex};
-use super::epa::{contact, ContactInfo};
+use super::epa::{ContactInfo, Polytope};
 use super::manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
 use super::polyhedron::Polyhedron;
 use super::PosedCore;
@@ -237,7 +237,9 @@ fn polyhedron_face(polyhedron: &Polyhedron, pose: &Pose, direction: Vec3) -> Fea
 /// octagon of rim points as the reference face and a square of every other one as the incident
 /// face, its corner nearest the deepest rim point moved there when the cap is tilted (see
 /// [`CORNER_SNAP_DISTANCE`]): a cylinder standing or wobbling on a face keeps the same four ids.
+/// EPA grows `polytope`, scratch space reused from call to call.
 pub fn collide_features(
+    polytope: &mut Polytope,
     shape_a: &Shape,
     pose_a: &Pose,
     shape_b: &Shape,
@@ -252,7 +254,7 @@ pub fn collide_features(
         shape: shape_b,
         pose: pose_b,
     };
-    let deepest = contact(&core_a, &core_b, margin)?;
+    let deepest = polytope.contact(&core_a, &core_b, margin)?;
     let feature_a = supporting_feature(shape_a, pose_a, deepest.normal);
     let feature_b = supporting_feature(shape_b, pose_b, -deepest.normal);
     let alignment_a = feature_a.face_normal.dot(deepest.normal);

@@ -4,9 +4,11 @@
 //! the plane test for halfspaces, the separating-axis test for boxes and hulls (pairs with a hull
 //! rejected by GJK first when they are apart beyond the margin), and GJK/EPA with
 //! feature clipping for everything with a cylinder or a capsule against a polyhedron. Compounds
-//! collide child by child.
+//! collide child by child. A [`NarrowPhase`] keeps the scratch space from pair to pair, so that a
+//! steady step allocates nothing.
 
 use super::closed_form::{capsule_capsule, sphere_box, sphere_capsule, sphere_sphere};
+use super::epa::Polytope;
 use super::feature_contact::collide_features;
 use super::gjk;
 use super::halfspace::collide_halfspace;
@@ -29,8 +31,95 @@ fn kind_rank(shape: &Shape) -> u8 {
     }
 }
 
-/// The manifold between two convex shapes (neither a compound), with the normal from A toward
-/// B, or `None` when their surfaces are farther apart than `margin` metres.
+/// The narrow phase's scratch space, kept from pair to pair and from step to step so that a
+/// steady step allocates nothing: the polytope EPA grows.
+#[derive(Debug, Clone, Default)]
+pub struct NarrowPhase {
+    polytope: Polytope,
+}
+
+impl NarrowPhase {
+    /// The manifold between two convex shapes (neither a compound), with the normal from A toward
+    /// B, or `None` when their surfaces are farther apart than `margin` metres.
+    pub fn collide_convex(
+        &mut self,
+        shape_a: &Shape,
+        pose_a: &Pose,
+        shape_b: &Shape,
+        pose_b: &Pose,
+        margin: f32,
+    ) -> Option<Manifold> {
+        if kind_rank(shape_a) > kind_rank(shape_b) {
+            return self
+                .collide_convex(shape_b, pose_b, shape_a, pose_a, margin)
+                .map(Manifold::flipped);
+        }
+        match (shape_a, shape_b) {
+            (Shape::Halfspace(_), Shape::Halfspace(_)) | (_, Shape::Compound(_)) => None,
+            (Shape::Halfspace(halfspace), other) => {
+                collide_halfspace(halfspace, pose_a, other, pose_b, margin)
+            }
+            (Shape::Sphere(a), Shape::Sphere(b)) => sphere_sphere(a, pose_a, b, pose_b, margin),
+            (Shape::Sphere(a), Shape::Capsule(b)) => sphere_capsule(a, pose_a, b, pose_b, margin),
+            (Shape::Sphere(a), Shape::Cuboid(b)) => sphere_box(a, pose_a, b, pose_b, margin),
+            (Shape::Capsule(a), Shape::Capsule(b)) => capsule_capsule(a, pose_a, b, pose_b, margin),
+            (Shape::Cuboid(_) | Shape::ConvexHull(_), Shape::Cuboid(_) | Shape::ConvexHull(_)) => {
+                let has_hull = matches!(shape_a, Shape::ConvexHull(_))
+                    || matches!(shape_b, Shape::ConvexHull(_));
+                if has_hull && apart_beyond(shape_a, pose_a, shape_b, pose_b, margin) {
+                    return None;
+                }
+                let a = Polyhedron::from_shape(shape_a)?;
+                let b = Polyhedron::from_shape(shape_b)?;
+                collide_polyhedra(&a, pose_a, &b, pose_b, margin)
+            }
+            _ => collide_features(&mut self.polytope, shape_a, pose_a, shape_b, pose_b, margin),
+        }
+    }
+
+    /// Every manifold between two shapes, compounds included: `on_manifold(child_a, child_b,
+    /// manifold)` is called for each pair of convex parts in contact (child indices are 0 for a shape
+    /// that is not a compound), in a deterministic order. Parts whose bounding boxes, grown by
+    /// `margin`, do not overlap are skipped.
+    pub fn collide(
+        &mut self,
+        shape_a: &Shape,
+        pose_a: &Pose,
+        shape_b: &Shape,
+        pose_b: &Pose,
+        margin: f32,
+        mut on_manifold: impl FnMut(u32, u32, Manifold),
+    ) {
+        let grow = |aabb: Aabb| {
+            Aabb::new(
+                aabb.min - Vec3::splat(margin),
+                aabb.max + Vec3::splat(margin),
+            )
+        };
+        let compound = |shape: &Shape| matches!(shape, Shape::Compound(_));
+        if !compound(shape_a) && !compound(shape_b) {
+            if let Some(manifold) = self.collide_convex(shape_a, pose_a, shape_b, pose_b, margin) {
+                on_manifold(0, 0, manifold);
+            }
+            return;
+        }
+        for_each_part(shape_a, pose_a, |child_a, part_a, part_pose_a| {
+            let bounds_a = grow(part_a.aabb(&part_pose_a));
+            for_each_part(shape_b, pose_b, |child_b, part_b, part_pose_b| {
+                if !bounds_a.overlaps(&part_b.aabb(&part_pose_b)) {
+                    return;
+                }
+                if let Some(manifold) =
+                    self.collide_convex(part_a, &part_pose_a, part_b, &part_pose_b, margin)
+                {
+                    on_manifold(child_a, child_b, manifold);
+                }
+            });
+        });
+    }
+}
+
+/// [`NarrowPhase::collide_convex`] with scratch space of its own, which allocates when EPA runs.
 pub fn collide_convex(
     shape_a: &Shape,
     pose_a: &Pose,
@@ -38,30 +127,19 @@ pub fn collide_convex(
     pose_b: &Pose,
     margin: f32,
 ) -> Option<Manifold> {
-    if kind_rank(shape_a) > kind_rank(shape_b) {
-        return collide_convex(shape_b, pose_b, shape_a, pose_a, margin).map(Manifold::flipped);
-    }
-    match (shape_a, shape_b) {
-        (Shape::Halfspace(_), Shape::Halfspace(_)) | (_, Shape::Compound(_)) => None,
-        (Shape::Halfspace(halfspace), other) => {
-            collide_halfspace(halfspace, pose_a, other, pose_b, margin)
-        }
-        (Shape::Sphere(a), Shape::Sphere(b)) => sphere_sphere(a, pose_a, b, pose_b, margin),
-        (Shape::Sphere(a), Shape::Capsule(b)) => sphere_capsule(a, pose_a, b, pose_b, margin),
-        (Shape::Sphere(a), Shape::Cuboid(b)) => sphere_box(a, pose_a, b, pose_b, margin),
-        (Shape::Capsule(a), Shape::Capsule(b)) => capsule_capsule(a, pose_a, b, pose_b, margin),
-        (Shape::Cuboid(_) | Shape::ConvexHull(_), Shape::Cuboid(_) | Shape::ConvexHull(_)) => {
-            let has_hull =
-                matches!(shape_a, Shape::ConvexHull(_)) || matches!(shape_b, Shape::ConvexHull(_));
-            if has_hull && apart_beyond(shape_a, pose_a, shape_b, pose_b, margin) {
-                return None;
-            }
-            let a = Polyhedron::from_shape(shape_a)?;
-            let b = Polyhedron::from_shape(shape_b)?;
-            collide_polyhedra(&a, pose_a, &b, pose_b, margin)
-        }
-        _ => collide_features(shape_a, pose_a, shape_b, pose_b, margin),
-    }
+    NarrowPhase::default().collide_convex(shape_a, pose_a, shape_b, pose_b, margin)
+}
+
+/// [`NarrowPhase::collide`] with scratch space of its own, which allocates when EPA runs.
+pub fn collide(
+    shape_a: &Shape,
+    pose_a: &Pose,
+    shape_b: &Shape,
+    pose_b: &Pose,
+    margin: f32,
+    on_manifold: impl FnMut(u32, u32, Manifold),
+) {
+    NarrowPhase::default().collide(shape_a, pose_a, shape_b, pose_b, margin, on_manifold);
 }
 
 /// The convex parts of a shape with their world poses: the shape itself, or each child of a
@@ -75,46 +153,6 @@ fn for_each_part(shape: &Shape, pose: &Pose, mut visit: impl FnMut(u32, &Shape, 
         }
         _ => visit(0, shape, *pose),
     }
-}
-
-/// Every manifold between two shapes, compounds included: `on_manifold(child_a, child_b,
-/// manifold)` is called for each pair of convex parts in contact (child indices are 0 for a shape
-/// that is not a compound), in a deterministic order. Parts whose bounding boxes, grown by
-/// `margin`, do not overlap are skipped.
-pub fn collide(
-    shape_a: &Shape,
-    pose_a: &Pose,
-    shape_b: &Shape,
-    pose_b: &Pose,
-    margin: f32,
-    mut on_manifold: impl FnMut(u32, u32, Manifold),
-) {
-    let grow = |aabb: Aabb| {
-        Aabb::new(
-            aabb.min - Vec3::splat(margin),
-            aabb.max + Vec3::splat(margin),
-        )
-    };
-    let compound = |shape: &Shape| matches!(shape, Shape::Compound(_));
-    if !compound(shape_a) && !compound(shape_b) {
-        if let Some(manifold) = collide_convex(shape_a, pose_a, shape_b, pose_b, margin) {
-            on_manifold(0, 0, manifold);
-        }
-        return;
-    }
-    for_each_part(shape_a, pose_a, |child_a, part_a, part_pose_a| {
-        let bounds_a = grow(part_a.aabb(&part_pose_a));
-        for_each_part(shape_b, pose_b, |child_b, part_b, part_pose_b| {
-            if !bounds_a.overlaps(&part_b.aabb(&part_pose_b)) {
-                return;
-            }
-            if let Some(manifold) =
-                collide_convex(part_a, &part_pose_a, part_b, &part_pose_b, margin)
-            {
-                on_manifold(child_a, child_b, manifold);
-            }
-        });
-    });
 }
 
 /// Whether GJK finds two convex shapes more than `margin` apart. For pairs with a hull it rejects

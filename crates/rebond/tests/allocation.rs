@@ -1,0 +1,222 @@
+//! No allocation in a steady step (a project rule): a counting global allocator proves that once
+//! a scene has run long enough to size every buffer, stepping it again allocates nothing, with
+//! events and sensors, and in a scene of cylinders, hulls and capsules whose pairs go through GJK
+//! and EPA.
+
+mod common;
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+
+use common::{add_ground, unit_box, world, DT, G};
+use rebond::collision::epa;
+use rebond::collision::PosedCore;
+use rebond::{BodyDesc, Pose, Quat, Shape, Vec3, World};
+
+/// Counts the allocations of the calling thread, so a test can prove a step allocates nothing
+/// while other tests run on other threads.
+struct CountingAllocator;
+
+thread_local! {
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+// SAFETY: forwards every call to the system allocator unchanged; the counter is a const-initialised
+// thread-local `Cell`, which never allocates.
+unsafe impl GlobalAlloc for CountingAllocator {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.with(|count| count.set(count.get() + 1));
+        // SAFETY: the caller's contract is passed on unchanged.
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn dealloc(&self, pointer: *mut u8, layout: Layout) {
+        // SAFETY: the caller's contract is passed on unchanged.
+        unsafe { System.dealloc(pointer, layout) }
+    }
+
+    unsafe fn realloc(&self, pointer: *mut u8, layout: Layout, size: usize) -> *mut u8 {
+        ALLOCATIONS.with(|count| count.set(count.get() + 1));
+        // SAFETY: the caller's contract is passed on unchanged.
+        unsafe { System.realloc(pointer, layout, size) }
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: CountingAllocator = CountingAllocator;
+
+fn allocations() -> usize {
+    ALLOCATIONS.with(Cell::get)
+}
+
+/// Runs `work` and checks that it allocated nothing on this thread; returns its result.
+fn allocations_of<T>(work: impl FnOnce() -> T) -> T {
+    let probe = allocations();
+    drop(std::hint::black_box(vec![0u8; 16]));
+    assert_eq!(
+        allocations(),
+        probe + 1,
+        "the counter sees this thread's allocations"
+    );
+    let before = allocations();
+    let result = work();
+    assert_eq!(allocations(), before, "a steady step allocates nothing");
+    result
+}
+
+#[test]
+fn a_steady_step_with_events_and_sensors_allocates_nothing() {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    let ground = add_ground(&mut world, 0.5);
+    world
+        .body_mut(ground)
+        .unwrap()
+        .set_contact_force_threshold(0.0)
+        .unwrap();
+    for index in 0..6 {
+        world
+            .add_body(unit_box(Vec3::new(index as f32 * 1.5, 0.5, 0.0)).can_sleep(false))
+            .unwrap();
+    }
+    let gate = world
+        .add_body(
+            BodyDesc::kinematic(Shape::cuboid(Vec3::new(0.25, 1.0, 1.0)).unwrap())
+                .position(Vec3::new(-1.0, 1.0, 0.0))
+                .sensor(true),
+        )
+        .unwrap();
+    // The gate sweeps back and forth over the row of boxes, 2 s each way; returns how many
+    // sensor and force events it saw.
+    let sweep = |world: &mut World| {
+        let mut events = 0;
+        for step in 0..240 {
+            let direction = if step < 120 { 4.0 } else { -4.0 };
+            world
+                .body_mut(gate)
+                .unwrap()
+                .set_linear_velocity(Vec3::new(direction, 0.0, 0.0))
+                .unwrap();
+            world.step(DT).unwrap();
+            events += world.sensor_events().len() + world.contact_force_events().len();
+        }
+        events
+    };
+    sweep(&mut world);
+    sweep(&mut world);
+    let events = allocations_of(|| sweep(&mut world) + sweep(&mut world));
+    assert!(
+        events > 2 * 240,
+        "every step reports the boxes' weights, and the gate crosses"
+    );
+}
+
+/// An irregular pebble about 1 m across, the hull of the `mixed` benchmark scene: a hexagonal
+/// bipyramid with a flattened, twisted top ring.
+fn pebble() -> Shape {
+    let mut points = Vec::new();
+    for i in 0..6 {
+        let angle = i as f32 * std::f32::consts::TAU / 6.0;
+        points.push(Vec3::new(0.5 * angle.cos(), -0.15, 0.45 * angle.sin()));
+        let angle = angle + 0.4;
+        points.push(Vec3::new(0.35 * angle.cos(), 0.25, 0.3 * angle.sin()));
+    }
+    points.push(Vec3::new(0.05, -0.4, 0.0));
+    points.push(Vec3::new(-0.05, 0.4, 0.05));
+    Shape::convex_hull(&points).unwrap()
+}
+
+/// Cylinders, capsules, hulls and spheres resting on the ground and on each other, kept awake,
+/// and, 5 m above them, a kinematic cylinder, capsule and hull sweeping back and forth through a
+/// row of fixed cylinders and hulls, cores deep in each other: the narrow phase runs GJK and EPA
+/// on those pairs at every step, and on the resting pairs whenever they move by more than the
+/// recycling tolerance.
+#[test]
+fn a_steady_step_of_cylinders_hulls_and_capsules_allocates_nothing() {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    add_ground(&mut world, 0.5);
+    let cylinder = Shape::cylinder(0.4, 0.35).unwrap();
+    let capsule = Shape::capsule(0.3, 0.35).unwrap();
+    let sphere = Shape::sphere(0.4).unwrap();
+    let lying = Quat::from_rotation_z(std::f32::consts::FRAC_PI_2);
+    for row in 0..3 {
+        let z = row as f32 * 1.2;
+        let resting = [
+            (cylinder.clone(), Vec3::new(0.0, 0.35, z), Quat::IDENTITY),
+            (cylinder.clone(), Vec3::new(0.8, 0.4, z), lying),
+            (capsule.clone(), Vec3::new(1.9, 0.3, z), lying),
+            (pebble(), Vec3::new(3.0, 0.4, z), Quat::IDENTITY),
+            (sphere.clone(), Vec3::new(3.9, 0.4, z), Quat::IDENTITY),
+            (cylinder.clone(), Vec3::new(0.0, 1.1, z), Quat::IDENTITY),
+            (pebble(), Vec3::new(3.0, 1.2, z), Quat::from_rotation_y(0.7)),
+        ];
+        for (shape, position, rotation) in resting {
+            world
+                .add_body(
+                    BodyDesc::dynamic(shape)
+                        .position(position)
+                        .rotation(rotation)
+                        .can_sleep(false),
+                )
+                .unwrap();
+        }
+    }
+    for index in 0..4 {
+        let x = index as f32 * 1.5;
+        let shape = if index % 2 == 0 {
+            cylinder.clone()
+        } else {
+            pebble()
+        };
+        world
+            .add_body(BodyDesc::fixed(shape).position(Vec3::new(x, 5.0, 0.0)))
+            .unwrap();
+    }
+    let sweepers = [
+        (cylinder.clone(), Quat::from_rotation_x(0.3)),
+        (capsule.clone(), lying),
+        (pebble(), Quat::from_rotation_y(0.5)),
+    ]
+    .map(|(shape, rotation)| {
+        world
+            .add_body(
+                BodyDesc::kinematic(shape)
+                    .position(Vec3::new(-1.0, 5.2, 0.0))
+                    .rotation(rotation),
+            )
+            .unwrap()
+    });
+    // The sweepers cross the row, 6 m in 2 s, and come back: the scene repeats every 240 steps.
+    let sweep = |world: &mut World| {
+        for step in 0..240 {
+            let speed = if step < 120 { 3.0 } else { -3.0 };
+            for &sweeper in &sweepers {
+                world
+                    .body_mut(sweeper)
+                    .unwrap()
+                    .set_linear_velocity(Vec3::new(speed, 0.0, 0.0))
+                    .unwrap();
+            }
+            world.step(DT).unwrap();
+        }
+    };
+    sweep(&mut world);
+    sweep(&mut world);
+    // EPA does run in this scene: a sweeper inside a fixed cylinder, as the step meets them, needs
+    // it, and on a polytope of its own it allocates.
+    let (inside, fixed) = (
+        Pose::from_position(Vec3::new(0.1, 5.2, 0.0)),
+        Pose::from_position(Vec3::new(0.0, 5.0, 0.0)),
+    );
+    let core = |shape, pose| PosedCore { shape, pose };
+    let before = allocations();
+    let found = epa::contact(&core(&cylinder, &inside), &core(&cylinder, &fixed), 0.0);
+    assert!(
+        found.is_some_and(|contact| contact.separation < -0.1),
+        "{found:?}"
+    );
+    assert!(allocations() > before, "EPA ran");
+    allocations_of(|| {
+        sweep(&mut world);
+        sweep(&mut world);
+    });
+}
