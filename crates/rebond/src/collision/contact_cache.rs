@@ -1,6 +1,8 @@
 //! The contact cache: this step's contacts, each with the impulses its points carried over from
 //! the point with the same feature id in the previous step (warm starting).
 
+use std::ops::Range;
+
 use super::manifold::{Manifold, MAX_MANIFOLD_POINTS};
 use crate::body::BodyHandle;
 use crate::math::{Pose, Vec3};
@@ -114,6 +116,9 @@ pub struct Contact {
 pub struct ContactCache {
     current: Vec<Contact>,
     previous: Vec<Contact>,
+    /// Where in `previous` the last pair asked for ended: the world asks for pairs in key order
+    /// (the broad phase's pairs are sorted), so the next one is found by walking on from there.
+    previous_cursor: usize,
 }
 
 impl ContactCache {
@@ -122,6 +127,7 @@ impl ContactCache {
     pub fn begin_step(&mut self) {
         std::mem::swap(&mut self.current, &mut self.previous);
         self.current.clear();
+        self.previous_cursor = 0;
     }
 
     /// Adds a contact found this step by the narrow phase with the bodies at `pose_a` and
@@ -149,7 +155,8 @@ impl ContactCache {
         pose_a: &Pose,
         pose_b: &Pose,
     ) -> bool {
-        let previous = contacts_of_pair(&self.previous, body_a, body_b);
+        let previous = self.previous_of_pair(body_a, body_b);
+        let previous = &self.previous[previous];
         let relative_pose = pose_a.inverse().mul_pose(pose_b);
         if previous.is_empty()
             || !previous
@@ -170,8 +177,37 @@ impl ContactCache {
     /// for pairs of bodies that did not move (asleep, or asleep against static), whose contacts
     /// must be ready the moment they wake.
     pub fn keep_previous(&mut self, body_a: BodyHandle, body_b: BodyHandle) {
-        self.current
-            .extend_from_slice(contacts_of_pair(&self.previous, body_a, body_b));
+        let previous = self.previous_of_pair(body_a, body_b);
+        self.current.extend_from_slice(&self.previous[previous]);
+    }
+
+    /// Where last step's contacts between `body_a` and `body_b` lie in `previous`, which is
+    /// sorted by key. Walks on from the pair asked for before, which costs a few comparisons when
+    /// pairs are asked for in key order; a pair asked for out of order is found by binary search.
+    fn previous_of_pair(&mut self, body_a: BodyHandle, body_b: BodyHandle) -> Range<usize> {
+        let pair = |contact: &Contact| (contact.key.body_a, contact.key.body_b);
+        let wanted = (body_a, body_b);
+        let previous = &self.previous;
+        let mut start = self.previous_cursor.min(previous.len());
+        if start > 0 && pair(&previous[start - 1]) >= wanted {
+            start = previous.partition_point(|contact| pair(contact) < wanted);
+        } else {
+            while previous
+                .get(start)
+                .is_some_and(|contact| pair(contact) < wanted)
+            {
+                start += 1;
+            }
+        }
+        let mut end = start;
+        while previous
+            .get(end)
+            .is_some_and(|contact| pair(contact) == wanted)
+        {
+            end += 1;
+        }
+        self.previous_cursor = end;
+        start..end
     }
 
     /// Sorts this step's contacts by key and gives each point the normal impulse of the previous
@@ -220,17 +256,6 @@ impl ContactCache {
         self.current
             .retain(|contact| keep(contact.key.body_a, contact.key.body_b));
     }
-}
-
-/// The contacts between `body_a` and `body_b` in `contacts`, which is sorted by key.
-fn contacts_of_pair(contacts: &[Contact], body_a: BodyHandle, body_b: BodyHandle) -> &[Contact] {
-    let pair = |contact: &Contact| (contact.key.body_a, contact.key.body_b);
-    let start = contacts.partition_point(|contact| pair(contact) < (body_a, body_b));
-    let length = contacts[start..]
-        .iter()
-        .take_while(|contact| pair(contact) == (body_a, body_b))
-        .count();
-    &contacts[start..start + length]
 }
 
 #[cfg(test)]
@@ -318,6 +343,48 @@ mod tests {
         assert_eq!(contacts[0].friction_impulse, Vec3::new(0.5, 0.0, -0.5));
         // The same id between other bodies does not inherit anything.
         assert_eq!(contacts[1].normal_impulses[0], 0.0);
+    }
+
+    /// Pairs asked for in key order are found by walking on; out of order, by binary search:
+    /// either way each gets exactly its own contacts.
+    #[test]
+    fn previous_contacts_are_found_in_and_out_of_order() {
+        let (ground, box_one, box_two) = handles();
+        let mut cache = ContactCache::default();
+        cache.begin_step();
+        for (a, b, ids) in [
+            (ground, box_one, &[1, 2][..]),
+            (ground, box_two, &[3]),
+            (box_one, box_two, &[4, 5, 6]),
+        ] {
+            cache.push(key(a, b), manifold(ids), &Pose::IDENTITY, &Pose::IDENTITY);
+        }
+        cache.finish_step();
+        let kept_in_order = |cache: &mut ContactCache, pairs: &[(BodyHandle, BodyHandle)]| {
+            cache.begin_step();
+            let counts: Vec<usize> = pairs
+                .iter()
+                .map(|&(a, b)| {
+                    let before = cache.contacts().len();
+                    cache.keep_previous(a, b);
+                    cache.contacts()[before..]
+                        .iter()
+                        .map(|contact| contact.manifold.points().len())
+                        .sum()
+                })
+                .collect();
+            cache.finish_step();
+            counts
+        };
+        let all = [(ground, box_one), (ground, box_two), (box_one, box_two)];
+        assert_eq!(kept_in_order(&mut cache, &all), [2, 1, 3]);
+        let shuffled = [
+            (box_one, box_two),
+            (ground, box_two),
+            (box_two, ground),
+            (ground, box_one),
+        ];
+        assert_eq!(kept_in_order(&mut cache, &shuffled), [3, 1, 0, 2]);
     }
 
     #[test]
