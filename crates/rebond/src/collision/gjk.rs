@@ -62,6 +62,8 @@ impl SupportPoint {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Simplex {
     points: [SupportPoint; 4],
+    /// `|w|` of each point, kept so that the scale costs no square root.
+    lengths: [f32; 4],
     weights: [f32; 4],
     len: usize,
     closest: Vec3,
@@ -110,15 +112,16 @@ impl Simplex {
 
     /// Largest `|w|` among the points: the length scale of the problem.
     pub fn scale(&self) -> f32 {
-        self.points()
+        self.lengths[..self.len]
             .iter()
-            .fold(0.0, |largest, point| largest.max(point.w.length()))
+            .fold(0.0, |largest, &length| largest.max(length))
     }
 
     /// Appends a point; a full simplex is left unchanged.
     fn push(&mut self, point: SupportPoint) {
         if let Some(slot) = self.points.get_mut(self.len) {
             *slot = point;
+            self.lengths[self.len] = point.w.length();
             self.weights[self.len] = 0.0;
             self.len += 1;
         }
@@ -143,9 +146,10 @@ impl Simplex {
             3 => Barycentric::triangle(&unit, [0, 1, 2]),
             _ => Barycentric::tetrahedron(&unit),
         };
-        let points = self.points;
+        let (points, lengths) = (self.points, self.lengths);
         for slot in 0..found.len {
             self.points[slot] = points[found.indices[slot]];
+            self.lengths[slot] = lengths[found.indices[slot]];
             self.weights[slot] = found.weights[slot];
         }
         self.len = found.len;
@@ -419,9 +423,10 @@ where
         if gap <= TOLERANCE * scale.max(point.w.length()) {
             break;
         }
-        let mut points = simplex.points;
-        points[simplex.len.min(3)] = point;
-        let (grown, enclosed) = Simplex::reduced(&points[..=simplex.len.min(3)]);
+        // A simplex of four points holds the origin and has ended the search, so there is room.
+        let mut grown = simplex;
+        grown.push(point);
+        let enclosed = grown.reduce();
         if enclosed {
             return Search::Done(Distance::from_simplex(grown, true));
         }
