@@ -146,12 +146,15 @@ impl Simplex {
             3 => Barycentric::triangle(&unit, [0, 1, 2]),
             _ => Barycentric::tetrahedron(&unit),
         };
-        let (points, lengths) = (self.points, self.lengths);
-        for slot in 0..found.len {
-            self.points[slot] = points[found.indices[slot]];
-            self.lengths[slot] = lengths[found.indices[slot]];
-            self.weights[slot] = found.weights[slot];
+        let kept = &found.indices[..found.len];
+        if kept.iter().enumerate().any(|(slot, &index)| slot != index) {
+            let (points, lengths) = (self.points, self.lengths);
+            for (slot, &index) in kept.iter().enumerate() {
+                self.points[slot] = points[index];
+                self.lengths[slot] = lengths[index];
+            }
         }
+        self.weights = found.weights;
         self.len = found.len;
         self.closest = found.point * scale;
         found.len == 4
@@ -423,17 +426,16 @@ where
         if gap <= TOLERANCE * scale.max(point.w.length()) {
             break;
         }
-        // A simplex of four points holds the origin and has ended the search, so there is room.
-        let mut grown = simplex;
-        grown.push(point);
-        let enclosed = grown.reduce();
-        if enclosed {
-            return Search::Done(Distance::from_simplex(grown, true));
+        // Grown in place (`best` holds the simplex to fall back on). A simplex of four points
+        // holds the origin and has ended the search, so there is room.
+        simplex.push(point);
+        if simplex.reduce() {
+            return Search::Done(Distance::from_simplex(simplex, true));
         }
         // Near the answer the distance improves only at second order, below rounding, while
         // the direction still improves at first order: a simplex no nearer is kept all the same,
         // and the search ends after a few of those in a row.
-        if grown.closest_point().length() >= upper {
+        if simplex.closest_point().length() >= upper {
             stalls += 1;
             if stalls > MAX_STALLS {
                 break;
@@ -441,7 +443,6 @@ where
         } else {
             stalls = 0;
         }
-        simplex = grown;
     }
     Search::Done(Distance::from_simplex(best.1, false))
 }
