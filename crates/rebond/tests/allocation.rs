@@ -11,7 +11,7 @@ use std::cell::Cell;
 use common::{add_ground, unit_box, world, DT, G};
 use rebond::collision::epa;
 use rebond::collision::PosedCore;
-use rebond::{BodyDesc, Pose, Quat, Shape, Vec3, World};
+use rebond::{BodyDesc, BodyHandle, Pose, Quat, Shape, Vec3, World};
 
 /// Counts the allocations of the calling thread, so a test can prove a step allocates nothing
 /// while other tests run on other threads.
@@ -64,6 +64,23 @@ fn allocations_of<T>(work: impl FnOnce() -> T) -> T {
     result
 }
 
+/// Steps `world` 240 times, the kinematic `movers` going along +X at `speed` m/s for the first
+/// 120 steps and back for the others, so that the scene repeats; `after_step` sees each step.
+fn sweep(world: &mut World, movers: &[BodyHandle], speed: f32, mut after_step: impl FnMut(&World)) {
+    for step in 0..240 {
+        let velocity = if step < 120 { speed } else { -speed };
+        for &mover in movers {
+            world
+                .body_mut(mover)
+                .unwrap()
+                .set_linear_velocity(Vec3::new(velocity, 0.0, 0.0))
+                .unwrap();
+        }
+        world.step(DT).unwrap();
+        after_step(world);
+    }
+}
+
 #[test]
 fn a_steady_step_with_events_and_sensors_allocates_nothing() {
     let mut world = world(Vec3::new(0.0, -G, 0.0));
@@ -85,25 +102,18 @@ fn a_steady_step_with_events_and_sensors_allocates_nothing() {
                 .sensor(true),
         )
         .unwrap();
-    // The gate sweeps back and forth over the row of boxes, 2 s each way; returns how many
-    // sensor and force events it saw.
-    let sweep = |world: &mut World| {
-        let mut events = 0;
-        for step in 0..240 {
-            let direction = if step < 120 { 4.0 } else { -4.0 };
-            world
-                .body_mut(gate)
-                .unwrap()
-                .set_linear_velocity(Vec3::new(direction, 0.0, 0.0))
-                .unwrap();
-            world.step(DT).unwrap();
-            events += world.sensor_events().len() + world.contact_force_events().len();
-        }
-        events
+    // The gate sweeps back and forth over the row of boxes, 2 s each way; counts the sensor and
+    // force events it saw.
+    let mut events = 0;
+    let mut count_events = |world: &World| {
+        events += world.sensor_events().len() + world.contact_force_events().len();
     };
-    sweep(&mut world);
-    sweep(&mut world);
-    let events = allocations_of(|| sweep(&mut world) + sweep(&mut world));
+    sweep(&mut world, &[gate], 4.0, |_| {});
+    sweep(&mut world, &[gate], 4.0, |_| {});
+    allocations_of(|| {
+        sweep(&mut world, &[gate], 4.0, &mut count_events);
+        sweep(&mut world, &[gate], 4.0, &mut count_events);
+    });
     assert!(
         events > 2 * 240,
         "every step reports the boxes' weights, and the gate crosses"
@@ -185,22 +195,9 @@ fn a_steady_step_of_cylinders_hulls_and_capsules_allocates_nothing() {
             )
             .unwrap()
     });
-    // The sweepers cross the row, 6 m in 2 s, and come back: the scene repeats every 240 steps.
-    let sweep = |world: &mut World| {
-        for step in 0..240 {
-            let speed = if step < 120 { 3.0 } else { -3.0 };
-            for &sweeper in &sweepers {
-                world
-                    .body_mut(sweeper)
-                    .unwrap()
-                    .set_linear_velocity(Vec3::new(speed, 0.0, 0.0))
-                    .unwrap();
-            }
-            world.step(DT).unwrap();
-        }
-    };
-    sweep(&mut world);
-    sweep(&mut world);
+    // The sweepers cross the row, 6 m in 2 s, and come back.
+    sweep(&mut world, &sweepers, 3.0, |_| {});
+    sweep(&mut world, &sweepers, 3.0, |_| {});
     // EPA does run in this scene: a sweeper inside a fixed cylinder, as the step meets them, needs
     // it, and on a polytope of its own it allocates.
     let (inside, fixed) = (
@@ -216,7 +213,7 @@ fn a_steady_step_of_cylinders_hulls_and_capsules_allocates_nothing() {
     );
     assert!(allocations() > before, "EPA ran");
     allocations_of(|| {
-        sweep(&mut world);
-        sweep(&mut world);
+        sweep(&mut world, &sweepers, 3.0, |_| {});
+        sweep(&mut world, &sweepers, 3.0, |_| {});
     });
 }
