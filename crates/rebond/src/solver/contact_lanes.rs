@@ -13,6 +13,7 @@ use super::softness::Softness;
 use super::wide::{F32x4, Mask4, Vec3x4};
 use super::BodyState;
 use crate::collision::MAX_MANIFOLD_POINTS;
+use crate::math::Vec3A;
 
 /// Lanes per set.
 pub const LANES: usize = 4;
@@ -27,22 +28,25 @@ struct BodyLanes {
 
 impl BodyLanes {
     fn gather(states: &[BodyState], bodies: &[usize; LANES]) -> Self {
-        let state = bodies.map(|body| states[body]);
+        let [a, b, c, d] = [0, 1, 2, 3].map(|lane| &states[bodies[lane]]);
+        let field = |f: fn(&BodyState) -> Vec3A| Vec3x4::from_lanes([f(a), f(b), f(c), f(d)]);
         Self {
-            linear_velocity: Vec3x4::from_lanes(state.map(|s| s.linear_velocity)),
-            angular_velocity: Vec3x4::from_lanes(state.map(|s| s.angular_velocity)),
-            delta_position: Vec3x4::from_lanes(state.map(|s| s.delta_position)),
-            delta_rotation: Vec3x4::from_lanes(state.map(|s| s.delta_rotation)),
+            linear_velocity: field(|s| s.linear_velocity),
+            angular_velocity: field(|s| s.angular_velocity),
+            delta_position: field(|s| s.delta_position),
+            delta_rotation: field(|s| s.delta_rotation),
         }
     }
 
     /// Writes the velocities back; body 0 (fixed, and the empty lanes) never changes.
     fn scatter(&self, states: &mut [BodyState], bodies: &[usize; LANES]) {
+        let linear = self.linear_velocity.lanes();
+        let angular = self.angular_velocity.lanes();
         for (lane, &body) in bodies.iter().enumerate() {
             if body != 0 {
                 let state = &mut states[body];
-                state.linear_velocity = self.linear_velocity.lane(lane);
-                state.angular_velocity = self.angular_velocity.lane(lane);
+                state.linear_velocity = linear[lane];
+                state.angular_velocity = angular[lane];
             }
         }
     }
@@ -65,7 +69,7 @@ impl JacobianLanes {
             arm_b: Vec3x4::from_lanes(jacobians.map(|j| j.arm_b)),
             spin_a: Vec3x4::from_lanes(jacobians.map(|j| j.spin_a)),
             spin_b: Vec3x4::from_lanes(jacobians.map(|j| j.spin_b)),
-            mass: F32x4(jacobians.map(|j| j.mass)),
+            mass: F32x4::from_array(jacobians.map(|j| j.mass)),
         }
     }
 
@@ -144,9 +148,9 @@ impl ContactLanes {
             let of_lanes = lanes.map(|c| &c.points[index]);
             *point = PointLanes {
                 normal: JacobianLanes::from_lanes(of_lanes.map(|p| &p.normal)),
-                base_separation: F32x4(of_lanes.map(|p| p.base_separation)),
-                normal_impulse: F32x4(of_lanes.map(|p| p.normal_impulse)),
-                max_normal_impulse: F32x4(of_lanes.map(|p| p.max_normal_impulse)),
+                base_separation: F32x4::from_array(of_lanes.map(|p| p.base_separation)),
+                normal_impulse: F32x4::from_array(of_lanes.map(|p| p.normal_impulse)),
+                max_normal_impulse: F32x4::from_array(of_lanes.map(|p| p.max_normal_impulse)),
             };
         }
         let mut constraint_indices = [0; LANES];
@@ -158,22 +162,24 @@ impl ContactLanes {
             constraint_count: members.len(),
             body_a,
             body_b,
-            inverse_mass_a: F32x4(body_a.map(|body| states[body].inverse_mass)),
-            inverse_mass_b: F32x4(body_b.map(|body| states[body].inverse_mass)),
+            inverse_mass_a: F32x4::from_array(body_a.map(|body| states[body].inverse_mass)),
+            inverse_mass_b: F32x4::from_array(body_b.map(|body| states[body].inverse_mass)),
             normal: Vec3x4::from_lanes(lanes.map(|c| c.normal)),
             tangents: [0, 1].map(|axis| Vec3x4::from_lanes(lanes.map(|c| c.tangents[axis]))),
-            friction: F32x4(lanes.map(|c| c.friction)),
+            friction: F32x4::from_array(lanes.map(|c| c.friction)),
             point_count,
             points,
             tangent: [0, 1].map(|axis| JacobianLanes::from_lanes(lanes.map(|c| &c.tangent[axis]))),
-            tangent_impulse: [0, 1].map(|axis| F32x4(lanes.map(|c| c.tangent_impulse[axis]))),
-            anchor_offset: [0, 1].map(|axis| F32x4(lanes.map(|c| c.anchor_offset[axis]))),
+            tangent_impulse: [0, 1]
+                .map(|axis| F32x4::from_array(lanes.map(|c| c.tangent_impulse[axis]))),
+            anchor_offset: [0, 1]
+                .map(|axis| F32x4::from_array(lanes.map(|c| c.anchor_offset[axis]))),
             slid: Mask4::NONE,
             twist_spin_a: Vec3x4::from_lanes(lanes.map(|c| c.twist_spin_a)),
             twist_spin_b: Vec3x4::from_lanes(lanes.map(|c| c.twist_spin_b)),
-            twist_mass: F32x4(lanes.map(|c| c.twist_mass)),
-            twist_radius: F32x4(lanes.map(|c| c.twist_radius)),
-            twist_impulse: F32x4(lanes.map(|c| c.twist_impulse)),
+            twist_mass: F32x4::from_array(lanes.map(|c| c.twist_mass)),
+            twist_radius: F32x4::from_array(lanes.map(|c| c.twist_radius)),
+            twist_impulse: F32x4::from_array(lanes.map(|c| c.twist_impulse)),
         }
     }
 
@@ -183,11 +189,11 @@ impl ContactLanes {
             let constraint = &mut constraints[index];
             let points = constraint.points.iter_mut().take(constraint.point_count);
             for (point, solved) in points.zip(&self.points) {
-                point.normal_impulse = solved.normal_impulse.0[lane];
-                point.max_normal_impulse = solved.max_normal_impulse.0[lane];
+                point.normal_impulse = solved.normal_impulse.lane(lane);
+                point.max_normal_impulse = solved.max_normal_impulse.lane(lane);
             }
-            constraint.tangent_impulse = self.tangent_impulse.map(|impulse| impulse.0[lane]);
-            constraint.twist_impulse = self.twist_impulse.0[lane];
+            constraint.tangent_impulse = self.tangent_impulse.map(|impulse| impulse.lane(lane));
+            constraint.twist_impulse = self.twist_impulse.lane(lane);
             constraint.slid |= self.slid.lane(lane);
         }
     }
@@ -202,29 +208,43 @@ impl ContactLanes {
         b.angular_velocity += self.twist_spin_b.scale(impulse);
     }
 
-    /// [`ContactConstraint::warm_start`] of the four lanes.
+    /// [`ContactConstraint::warm_start`] of the four lanes. The impulses only add up, so they
+    /// are summed first, `P = Σλ_i n + Σλ_t t + …` and `L_A = Σλ I_A⁻¹(r_A × d)`, and each body
+    /// gets `Δv = ±P / m`, `Δω = ∓L_A` or `±L_B` once.
     pub fn warm_start(&self, states: &mut [BodyState]) {
-        let mut a = BodyLanes::gather(states, &self.body_a);
-        let mut b = BodyLanes::gather(states, &self.body_b);
-        let masses = self.inverse_masses();
-        for point in &self.points[..self.point_count] {
-            let impulse = point.normal_impulse;
-            point
-                .normal
-                .apply((&mut a, &mut b), masses, self.normal, impulse);
+        let mut linear = Vec3x4::default();
+        let mut spin_a = self.twist_spin_a.scale(self.twist_impulse);
+        let mut spin_b = self.twist_spin_b.scale(self.twist_impulse);
+        let directions = [self.tangents[0], self.tangents[1]];
+        let tangents = self
+            .tangent
+            .iter()
+            .zip(directions)
+            .zip(self.tangent_impulse);
+        let normals = self.points[..self.point_count]
+            .iter()
+            .map(|point| ((&point.normal, self.normal), point.normal_impulse));
+        for ((jacobian, direction), impulse) in normals.chain(tangents) {
+            linear += direction.scale(impulse);
+            spin_a += jacobian.spin_a.scale(impulse);
+            spin_b += jacobian.spin_b.scale(impulse);
         }
-        for axis in 0..2 {
-            let (jacobian, direction) = (&self.tangent[axis], self.tangents[axis]);
-            jacobian.apply(
-                (&mut a, &mut b),
-                masses,
-                direction,
-                self.tangent_impulse[axis],
-            );
+        let linear_a = linear.scale(self.inverse_mass_a).lanes();
+        let linear_b = linear.scale(self.inverse_mass_b).lanes();
+        let (spin_a, spin_b) = (spin_a.lanes(), spin_b.lanes());
+        for lane in 0..LANES {
+            let (body_a, body_b) = (self.body_a[lane], self.body_b[lane]);
+            if body_a != 0 {
+                let state = &mut states[body_a];
+                state.linear_velocity -= linear_a[lane];
+                state.angular_velocity -= spin_a[lane];
+            }
+            if body_b != 0 {
+                let state = &mut states[body_b];
+                state.linear_velocity += linear_b[lane];
+                state.angular_velocity += spin_b[lane];
+            }
         }
-        self.apply_twist(&mut a, &mut b, self.twist_impulse);
-        a.scatter(states, &self.body_a);
-        b.scatter(states, &self.body_b);
     }
 
     /// [`ContactConstraint::solve`] of the four lanes: the normal impulse of each point, then the
@@ -295,7 +315,9 @@ impl ContactLanes {
         let scale = length
             .greater_than(F32x4::ZERO)
             .select(limit / length, F32x4::ZERO);
-        total = total.map(|value| slides.select(value * scale, value));
+        for value in &mut total {
+            *value = slides.select(*value * scale, *value);
+        }
         self.slid = self.slid.or(slides);
         self.tangent_impulse = total;
         for axis in 0..2 {

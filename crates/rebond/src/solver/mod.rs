@@ -236,6 +236,7 @@ impl Solver {
         self.pairs.extend(pairs);
         self.colouring.colour(&self.pairs, self.states.len());
         self.lanes.clear();
+
         for lane_set in self.colouring.lane_sets() {
             let packed = ContactLanes::pack(lane_set, &self.constraints, &self.states);
             self.lanes.push(packed);

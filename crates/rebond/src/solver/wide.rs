@@ -1,130 +1,121 @@
 //! Four-lane f32 arithmetic for the wide contact solver: one value of each of four constraints.
 //!
-//! Each operation works lane by lane on a 16-byte aligned `[f32; 4]`, written so the optimiser
-//! turns it into a single SSE (or NEON) instruction; no `unsafe`, and the same result on every
-//! target. Lane `i` of every operation computes exactly what the scalar operation computes on lane
-//! `i` of its inputs, in the same order: no fused multiply-add, so results are bit-identical from
-//! run to run.
+//! [`F32x4`] wraps glam's `Vec4`, which is one SSE register on x86-64 (NEON on aarch64, plain
+//! arrays elsewhere), so each operation is one vector instruction, with no `unsafe` here. Lane `i`
+//! of every operation computes what the scalar operation computes on lane `i` of its inputs: no
+//! fused multiply-add, so results are bit-identical from run to run.
 
 use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
+
+use glam::{BVec4A, Vec4};
 
 use crate::math::Vec3A;
 
 /// Four f32 lanes.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-#[repr(C, align(16))]
-pub(crate) struct F32x4(pub [f32; 4]);
+pub(crate) struct F32x4(Vec4);
 
-/// Four lane masks: all bits set where a comparison held, zero where it did not.
+/// Four lane masks: set where a comparison held.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-#[repr(C, align(16))]
-pub(crate) struct Mask4([u32; 4]);
+pub(crate) struct Mask4(BVec4A);
 
 impl F32x4 {
-    pub const ZERO: Self = Self([0.0; 4]);
-    pub const ONE: Self = Self([1.0; 4]);
+    pub const ZERO: Self = Self(Vec4::ZERO);
+    pub const ONE: Self = Self(Vec4::ONE);
 
     /// The same value in every lane.
-    pub const fn splat(value: f32) -> Self {
-        Self([value; 4])
+    pub fn splat(value: f32) -> Self {
+        Self(Vec4::splat(value))
     }
 
-    fn map(self, f: impl Fn(f32) -> f32) -> Self {
-        Self(self.0.map(f))
+    /// Lane `i` holds `values[i]`.
+    pub fn from_array(values: [f32; 4]) -> Self {
+        Self(Vec4::from_array(values))
     }
 
-    fn zip(self, other: Self, f: impl Fn(f32, f32) -> f32) -> Self {
-        let (a, b) = (self.0, other.0);
-        Self([f(a[0], b[0]), f(a[1], b[1]), f(a[2], b[2]), f(a[3], b[3])])
+    /// The value of lane `lane`.
+    pub fn lane(self, lane: usize) -> f32 {
+        self.0[lane]
     }
 
-    fn compare(self, other: Self, f: impl Fn(f32, f32) -> bool) -> Mask4 {
-        let (a, b) = (self.0, other.0);
-        let lane = |i: usize| if f(a[i], b[i]) { u32::MAX } else { 0 };
-        Mask4([lane(0), lane(1), lane(2), lane(3)])
-    }
-
-    /// `max(self, other)` per lane (`other` where either is NaN).
+    /// `max(self, other)` per lane.
     pub fn max(self, other: Self) -> Self {
-        self.zip(other, |a, b| if a > b { a } else { b })
+        Self(self.0.max(other.0))
     }
 
-    /// `min(self, other)` per lane (`other` where either is NaN).
+    /// `min(self, other)` per lane.
     pub fn min(self, other: Self) -> Self {
-        self.zip(other, |a, b| if a < b { a } else { b })
+        Self(self.0.min(other.0))
     }
 
     /// Square root per lane.
     pub fn sqrt(self) -> Self {
-        self.map(f32::sqrt)
+        Self(self.0.sqrt())
     }
 
     /// Where `self > other`.
     pub fn greater_than(self, other: Self) -> Mask4 {
-        self.compare(other, |a, b| a > b)
+        Mask4(self.0.cmpgt(other.0))
     }
 
     /// Where `self < other`.
     pub fn less_than(self, other: Self) -> Mask4 {
-        self.compare(other, |a, b| a < b)
+        Mask4(self.0.cmplt(other.0))
     }
 }
 
 impl Mask4 {
     /// No lane set.
-    pub const NONE: Self = Self([0; 4]);
+    pub const NONE: Self = Self(BVec4A::FALSE);
 
     /// `if_set` where the mask is set, `otherwise` elsewhere, per lane.
     pub fn select(self, if_set: F32x4, otherwise: F32x4) -> F32x4 {
-        let (m, a, b) = (self.0, if_set.0, otherwise.0);
-        let lane = |i: usize| f32::from_bits((a[i].to_bits() & m[i]) | (b[i].to_bits() & !m[i]));
-        F32x4([lane(0), lane(1), lane(2), lane(3)])
+        F32x4(Vec4::select(self.0, if_set.0, otherwise.0))
     }
 
     /// Lanes set in either mask.
     pub fn or(self, other: Self) -> Self {
-        let (a, b) = (self.0, other.0);
-        Self([a[0] | b[0], a[1] | b[1], a[2] | b[2], a[3] | b[3]])
+        Self(self.0 | other.0)
     }
 
     /// Whether lane `lane` is set.
     pub fn lane(self, lane: usize) -> bool {
-        self.0[lane] != 0
+        self.0.test(lane)
     }
 }
 
 impl Add for F32x4 {
     type Output = Self;
     fn add(self, other: Self) -> Self {
-        self.zip(other, |a, b| a + b)
+        Self(self.0 + other.0)
     }
 }
 
 impl Sub for F32x4 {
     type Output = Self;
     fn sub(self, other: Self) -> Self {
-        self.zip(other, |a, b| a - b)
+        Self(self.0 - other.0)
     }
 }
 
 impl Mul for F32x4 {
     type Output = Self;
     fn mul(self, other: Self) -> Self {
-        self.zip(other, |a, b| a * b)
+        Self(self.0 * other.0)
     }
 }
 
 impl Div for F32x4 {
     type Output = Self;
     fn div(self, other: Self) -> Self {
-        self.zip(other, |a, b| a / b)
+        Self(self.0 / other.0)
     }
 }
 
 impl Neg for F32x4 {
     type Output = Self;
     fn neg(self) -> Self {
-        self.map(|a| -a)
+        Self(-self.0)
     }
 }
 
@@ -153,15 +144,15 @@ impl Vec3x4 {
     pub fn from_lanes(vectors: [Vec3A; 4]) -> Self {
         let [a, b, c, d] = vectors;
         Self {
-            x: F32x4([a.x, b.x, c.x, d.x]),
-            y: F32x4([a.y, b.y, c.y, d.y]),
-            z: F32x4([a.z, b.z, c.z, d.z]),
+            x: F32x4::from_array([a.x, b.x, c.x, d.x]),
+            y: F32x4::from_array([a.y, b.y, c.y, d.y]),
+            z: F32x4::from_array([a.z, b.z, c.z, d.z]),
         }
     }
 
-    /// The vector of lane `lane`.
-    pub fn lane(&self, lane: usize) -> Vec3A {
-        Vec3A::new(self.x.0[lane], self.y.0[lane], self.z.0[lane])
+    /// The vector of each lane.
+    pub fn lanes(&self) -> [Vec3A; 4] {
+        [0, 1, 2, 3].map(|i| Vec3A::new(self.x.lane(i), self.y.lane(i), self.z.lane(i)))
     }
 
     /// `x·x' + y·y' + z·z'` per lane.
@@ -219,14 +210,17 @@ mod tests {
 
     #[test]
     fn lanes_compute_what_scalars_compute() {
-        let a = F32x4([1.0, -2.0, 3.5, 0.0]);
-        let b = F32x4([0.5, 4.0, -1.0, 0.0]);
-        assert_eq!((a + b).0, [1.5, 2.0, 2.5, 0.0]);
-        assert_eq!((a * b - a / F32x4::splat(2.0)).0, [0.0, -7.0, -5.25, 0.0]);
-        assert_eq!(a.max(b).0, [1.0, 4.0, 3.5, 0.0]);
-        assert_eq!(a.min(b).0, [0.5, -2.0, -1.0, 0.0]);
+        let a = F32x4::from_array([1.0, -2.0, 3.5, 0.0]);
+        let b = F32x4::from_array([0.5, 4.0, -1.0, 0.0]);
+        assert_eq!((a + b).0.to_array(), [1.5, 2.0, 2.5, 0.0]);
+        assert_eq!(
+            (a * b - a / F32x4::splat(2.0)).0.to_array(),
+            [0.0, -7.0, -5.25, 0.0]
+        );
+        assert_eq!(a.max(b).0.to_array(), [1.0, 4.0, 3.5, 0.0]);
+        assert_eq!(a.min(b).0.to_array(), [0.5, -2.0, -1.0, 0.0]);
         let mask = a.greater_than(b);
-        assert_eq!(mask.select(a, -b).0, [1.0, -4.0, 3.5, -0.0]);
+        assert_eq!(mask.select(a, -b).0.to_array(), [1.0, -4.0, 3.5, -0.0]);
         assert!(mask.lane(0) && !mask.lane(1) && !a.less_than(b).or(mask).lane(3));
     }
 
@@ -234,7 +228,7 @@ mod tests {
     fn vectors_round_trip_through_lanes() {
         let vectors = [0, 1, 2, 3].map(|i| Vec3A::new(i as f32, 2.0 * i as f32, -1.0));
         let lanes = Vec3x4::from_lanes(vectors);
-        assert_eq!([0, 1, 2, 3].map(|i| lanes.lane(i)), vectors);
-        assert_eq!(lanes.dot(lanes).0, [1.0, 6.0, 21.0, 46.0]);
+        assert_eq!(lanes.lanes(), vectors);
+        assert_eq!(lanes.dot(lanes).0.to_array(), [1.0, 6.0, 21.0, 46.0]);
     }
 }
