@@ -262,14 +262,17 @@ impl ContactLanes {
         let normal = self.normal;
         let inverse_h = F32x4::splat(inverse_h);
         let slop = F32x4::splat(LINEAR_SLOP);
+        // The bodies' centres move only between passes: Δc_B − Δc_A and n·(Δc_B − Δc_A) hold for
+        // every point.
+        let relative_motion = b.delta_position - a.delta_position;
+        let normal_motion = normal.dot(relative_motion);
         let mut total_normal_impulse = F32x4::ZERO;
         for point in &mut self.points[..self.point_count] {
             let jacobian = &point.normal;
             // s = s₀ + n·(Δc_B − Δc_A) + Δθ_B·(r_B × n) − Δθ_A·(r_A × n)
-            let separation = point.base_separation
-                + normal.dot(b.delta_position - a.delta_position)
-                + b.delta_rotation.dot(jacobian.arm_b)
-                - a.delta_rotation.dot(jacobian.arm_a);
+            let separation =
+                point.base_separation + normal_motion + b.delta_rotation.dot(jacobian.arm_b)
+                    - a.delta_rotation.dot(jacobian.arm_a);
             // Apart: may close by s this substep. Deeper than the slop (biased pass): soft push
             // out at the bias rate, at most MAX_PUSH_SPEED. Otherwise rigid, no bias.
             let apart = separation.greater_than(F32x4::ZERO);
@@ -303,7 +306,7 @@ impl ContactLanes {
             if use_bias {
                 // The anchor offset now: start offset plus the motion since, along the tangent.
                 let offset = self.anchor_offset[axis]
-                    + self.tangents[axis].dot(b.delta_position - a.delta_position)
+                    + self.tangents[axis].dot(relative_motion)
                     + b.delta_rotation.dot(jacobian.arm_b)
                     - a.delta_rotation.dot(jacobian.arm_a);
                 velocity += inverse_h * offset;
