@@ -32,7 +32,8 @@ use softness::Softness;
 
 /// Biased passes per substep. With the contacts solved in lane sets instead of strictly one
 /// after another, one pass let the 20-box column of the tests topple at 4 substeps (0.74 m of
-/// drift); two keep it standing, and the lane sets make two passes cheaper than one was.
+/// drift); two keep it standing. With the lane sets, the three passes of a substep cost less
+/// than the two did one contact at a time (BENCHMARKS.md).
 const BIASED_ITERATIONS: usize = 2;
 
 /// What the contact solver reads and writes of one awake body, kept small and contiguous, in
@@ -121,7 +122,7 @@ pub(crate) struct Solver {
     /// The solver bodies of each constraint, for the colouring.
     pairs: Vec<(usize, usize)>,
     colouring: GraphColouring,
-    /// The coloured constraints, four to a lane set, colour after colour.
+    /// The constraints in lane sets of up to four, in solving order.
     lanes: Vec<ContactLanes>,
 }
 
@@ -236,14 +237,13 @@ impl Solver {
         self.pairs.extend(pairs);
         self.colouring.colour(&self.pairs, self.states.len());
         self.lanes.clear();
-
         for lane_set in self.colouring.lane_sets() {
             let packed = ContactLanes::pack(lane_set, &self.constraints, &self.states);
             self.lanes.push(packed);
         }
     }
 
-    /// Applies last step's impulses again: the lane sets colour by colour, then the overflow.
+    /// Applies last step's impulses again: the lane sets, then the overflow.
     fn warm_start(&mut self) {
         for lanes in &self.lanes {
             lanes.warm_start(&mut self.states);
@@ -253,8 +253,8 @@ impl Solver {
         }
     }
 
-    /// One pass over every contact (biased or relax): the lane sets colour by colour, then the
-    /// overflow one after another.
+    /// One pass over every contact (biased or relax): the lane sets in order, then the overflow
+    /// one after another.
     fn solve_contacts(&mut self, softness: &Softness, inverse_h: f32, use_bias: bool) {
         for lanes in &mut self.lanes {
             lanes.solve(&mut self.states, softness, inverse_h, use_bias);
