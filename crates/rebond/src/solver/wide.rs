@@ -7,7 +7,7 @@
 
 use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
-use glam::{BVec4A, Vec4};
+use glam::{BVec4A, Mat4, Vec4};
 
 use crate::math::Vec3A;
 
@@ -140,19 +140,27 @@ pub(crate) struct Vec3x4 {
 }
 
 impl Vec3x4 {
-    /// Lane `i` holds `vectors[i]`.
+    /// Lane `i` holds `vectors[i]`: a 4×4 transpose (glam's, a few shuffles).
     pub fn from_lanes(vectors: [Vec3A; 4]) -> Self {
         let [a, b, c, d] = vectors;
+        let rows =
+            Mat4::from_cols(a.extend(0.0), b.extend(0.0), c.extend(0.0), d.extend(0.0)).transpose();
         Self {
-            x: F32x4::from_array([a.x, b.x, c.x, d.x]),
-            y: F32x4::from_array([a.y, b.y, c.y, d.y]),
-            z: F32x4::from_array([a.z, b.z, c.z, d.z]),
+            x: F32x4(rows.x_axis),
+            y: F32x4(rows.y_axis),
+            z: F32x4(rows.z_axis),
         }
     }
 
-    /// The vector of each lane.
+    /// The vector of each lane: the transpose back.
     pub fn lanes(&self) -> [Vec3A; 4] {
-        [0, 1, 2, 3].map(|i| Vec3A::new(self.x.lane(i), self.y.lane(i), self.z.lane(i)))
+        let columns = Mat4::from_cols(self.x.0, self.y.0, self.z.0, Vec4::ZERO).transpose();
+        [
+            Vec3A::from_vec4(columns.x_axis),
+            Vec3A::from_vec4(columns.y_axis),
+            Vec3A::from_vec4(columns.z_axis),
+            Vec3A::from_vec4(columns.w_axis),
+        ]
     }
 
     /// `x·x' + y·y' + z·z'` per lane.
