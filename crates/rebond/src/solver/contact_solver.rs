@@ -57,20 +57,28 @@ pub fn combine_restitution(a: f32, b: f32) -> f32 {
 
 /// The velocity Jacobian of one direction `d` of a contact, for both bodies, with the angular
 /// response precomputed from the inverse inertia at the start of the step.
-#[derive(Debug, Clone, Copy, Default)]
-struct Jacobian {
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Jacobian {
     /// `r_A × d` and `r_B × d`: how each body's spin moves the contact along `d`.
-    arm_a: Vec3A,
-    arm_b: Vec3A,
+    pub(super) arm_a: Vec3A,
+    pub(super) arm_b: Vec3A,
     /// `I_A⁻¹ (r_A × d)` and `I_B⁻¹ (r_B × d)`: the spin a unit impulse along `d` gives.
-    spin_a: Vec3A,
-    spin_b: Vec3A,
+    pub(super) spin_a: Vec3A,
+    pub(super) spin_b: Vec3A,
     /// `1 / (m_A⁻¹ + m_B⁻¹ + (r_A × d)·I_A⁻¹(r_A × d) + (r_B × d)·I_B⁻¹(r_B × d))`, or zero when
     /// nothing can move along `d`.
-    mass: f32,
+    pub(super) mass: f32,
 }
 
 impl Jacobian {
+    const ZERO: Self = Self {
+        arm_a: Vec3A::ZERO,
+        arm_b: Vec3A::ZERO,
+        spin_a: Vec3A::ZERO,
+        spin_b: Vec3A::ZERO,
+        mass: 0.0,
+    };
+
     fn new(a: &Body, b: &Body, anchor_a: Vec3A, anchor_b: Vec3A, direction: Vec3A) -> Self {
         let arm_a = anchor_a.cross(direction);
         let arm_b = anchor_b.cross(direction);
@@ -137,21 +145,29 @@ fn inverse_or_zero(k: f32) -> f32 {
 }
 
 /// One point of a contact constraint: the normal (non-penetration) part.
-#[derive(Debug, Clone, Copy, Default)]
-struct ConstraintPoint {
-    normal: Jacobian,
+#[derive(Debug, Clone, Copy)]
+pub(super) struct ConstraintPoint {
+    pub(super) normal: Jacobian,
     /// Separation at the start of the step, metres.
-    base_separation: f32,
+    pub(super) base_separation: f32,
     /// Normal relative velocity at the start of the step, m/s (negative when approaching).
     approach_velocity: f32,
     /// Accumulated normal impulse, N·s; never negative.
-    normal_impulse: f32,
+    pub(super) normal_impulse: f32,
     /// Largest normal impulse applied in one iteration this step: zero means the point never
     /// pushed, and restitution must not act on it.
-    max_normal_impulse: f32,
+    pub(super) max_normal_impulse: f32,
 }
 
 impl ConstraintPoint {
+    const ZERO: Self = Self {
+        normal: Jacobian::ZERO,
+        base_separation: 0.0,
+        approach_velocity: 0.0,
+        normal_impulse: 0.0,
+        max_normal_impulse: 0.0,
+    };
+
     /// The separation now: the start value plus how the bodies moved along the normal since,
     /// `s₀ + n·(Δc_B − Δc_A) + Δθ_B·(r_B × n) − Δθ_A·(r_A × n)` (rotation to first order).
     fn current_separation(&self, a: &BodyState, b: &BodyState, normal: Vec3A) -> f32 {
@@ -165,38 +181,62 @@ impl ConstraintPoint {
 /// A manifold turned into a velocity constraint between two solver bodies.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ContactConstraint {
-    body_a: usize,
-    body_b: usize,
+    pub(super) body_a: usize,
+    pub(super) body_b: usize,
     /// Index of the contact in the contact cache, to store impulses back.
     contact: usize,
-    normal: Vec3A,
-    tangents: [Vec3A; 2],
-    friction: f32,
+    pub(super) normal: Vec3A,
+    pub(super) tangents: [Vec3A; 2],
+    pub(super) friction: f32,
     restitution: f32,
-    points: [ConstraintPoint; MAX_MANIFOLD_POINTS],
-    point_count: usize,
+    pub(super) points: [ConstraintPoint; MAX_MANIFOLD_POINTS],
+    pub(super) point_count: usize,
     /// Friction acts at the centre of the points, along the two tangents.
-    tangent: [Jacobian; 2],
+    pub(super) tangent: [Jacobian; 2],
     /// Accumulated friction impulses along the two tangents, N·s.
-    tangent_impulse: [f32; 2],
+    pub(super) tangent_impulse: [f32; 2],
     /// The friction anchors in the bodies' axes (see [`Contact`]), and how far B's anchor was
     /// from A's along each tangent at the start of the step, m.
     friction_anchors: [Vec3; 2],
-    anchor_offset: [f32; 2],
+    pub(super) anchor_offset: [f32; 2],
     /// Whether the friction cone clamped the friction impulse this step.
-    slid: bool,
+    pub(super) slid: bool,
     /// `I_A⁻¹ n` and `I_B⁻¹ n`: the spin a unit twist impulse gives.
-    twist_spin_a: Vec3A,
-    twist_spin_b: Vec3A,
+    pub(super) twist_spin_a: Vec3A,
+    pub(super) twist_spin_b: Vec3A,
     /// `1 / (n · (I_A⁻¹ + I_B⁻¹) n)`: effective inertia for turning about the normal.
-    twist_mass: f32,
+    pub(super) twist_mass: f32,
     /// Mean distance of the points from their centre, m: the lever of twist friction.
-    twist_radius: f32,
+    pub(super) twist_radius: f32,
     /// Accumulated twist impulse about the normal, N·m·s.
-    twist_impulse: f32,
+    pub(super) twist_impulse: f32,
 }
 
 impl ContactConstraint {
+    /// A constraint on solver body 0 alone with no points and no mass in any direction: solving
+    /// it changes nothing. It fills the empty lanes of a lane set.
+    pub(super) const EMPTY: Self = Self {
+        body_a: 0,
+        body_b: 0,
+        contact: usize::MAX,
+        normal: Vec3A::ZERO,
+        tangents: [Vec3A::ZERO; 2],
+        friction: 0.0,
+        restitution: 0.0,
+        points: [ConstraintPoint::ZERO; MAX_MANIFOLD_POINTS],
+        point_count: 0,
+        tangent: [Jacobian::ZERO; 2],
+        tangent_impulse: [0.0; 2],
+        friction_anchors: [Vec3::ZERO; 2],
+        anchor_offset: [0.0; 2],
+        slid: false,
+        twist_spin_a: Vec3A::ZERO,
+        twist_spin_b: Vec3A::ZERO,
+        twist_mass: 0.0,
+        twist_radius: 0.0,
+        twist_impulse: 0.0,
+    };
+
     /// Builds the constraint of `contact` (index `contact_index`) between solver bodies `body_a`
     /// and `body_b`, warm-started from the contact's cached impulses.
     pub fn new(
@@ -213,7 +253,7 @@ impl ContactConstraint {
         let (tangent_1, tangent_2) = normal.any_orthonormal_pair();
         let tangents = [tangent_1, tangent_2];
         let manifold_points = contact.manifold.points();
-        let mut points = [ConstraintPoint::default(); MAX_MANIFOLD_POINTS];
+        let mut points = [ConstraintPoint::ZERO; MAX_MANIFOLD_POINTS];
         for ((point, &normal_impulse), constraint_point) in manifold_points
             .iter()
             .zip(&contact.normal_impulses)

@@ -1,0 +1,242 @@
+//! Four-lane f32 arithmetic for the wide contact solver: one value of each of four constraints.
+//!
+//! [`F32x4`] wraps glam's `Vec4`, which is one SSE register on x86-64 (NEON on aarch64, plain
+//! arrays elsewhere), so each operation is one vector instruction, with no `unsafe` here. Lane `i`
+//! of every operation computes what the scalar operation computes on lane `i` of its inputs: no
+//! fused multiply-add, so results are bit-identical from run to run.
+
+use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
+
+use glam::{BVec4A, Mat4, Vec4};
+
+use crate::math::Vec3A;
+
+/// Four f32 lanes.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct F32x4(Vec4);
+
+/// Four lane masks: set where a comparison held.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(crate) struct Mask4(BVec4A);
+
+impl F32x4 {
+    pub const ZERO: Self = Self(Vec4::ZERO);
+    pub const ONE: Self = Self(Vec4::ONE);
+
+    /// The same value in every lane.
+    pub fn splat(value: f32) -> Self {
+        Self(Vec4::splat(value))
+    }
+
+    /// Lane `i` holds `values[i]`.
+    pub fn from_array(values: [f32; 4]) -> Self {
+        Self(Vec4::from_array(values))
+    }
+
+    /// The value of lane `lane`.
+    pub fn lane(self, lane: usize) -> f32 {
+        self.0[lane]
+    }
+
+    /// `max(self, other)` per lane.
+    pub fn max(self, other: Self) -> Self {
+        Self(self.0.max(other.0))
+    }
+
+    /// `min(self, other)` per lane.
+    pub fn min(self, other: Self) -> Self {
+        Self(self.0.min(other.0))
+    }
+
+    /// Square root per lane.
+    pub fn sqrt(self) -> Self {
+        Self(self.0.sqrt())
+    }
+
+    /// Where `self > other`.
+    pub fn greater_than(self, other: Self) -> Mask4 {
+        Mask4(self.0.cmpgt(other.0))
+    }
+
+    /// Where `self < other`.
+    pub fn less_than(self, other: Self) -> Mask4 {
+        Mask4(self.0.cmplt(other.0))
+    }
+}
+
+impl Mask4 {
+    /// No lane set.
+    pub const NONE: Self = Self(BVec4A::FALSE);
+
+    /// `if_set` where the mask is set, `otherwise` elsewhere, per lane.
+    pub fn select(self, if_set: F32x4, otherwise: F32x4) -> F32x4 {
+        F32x4(Vec4::select(self.0, if_set.0, otherwise.0))
+    }
+
+    /// Lanes set in either mask.
+    pub fn or(self, other: Self) -> Self {
+        Self(self.0 | other.0)
+    }
+
+    /// Whether lane `lane` is set.
+    pub fn lane(self, lane: usize) -> bool {
+        self.0.test(lane)
+    }
+}
+
+impl Add for F32x4 {
+    type Output = Self;
+    fn add(self, other: Self) -> Self {
+        Self(self.0 + other.0)
+    }
+}
+
+impl Sub for F32x4 {
+    type Output = Self;
+    fn sub(self, other: Self) -> Self {
+        Self(self.0 - other.0)
+    }
+}
+
+impl Mul for F32x4 {
+    type Output = Self;
+    fn mul(self, other: Self) -> Self {
+        Self(self.0 * other.0)
+    }
+}
+
+impl Div for F32x4 {
+    type Output = Self;
+    fn div(self, other: Self) -> Self {
+        Self(self.0 / other.0)
+    }
+}
+
+impl Neg for F32x4 {
+    type Output = Self;
+    fn neg(self) -> Self {
+        Self(-self.0)
+    }
+}
+
+impl AddAssign for F32x4 {
+    fn add_assign(&mut self, other: Self) {
+        *self = *self + other;
+    }
+}
+
+impl SubAssign for F32x4 {
+    fn sub_assign(&mut self, other: Self) {
+        *self = *self - other;
+    }
+}
+
+/// Four 3-vectors, one per lane, stored as a structure of arrays.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct Vec3x4 {
+    pub x: F32x4,
+    pub y: F32x4,
+    pub z: F32x4,
+}
+
+impl Vec3x4 {
+    /// Lane `i` holds `vectors[i]`: a 4×4 transpose (glam's, a few shuffles).
+    pub fn from_lanes(vectors: [Vec3A; 4]) -> Self {
+        let [a, b, c, d] = vectors;
+        let rows =
+            Mat4::from_cols(a.extend(0.0), b.extend(0.0), c.extend(0.0), d.extend(0.0)).transpose();
+        Self {
+            x: F32x4(rows.x_axis),
+            y: F32x4(rows.y_axis),
+            z: F32x4(rows.z_axis),
+        }
+    }
+
+    /// The vector of each lane: the transpose back.
+    pub fn lanes(&self) -> [Vec3A; 4] {
+        let columns = Mat4::from_cols(self.x.0, self.y.0, self.z.0, Vec4::ZERO).transpose();
+        [
+            Vec3A::from_vec4(columns.x_axis),
+            Vec3A::from_vec4(columns.y_axis),
+            Vec3A::from_vec4(columns.z_axis),
+            Vec3A::from_vec4(columns.w_axis),
+        ]
+    }
+
+    /// `x·x' + y·y' + z·z'` per lane.
+    pub fn dot(self, other: Self) -> F32x4 {
+        self.x * other.x + self.y * other.y + self.z * other.z
+    }
+
+    /// Each lane's vector times that lane's scalar.
+    pub fn scale(self, factor: F32x4) -> Self {
+        Self {
+            x: self.x * factor,
+            y: self.y * factor,
+            z: self.z * factor,
+        }
+    }
+}
+
+impl Add for Vec3x4 {
+    type Output = Self;
+    fn add(self, other: Self) -> Self {
+        Self {
+            x: self.x + other.x,
+            y: self.y + other.y,
+            z: self.z + other.z,
+        }
+    }
+}
+
+impl Sub for Vec3x4 {
+    type Output = Self;
+    fn sub(self, other: Self) -> Self {
+        Self {
+            x: self.x - other.x,
+            y: self.y - other.y,
+            z: self.z - other.z,
+        }
+    }
+}
+
+impl AddAssign for Vec3x4 {
+    fn add_assign(&mut self, other: Self) {
+        *self = *self + other;
+    }
+}
+
+impl SubAssign for Vec3x4 {
+    fn sub_assign(&mut self, other: Self) {
+        *self = *self - other;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lanes_compute_what_scalars_compute() {
+        let a = F32x4::from_array([1.0, -2.0, 3.5, 0.0]);
+        let b = F32x4::from_array([0.5, 4.0, -1.0, 0.0]);
+        assert_eq!((a + b).0.to_array(), [1.5, 2.0, 2.5, 0.0]);
+        assert_eq!(
+            (a * b - a / F32x4::splat(2.0)).0.to_array(),
+            [0.0, -7.0, -5.25, 0.0]
+        );
+        assert_eq!(a.max(b).0.to_array(), [1.0, 4.0, 3.5, 0.0]);
+        assert_eq!(a.min(b).0.to_array(), [0.5, -2.0, -1.0, 0.0]);
+        let mask = a.greater_than(b);
+        assert_eq!(mask.select(a, -b).0.to_array(), [1.0, -4.0, 3.5, -0.0]);
+        assert!(mask.lane(0) && !mask.lane(1) && !a.less_than(b).or(mask).lane(3));
+    }
+
+    #[test]
+    fn vectors_round_trip_through_lanes() {
+        let vectors = [0, 1, 2, 3].map(|i| Vec3A::new(i as f32, 2.0 * i as f32, -1.0));
+        let lanes = Vec3x4::from_lanes(vectors);
+        assert_eq!(lanes.lanes(), vectors);
+        assert_eq!(lanes.dot(lanes).0.to_array(), [1.0, 6.0, 21.0, 46.0]);
+    }
+}
