@@ -1,0 +1,142 @@
+//! Building and stepping the scenes in rapier3d, and its stability figures.
+
+use crate::scenes::{Scene, ShapeSpec, DT, FRICTION, GRAVITY, RESTITUTION, SUBSTEPS};
+use crate::Engine;
+use rapier3d::geometry::{Contact, ContactManifold, ContactPair, PairContacts};
+
+pub struct RapierEngine {
+    pub world: rapier3d::prelude::PhysicsWorld,
+    dynamic: Vec<rapier3d::prelude::RigidBodyHandle>,
+}
+
+impl RapierEngine {
+    pub fn new(scene: &Scene) -> Self {
+        use rapier3d::prelude::*;
+        let mut world = PhysicsWorld::new();
+        world.gravity = Vector::new(0.0, GRAVITY, 0.0);
+        world.integration_parameters.dt = DT;
+        // Rapier's "solver iterations" are substeps: each one integrates velocities, runs one
+        // biased PGS pass (`num_internal_pgs_iterations` = 1), integrates positions and runs one
+        // relax pass (`num_internal_stabilization_iterations` = 1), at dt / iterations.
+        world.integration_parameters.num_solver_iterations = SUBSTEPS as usize;
+        let mut dynamic = Vec::new();
+        for spec in &scene.bodies {
+            let v = |a: [f32; 3]| Vector::new(a[0], a[1], a[2]);
+            let collider = match &spec.shape {
+                ShapeSpec::Cuboid(h) => ColliderBuilder::cuboid(h[0], h[1], h[2]),
+                ShapeSpec::Sphere(r) => ColliderBuilder::ball(*r),
+                ShapeSpec::Capsule {
+                    radius,
+                    half_height,
+                } => ColliderBuilder::capsule_y(*half_height, *radius),
+                ShapeSpec::Cylinder {
+                    radius,
+                    half_height,
+                } => ColliderBuilder::cylinder(*half_height, *radius),
+                ShapeSpec::Hull(points) => {
+                    let points: Vec<Vector> = points.iter().map(|p| v(*p)).collect();
+                    ColliderBuilder::convex_hull(&points).expect("valid hull")
+                }
+            }
+            .friction(FRICTION)
+            .restitution(RESTITUTION);
+            let (body, collider) = if spec.fixed {
+                (RigidBodyBuilder::fixed(), collider)
+            } else {
+                (
+                    RigidBodyBuilder::dynamic().can_sleep(false),
+                    collider.mass(spec.mass),
+                )
+            };
+            let body = body
+                .translation(v(spec.position))
+                .rotation(v(spec.rotation));
+            let (handle, _) = world.insert(body, collider);
+            if !spec.fixed {
+                dynamic.push(handle);
+            }
+        }
+        Self { world, dynamic }
+    }
+
+    /// Separations of the current manifold points re-evaluated at the bodies' current poses:
+    /// rapier recycles a pair's manifold (and its `dist`) while the pair barely moves, so `dist`
+    /// can be a few steps old.
+    fn reevaluated(&self) -> f32 {
+        let mut deepest = 0.0f32;
+        for (pair, manifolds) in self.rigid_pairs() {
+            let (Some(c1), Some(c2)) = (
+                self.world.colliders.get(pair.collider1),
+                self.world.colliders.get(pair.collider2),
+            ) else {
+                continue;
+            };
+            let (pos1, pos2) = (c1.position(), c2.position());
+            for manifold in manifolds {
+                if manifold.subshape_poses.is_some() {
+                    continue; // Composite shapes only; none in these scenes.
+                }
+                let normal = pos1.rotation * manifold.local_n1;
+                for point in &manifold.points {
+                    let p1 = pos1.transform_point(point.local_p1);
+                    let p2 = pos2.transform_point(point.local_p2);
+                    deepest = deepest.min((p2 - p1).dot(normal));
+                }
+            }
+        }
+        deepest
+    }
+
+    /// Every rigid contact pair with its manifolds; pairs of two soft surfaces (none in these
+    /// scenes) are left out.
+    fn rigid_pairs(&self) -> impl Iterator<Item = (&ContactPair, &[ContactManifold])> {
+        self.world
+            .narrow_phase
+            .contact_pairs()
+            .filter_map(|pair| match &pair.contacts {
+                PairContacts::Rigid(rigid) => Some((pair, rigid.manifolds.as_slice())),
+                _ => None,
+            })
+    }
+
+    /// Every point of every rigid manifold.
+    fn manifold_points(&self) -> impl Iterator<Item = &Contact> {
+        self.rigid_pairs()
+            .flat_map(|(_, manifolds)| manifolds)
+            .flat_map(|manifold| &manifold.points)
+    }
+}
+
+impl Engine for RapierEngine {
+    fn step(&mut self) {
+        self.world.step();
+    }
+
+    fn positions(&self, out: &mut Vec<[f32; 3]>) {
+        out.clear();
+        for &handle in &self.dynamic {
+            let t = self.world.bodies[handle].translation();
+            out.push([t.x, t.y, t.z]);
+        }
+    }
+
+    fn deepest_penetration(&self) -> f32 {
+        self.manifold_points()
+            .fold(0.0f32, |deepest, point| deepest.min(point.dist))
+    }
+
+    fn max_speed(&self) -> f32 {
+        self.dynamic
+            .iter()
+            .map(|&h| self.world.bodies[h].linvel().length())
+            .fold(0.0, f32::max)
+    }
+
+    fn deepest_reevaluated(&self) -> Option<f32> {
+        Some(self.reevaluated())
+    }
+
+    fn contact_points(&self) -> usize {
+        self.manifold_points().count()
+    }
+}

@@ -1,0 +1,95 @@
+//! Building and stepping the scenes in rebond, and its stability figures.
+
+use crate::scenes::{Scene, ShapeSpec, DT, FRICTION, GRAVITY, RESTITUTION, SUBSTEPS};
+use crate::Engine;
+
+pub fn rebond_shape(shape: &ShapeSpec) -> rebond::Shape {
+    use rebond::{Shape, Vec3};
+    match shape {
+        ShapeSpec::Cuboid(h) => Shape::cuboid(Vec3::from(*h)),
+        ShapeSpec::Sphere(r) => Shape::sphere(*r),
+        ShapeSpec::Capsule {
+            radius,
+            half_height,
+        } => Shape::capsule(*radius, *half_height),
+        ShapeSpec::Cylinder {
+            radius,
+            half_height,
+        } => Shape::cylinder(*radius, *half_height),
+        ShapeSpec::Hull(points) => {
+            let points: Vec<Vec3> = points.iter().map(|p| Vec3::from(*p)).collect();
+            Shape::convex_hull(&points)
+        }
+    }
+    .expect("valid shape")
+}
+
+pub struct RebondEngine {
+    pub world: rebond::World,
+    dynamic: Vec<rebond::BodyHandle>,
+}
+
+impl RebondEngine {
+    pub fn new(scene: &Scene) -> Self {
+        use rebond::{BodyDesc, Quat, Vec3, World, WorldSettings};
+        let mut world = World::new(WorldSettings {
+            gravity: Vec3::new(0.0, GRAVITY, 0.0),
+            substeps: SUBSTEPS,
+            ..WorldSettings::default()
+        })
+        .expect("settings");
+        let mut dynamic = Vec::new();
+        for spec in &scene.bodies {
+            let shape = rebond_shape(&spec.shape);
+            let desc = if spec.fixed {
+                BodyDesc::fixed(shape)
+            } else {
+                BodyDesc::dynamic(shape).mass(spec.mass).can_sleep(false)
+            };
+            let desc = desc
+                .position(Vec3::from(spec.position))
+                .rotation(Quat::from_scaled_axis(Vec3::from(spec.rotation)))
+                .friction(FRICTION)
+                .restitution(RESTITUTION);
+            let handle = world.add_body(desc).expect("valid body");
+            if !spec.fixed {
+                dynamic.push(handle);
+            }
+        }
+        Self { world, dynamic }
+    }
+}
+
+impl Engine for RebondEngine {
+    fn step(&mut self) {
+        self.world.step(DT).expect("step");
+    }
+
+    fn positions(&self, out: &mut Vec<[f32; 3]>) {
+        out.clear();
+        for &handle in &self.dynamic {
+            out.push(self.world.body(handle).expect("body").position().to_array());
+        }
+    }
+
+    fn deepest_penetration(&self) -> f32 {
+        let mut deepest = 0.0f32;
+        for contact in self.world.contacts() {
+            for point in contact.manifold.points() {
+                deepest = deepest.min(point.separation);
+            }
+        }
+        deepest
+    }
+
+    fn max_speed(&self) -> f32 {
+        self.dynamic
+            .iter()
+            .map(|&h| self.world.body(h).expect("body").linear_velocity().length())
+            .fold(0.0, f32::max)
+    }
+
+    fn contact_points(&self) -> usize {
+        self.world.contact_count()
+    }
+}
