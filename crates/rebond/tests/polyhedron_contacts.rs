@@ -6,7 +6,8 @@ use std::f32::consts::{FRAC_PI_4, PI};
 
 use proptest::prelude::*;
 use rebond::collision::clipping::SIDE_PLANE_SLOP;
-use rebond::collision::polyhedron::{collide_polyhedra, Polyhedron};
+use rebond::collision::polyhedron::Polyhedron;
+use rebond::collision::polyhedron_contact::collide_polyhedra;
 use rebond::collision::{Manifold, SPECULATIVE_DISTANCE};
 use rebond::shape::{ConvexHull, Cuboid, Shape};
 use rebond::{Mat3, Pose, Quat, Vec3};

@@ -246,14 +246,8 @@ pub fn collide_features(
     pose_b: &Pose,
     margin: f32,
 ) -> Option<Manifold> {
-    let core_a = PosedCore {
-        shape: shape_a,
-        pose: pose_a,
-    };
-    let core_b = PosedCore {
-        shape: shape_b,
-        pose: pose_b,
-    };
+    let core_a = PosedCore::new(shape_a, pose_a);
+    let core_b = PosedCore::new(shape_b, pose_b);
     let deepest = polytope.contact(&core_a, &core_b, margin)?;
     let feature_a = supporting_feature(shape_a, pose_a, deepest.normal);
     let feature_b = supporting_feature(shape_b, pose_b, -deepest.normal);

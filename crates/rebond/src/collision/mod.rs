@@ -14,6 +14,8 @@ pub mod halfspace;
 pub mod manifold;
 pub mod narrow_phase;
 pub mod polyhedron;
+pub mod polyhedron_contact;
+mod separating_axis;
 
 pub use manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
 
@@ -40,6 +42,13 @@ pub struct PosedCore<'a> {
     pub shape: &'a Shape,
     /// Where it sits in the world.
     pub pose: &'a Pose,
+}
+
+impl<'a> PosedCore<'a> {
+    /// The core of `shape` (convex: not a compound, not a halfspace) placed at `pose`.
+    pub fn new(shape: &'a Shape, pose: &'a Pose) -> Self {
+        Self { shape, pose }
+    }
 }
 
 impl SupportMap for PosedCore<'_> {

@@ -13,7 +13,8 @@ use super::feature_contact::collide_features;
 use super::gjk;
 use super::halfspace::collide_halfspace;
 use super::manifold::Manifold;
-use super::polyhedron::{collide_polyhedra, Polyhedron};
+use super::polyhedron::Polyhedron;
+use super::polyhedron_contact::collide_polyhedra;
 use super::PosedCore;
 use crate::math::{Aabb, Pose, Vec3};
 use crate::shape::Shape;
@@ -166,14 +167,8 @@ fn apart_beyond(
     margin: f32,
 ) -> bool {
     let radii = shape_a.core_radius() + shape_b.core_radius();
-    let a = PosedCore {
-        shape: shape_a,
-        pose: pose_a,
-    };
-    let b = PosedCore {
-        shape: shape_b,
-        pose: pose_b,
-    };
+    let a = PosedCore::new(shape_a, pose_a);
+    let b = PosedCore::new(shape_b, pose_b);
     gjk::distance_within(&a, &b, pose_b.position - pose_a.position, margin + radii)
         .is_none_or(|cores| cores.distance - radii >= margin)
 }

@@ -1,0 +1,508 @@
+//! The separating-axis queries between two convex polyhedra A and B: the face of one beyond whose
+//! plane the other lies farthest, and the edge pair whose cross product separates them most. Only
+//! edge pairs whose arcs cross on the Gauss map are candidates (the pair builds a face of the
+//! Minkowski difference; other pairs cannot give the deepest axis). Two boxes take closed forms, a
+//! box and a hull one candidate per hull edge and box axis, two hulls every pair; edges whose reach
+//! on the Gauss map cannot beat a threshold are skipped.
+
+use crate::collision::polyhedron::{
+    box_vertex, Frame, Polyhedron, PolyhedronEdge, Topology, BOX_EDGES,
+};
+use crate::math::Vec3;
+
+/// Absolute part of the axis-choice tolerances, metres.
+pub(super) const ABSOLUTE_TOLERANCE: f32 = 5.0e-4;
+
+/// Edge pairs whose directions make an angle with a sine below this are treated as parallel and
+/// skipped: their cross product is too short to be a reliable axis, and the faces around such
+/// edges already cover those directions.
+const PARALLEL_SINE: f32 = 1.0e-3;
+
+/// How many of B's edges the edge query moves into A's frame at a time (a stack buffer).
+const EDGE_CHUNK: usize = 32;
+
+/// A face of one polyhedron and how far the other lies beyond its plane (negative: how deep it
+/// reaches in), measured at the other's vertex deepest along the face's inward normal.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct FaceAxis {
+    pub(super) face: usize,
+    pub(super) separation: f32,
+}
+
+/// An edge of A and an edge of B, their axis in A's frame pointing from A to B, and the
+/// separation of the two edges along it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct EdgeAxis {
+    pub(super) edge_a: usize,
+    pub(super) edge_b: usize,
+    pub(super) axis: Vec3,
+    pub(super) separation: f32,
+}
+
+/// The face of `reference` beyond whose plane `other` (placed in the reference frame by
+/// `other_in_reference`) lies farthest, or reaches in least (the first of equals): in closed form
+/// for two boxes, else by [`best_face_axis_by_support`].
+pub(super) fn best_face_axis(
+    reference: &Polyhedron,
+    other: &Polyhedron,
+    other_in_reference: &Frame,
+) -> FaceAxis {
+    match (reference.topology, other.topology) {
+        (Topology::Cuboid(half_reference), Topology::Cuboid(half_other)) => {
+            best_box_box_face_axis(half_reference, half_other, other_in_reference)
+        }
+        _ => best_face_axis_by_support(reference, other, other_in_reference),
+    }
+}
+
+/// [`best_face_axis`] for two boxes: along the reference's axis `eᵢ`, the other box (centre `c`,
+/// axes `fₖ`, half extents `bₖ`) reaches down to `cᵢ − Σₖ bₖ |eᵢ · fₖ|`, so the face facing its
+/// centre (`+eᵢ` when `cᵢ ≥ 0`) has the larger separation, `|cᵢ| − aᵢ − Σₖ bₖ |eᵢ · fₖ|`.
+fn best_box_box_face_axis(
+    half_reference: Vec3,
+    half_other: Vec3,
+    other_in_reference: &Frame,
+) -> FaceAxis {
+    let rows = other_in_reference.rotation.transpose();
+    let mut best = FaceAxis {
+        face: 0,
+        separation: f32::NEG_INFINITY,
+    };
+    for (axis, row) in [rows.x_axis, rows.y_axis, rows.z_axis]
+        .into_iter()
+        .enumerate()
+    {
+        let centre = other_in_reference.translation[axis];
+        let separation = centre.abs() - half_reference[axis] - half_other.dot(row.abs());
+        if separation > best.separation {
+            best = FaceAxis {
+                face: 2 * axis + usize::from(centre < 0.0),
+                separation,
+            };
+        }
+    }
+    best
+}
+
+/// [`best_face_axis`] for any two polyhedra, from the other's support point against each face.
+fn best_face_axis_by_support(
+    reference: &Polyhedron,
+    other: &Polyhedron,
+    other_in_reference: &Frame,
+) -> FaceAxis {
+    let mut best = FaceAxis {
+        face: 0,
+        separation: f32::NEG_INFINITY,
+    };
+    for face in 0..reference.face_count() {
+        let plane = reference.face_plane(face);
+        let inward = other_in_reference.inverse_vector(-plane.normal);
+        let deepest = other_in_reference.point(other.support(inward));
+        let separation = plane.normal.dot(deepest) - plane.offset;
+        if separation > best.separation {
+            best = FaceAxis { face, separation };
+        }
+    }
+    best
+}
+
+/// Replaces `best` by `candidate` when there is none yet or the candidate's separation is larger.
+fn keep_larger(best: &mut Option<EdgeAxis>, candidate: EdgeAxis) {
+    if best.is_none_or(|best| candidate.separation > best.separation) {
+        *best = Some(candidate);
+    }
+}
+
+/// An edge of B placed in A's frame, with its face normals negated: its arc on the Gauss map of
+/// the Minkowski difference A − B.
+#[derive(Debug, Clone, Copy, Default)]
+struct MovedEdge {
+    index: usize,
+    start: Vec3,
+    direction: Vec3,
+    negated_normals: [Vec3; 2],
+}
+
+/// Over the edge pairs that build a face of the Minkowski difference A − B, the largest
+/// separation along their cross product, in A's frame (`b_in_a` places B there, `a_in_b` A in
+/// B's): by [`best_box_box_edge_axis`] for two boxes, by [`best_box_edge_axis`] when A or B is a
+/// box (the roles swapped when only B is), else by [`best_edge_axis`] over every pair. Edges
+/// whose pairs cannot separate the shapes by more than `threshold` may be skipped
+/// ([`edge_reach`]), so a pair at or below it may be missed.
+pub(super) fn edge_query(
+    a: &Polyhedron,
+    b: &Polyhedron,
+    b_in_a: &Frame,
+    a_in_b: &Frame,
+    threshold: f32,
+) -> Option<EdgeAxis> {
+    match (a.topology, b.topology) {
+        (Topology::Cuboid(half_a), Topology::Cuboid(half_b)) => {
+            best_box_box_edge_axis(half_a, half_b, b_in_a)
+        }
+        (Topology::Cuboid(half_extents), _) => {
+            best_box_edge_axis(half_extents, b, b_in_a, threshold)
+        }
+        (_, Topology::Cuboid(half_extents)) => {
+            best_box_edge_axis(half_extents, a, a_in_b, threshold).map(|swapped| EdgeAxis {
+                edge_a: swapped.edge_b,
+                edge_b: swapped.edge_a,
+                axis: -b_in_a.vector(swapped.axis),
+                separation: swapped.separation,
+            })
+        }
+        _ => best_edge_axis(a, b, b_in_a, threshold),
+    }
+}
+
+/// An upper bound on the separation of any edge pair with this edge: the largest `n · (p − s)`
+/// over the unit normals `n` on the edge's arc between its face normals `n₁, n₂`, for `s` a point
+/// of the edge and `p` a point inside the other shape (`toward = p − s`). The pair's separation
+/// along its axis `n` is the other shape's extent along `∓n` less this shape's, which is reached
+/// at the edge, so it is at most `n · (p − s)`. The largest is `|v|` for `v` the part of `toward`
+/// in the arc's plane when `v` lies between `n₁` and `n₂` (`v = α n₁ + β n₂`, `α, β ≥ 0`), else
+/// at an end; infinite for a degenerate arc.
+fn edge_reach(face_normals: [Vec3; 2], toward: Vec3) -> f32 {
+    let [first, second] = face_normals;
+    let (along_first, along_second) = (first.dot(toward), second.dot(toward));
+    let cosine = first.dot(second);
+    let sine_squared = 1.0 - cosine * cosine;
+    // Written so that a NaN also counts as degenerate.
+    let proper_arc = sine_squared > 1.0e-6;
+    if !proper_arc {
+        return f32::INFINITY;
+    }
+    let alpha = along_first - along_second * cosine;
+    let beta = along_second - along_first * cosine;
+    if alpha >= 0.0 && beta >= 0.0 {
+        ((alpha * along_first + beta * along_second) / sine_squared)
+            .max(0.0)
+            .sqrt()
+    } else {
+        along_first.max(along_second)
+    }
+}
+
+/// Whether an edge whose [`edge_reach`] is `reach` can be skipped: its pairs cannot beat
+/// `threshold` (less [`ABSOLUTE_TOLERANCE`], against the rounding of the two computations).
+fn out_of_reach(reach: f32, threshold: f32) -> bool {
+    reach < threshold - ABSOLUTE_TOLERANCE
+}
+
+/// [`best_edge_axis`] for two boxes (half extents `half_a`, `half_b`): one candidate per pair of
+/// axes `eᵢ` of A and `fⱼ` of B. Of the two Minkowski faces along `±(eᵢ × fⱼ)`, the one facing B's
+/// centre is the larger separation, `|n · c| − Σₖ aₖ |n · eₖ| − Σₖ bₖ |n · fₖ|` (`c` B's centre in
+/// A's frame), between A's edge along `eᵢ` supporting `n` and B's edge along `fⱼ` supporting
+/// `−n`, read from the signs of the other components. A crossing on a face normal (a zero
+/// component) is left to the face axes, as a parallel pair is.
+fn best_box_box_edge_axis(half_a: Vec3, half_b: Vec3, b_in_a: &Frame) -> Option<EdgeAxis> {
+    let mut best: Option<EdgeAxis> = None;
+    let centre = b_in_a.translation;
+    let axes_b = [
+        b_in_a.rotation.x_axis,
+        b_in_a.rotation.y_axis,
+        b_in_a.rotation.z_axis,
+    ];
+    for (index_a, &axis_a) in Vec3::AXES.iter().enumerate() {
+        for (index_b, &axis_b) in axes_b.iter().enumerate() {
+            let cross = axis_a.cross(axis_b);
+            let length_squared = cross.length_squared();
+            // Written so that a NaN (from overflow on absurdly large shapes) also rejects it.
+            let crosses = length_squared > PARALLEL_SINE * PARALLEL_SINE;
+            if !crosses {
+                continue;
+            }
+            let mut axis = cross / length_squared.sqrt();
+            if axis.dot(centre) < 0.0 {
+                axis = -axis;
+            }
+            let against_in_b = b_in_a.inverse_vector(-axis);
+            let (Some(edge_a), Some(edge_b)) = (
+                box_edge_along(index_a, axis),
+                box_edge_along(index_b, against_in_b),
+            ) else {
+                continue;
+            };
+            let separation =
+                axis.dot(centre) - half_a.dot(axis.abs()) - half_b.dot(against_in_b.abs());
+            keep_larger(
+                &mut best,
+                EdgeAxis {
+                    edge_a,
+                    edge_b,
+                    axis,
+                    separation,
+                },
+            );
+        }
+    }
+    best
+}
+
+/// The box edge along axis `axis_index` that is the box's support along `direction` (local),
+/// read from the signs of `direction`'s other two components; `None` when one is zero (the
+/// support is then a face).
+fn box_edge_along(axis_index: usize, direction: Vec3) -> Option<usize> {
+    let (first, second) = match axis_index {
+        0 => (1, 2),
+        1 => (0, 2),
+        _ => (0, 1),
+    };
+    (direction[first] != 0.0 && direction[second] != 0.0).then(|| {
+        4 * axis_index
+            + usize::from(direction[first] > 0.0)
+            + 2 * usize::from(direction[second] > 0.0)
+    })
+}
+
+/// [`best_edge_axis`] for a box A (half extents `half_extents`) and any polyhedron B, with one
+/// candidate per edge of B and box axis instead of one per pair of edges. The box's four edges
+/// along axis `i` have arcs on the Gauss map that together make the great circle normal to `i`:
+/// B's negated arc crosses it when the ends' `i` components differ in sign, at the point
+/// `±(eᵢ × e_B)` lying on B's arc, and the box edge whose arc holds that point is the one whose
+/// two faces have the signs of the point's other two components. A crossing on a face normal of
+/// the box is left to the face axes, as a parallel pair is.
+fn best_box_edge_axis(
+    half_extents: Vec3,
+    b: &Polyhedron,
+    b_in_a: &Frame,
+    threshold: f32,
+) -> Option<EdgeAxis> {
+    // Worked in B's frame, where B's edges need no moving: the box axes `eᵢ` are the rows of the
+    // rotation, and only a crossing's axis is moved to A's frame.
+    let rotation = b_in_a.rotation.transpose();
+    let box_axes = [rotation.x_axis, rotation.y_axis, rotation.z_axis];
+    let box_centre = b_in_a.inverse_vector(-b_in_a.translation);
+    let mut best: Option<EdgeAxis> = None;
+    for edge_b in 0..b.edge_count() {
+        let local = b.edge(edge_b);
+        if out_of_reach(
+            edge_reach(local.face_normals, box_centre - local.start),
+            threshold,
+        ) {
+            continue;
+        }
+        let direction = local.direction();
+        let [m1, m2] = [-local.face_normals[0], -local.face_normals[1]];
+        let parallel_limit = PARALLEL_SINE * PARALLEL_SINE * direction.length_squared();
+        for (axis_index, &box_axis) in box_axes.iter().enumerate() {
+            if m1.dot(box_axis) * m2.dot(box_axis) >= 0.0 {
+                continue;
+            }
+            let mut axis = box_axis.cross(direction);
+            let length_squared = axis.length_squared();
+            // Written so that a NaN (from overflow on absurdly large shapes) also rejects it.
+            let crosses = length_squared > parallel_limit;
+            let toward_b_arc = axis.dot(m1 + m2);
+            if !crosses || toward_b_arc == 0.0 {
+                continue;
+            }
+            if toward_b_arc < 0.0 {
+                axis = -axis;
+            }
+            let axis_in_a = b_in_a.vector(axis);
+            let Some(edge_a) = box_edge_along(axis_index, axis_in_a) else {
+                continue;
+            };
+            let on_edge_a = box_vertex(half_extents, usize::from(BOX_EDGES[edge_a].0[0]));
+            let axis = axis_in_a / length_squared.sqrt();
+            let separation = axis.dot(b_in_a.point(local.start) - on_edge_a);
+            keep_larger(
+                &mut best,
+                EdgeAxis {
+                    edge_a,
+                    edge_b,
+                    axis,
+                    separation,
+                },
+            );
+        }
+    }
+    best
+}
+
+/// Over the edge pairs that build a face of the Minkowski difference A − B, the largest
+/// separation along their cross product, computed in A's frame (`b_in_a` places B there) by
+/// trying every pair. B's edges are moved into A's frame [`EDGE_CHUNK`] at a time, on the stack.
+fn best_edge_axis(
+    a: &Polyhedron,
+    b: &Polyhedron,
+    b_in_a: &Frame,
+    threshold: f32,
+) -> Option<EdgeAxis> {
+    // A's inside point in B's frame, where B's edges are tested before being moved.
+    let inside_a = b_in_a.inverse_vector(a.interior_point() - b_in_a.translation);
+    let inside_b = b_in_a.point(b.interior_point());
+    let mut best: Option<EdgeAxis> = None;
+    let mut chunk = [MovedEdge::default(); EDGE_CHUNK];
+    let mut next_b = 0;
+    while next_b < b.edge_count() {
+        let mut chunk_len = 0;
+        while chunk_len < EDGE_CHUNK && next_b < b.edge_count() {
+            let local = b.edge(next_b);
+            if !out_of_reach(
+                edge_reach(local.face_normals, inside_a - local.start),
+                threshold,
+            ) {
+                chunk[chunk_len] = MovedEdge {
+                    index: next_b,
+                    start: b_in_a.point(local.start),
+                    direction: b_in_a.vector(local.direction()),
+                    negated_normals: [
+                        -b_in_a.vector(local.face_normals[0]),
+                        -b_in_a.vector(local.face_normals[1]),
+                    ],
+                };
+                chunk_len += 1;
+            }
+            next_b += 1;
+        }
+        for edge_a in 0..a.edge_count() {
+            let edge = a.edge(edge_a);
+            if out_of_reach(
+                edge_reach(edge.face_normals, inside_b - edge.start),
+                threshold,
+            ) {
+                continue;
+            }
+            for moved in &chunk[..chunk_len] {
+                let Some((axis, separation)) = edge_pair_axis(&edge, moved) else {
+                    continue;
+                };
+                keep_larger(
+                    &mut best,
+                    EdgeAxis {
+                        edge_a,
+                        edge_b: moved.index,
+                        axis,
+                        separation,
+                    },
+                );
+            }
+        }
+    }
+    best
+}
+
+/// The axis of an edge of A and an edge of B (both in A's frame), pointing from A to B, with the
+/// separation along it; `None` unless the pair builds a face of the Minkowski difference.
+///
+/// Edge A's arc on the Gauss map runs between its face normals `n₁, n₂`; edge B's, negated for
+/// the difference, between `−m₁, −m₂`. The arcs cross when each one's ends lie on opposite
+/// sides of the other's great circle (whose plane normal is the edge direction), and the two
+/// crossings of the great circles are the same point: the axis `±(eA × eB)` that lies on A's arc
+/// (positive on `n₁ + n₂`) must also lie on B's (positive on `−m₁ − m₂`). Then A's edge is A's
+/// support along the axis and B's edge is B's support against it.
+fn edge_pair_axis(edge: &PolyhedronEdge, moved: &MovedEdge) -> Option<(Vec3, f32)> {
+    let a_direction = edge.direction();
+    let [n1, n2] = edge.face_normals;
+    let [m1, m2] = moved.negated_normals;
+    if m1.dot(a_direction) * m2.dot(a_direction) >= 0.0
+        || n1.dot(moved.direction) * n2.dot(moved.direction) >= 0.0
+    {
+        return None;
+    }
+    let mut axis = a_direction.cross(moved.direction);
+    let length_squared = axis.length_squared();
+    let parallel_limit = PARALLEL_SINE
+        * PARALLEL_SINE
+        * a_direction.length_squared()
+        * moved.direction.length_squared();
+    // Written so that a NaN (from overflow on absurdly large shapes) also rejects the pair.
+    let crosses = length_squared > parallel_limit;
+    if !crosses {
+        return None;
+    }
+    if axis.dot(n1 + n2) < 0.0 {
+        axis = -axis;
+    }
+    if axis.dot(m1 + m2) <= 0.0 {
+        return None;
+    }
+    let axis = axis / length_squared.sqrt();
+    Some((axis, axis.dot(moved.start - edge.start)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::{Pose, Quat};
+    use crate::shape::{ConvexHull, Cuboid};
+
+    fn unit_box() -> Cuboid {
+        Cuboid::new(Vec3::new(0.5, 1.0, 1.5)).expect("valid box")
+    }
+
+    /// The box routes find the same face as every support point, and the box routes and the
+    /// skipping of edges out of reach the same edge pair, axis and separation as trying every
+    /// pair, for boxes and a hull, either way round.
+    #[test]
+    fn box_queries_match_the_general_ones() {
+        let other = unit_box();
+        let points: Vec<Vec3> = (0..12)
+            .map(|index| {
+                let angle = index as f32 * std::f32::consts::TAU / 6.0;
+                let y = if index < 6 { -0.4 } else { 0.3 };
+                Vec3::new(0.5 * angle.cos(), y, 0.6 * angle.sin())
+            })
+            .collect();
+        let hull = ConvexHull::new(&points).expect("a prism");
+        let cuboid = Cuboid::new(Vec3::new(0.4, 0.3, 0.7)).expect("valid box");
+        let shapes = [
+            Polyhedron::cuboid(&cuboid),
+            Polyhedron::cuboid(&other),
+            Polyhedron::hull(&hull),
+        ];
+        let (mut compared, mut same_pair) = (0, 0);
+        for step in 0..200 {
+            let t = step as f32;
+            let pose_a = Pose::new(
+                Vec3::new(0.1 * t.sin(), 0.2, -0.1),
+                Quat::from_scaled_axis(Vec3::new(0.3 * t, 0.7 * t.cos(), 0.11 * t)),
+            );
+            let pose_b = Pose::new(
+                Vec3::new(
+                    0.9 * (0.37 * t).cos(),
+                    1.1 * (0.53 * t).sin(),
+                    0.8 * (0.29 * t).cos(),
+                ),
+                Quat::from_scaled_axis(Vec3::new(0.05 * t, -0.2 * t, 0.4 * t.sin())),
+            );
+            for a in &shapes {
+                for b in &shapes {
+                    for (a, b, pose_a, pose_b) in [(a, b, pose_a, pose_b), (b, a, pose_b, pose_a)] {
+                        let b_in_a = Frame::relative(&pose_a, &pose_b);
+                        let a_in_b = Frame::relative(&pose_b, &pose_a);
+                        let face = best_face_axis(a, b, &b_in_a);
+                        let by_support = best_face_axis_by_support(a, b, &b_in_a);
+                        assert_eq!(face.face, by_support.face);
+                        assert!((face.separation - by_support.separation).abs() < 1e-5);
+                        let slow = best_edge_axis(a, b, &b_in_a, f32::NEG_INFINITY);
+                        let Some(slow) = slow else {
+                            assert!(edge_query(a, b, &b_in_a, &a_in_b, f32::NEG_INFINITY).is_none());
+                            continue;
+                        };
+                        for threshold in [f32::NEG_INFINITY, slow.separation - 0.01] {
+                            let fast = edge_query(a, b, &b_in_a, &a_in_b, threshold)
+                                .expect("the best pair beats the threshold");
+                            assert!((fast.separation - slow.separation).abs() < 1e-5);
+                            if (fast.edge_a, fast.edge_b) == (slow.edge_a, slow.edge_b) {
+                                assert!((fast.axis - slow.axis).length() < 1e-5);
+                                same_pair += 1;
+                            }
+                            compared += 1;
+                        }
+                        // Above the best pair, whatever is found is no better.
+                        let above = edge_query(a, b, &b_in_a, &a_in_b, slow.separation + 0.01);
+                        assert!(above.is_none_or(|fast| fast.separation <= slow.separation + 1e-5));
+                    }
+                }
+            }
+        }
+        // Only exact ties between pairs (boxes turned alike) may pick another pair.
+        assert!(
+            same_pair * 100 >= compared * 95,
+            "{same_pair} of {compared}"
+        );
+    }
+}
