@@ -151,7 +151,7 @@ pub(super) struct ConstraintPoint {
     /// Separation at the start of the step, metres.
     pub(super) base_separation: f32,
     /// Normal relative velocity at the start of the step, m/s (negative when approaching).
-    approach_velocity: f32,
+    pub(super) approach_velocity: f32,
     /// Accumulated normal impulse, N·s; never negative.
     pub(super) normal_impulse: f32,
     /// Largest normal impulse applied in one iteration this step: zero means the point never
@@ -184,11 +184,11 @@ pub(crate) struct ContactConstraint {
     pub(super) body_a: usize,
     pub(super) body_b: usize,
     /// Index of the contact in the contact cache, to store impulses back.
-    contact: usize,
+    pub(super) contact: usize,
     pub(super) normal: Vec3A,
     pub(super) tangents: [Vec3A; 2],
     pub(super) friction: f32,
-    restitution: f32,
+    pub(super) restitution: f32,
     pub(super) points: [ConstraintPoint; MAX_MANIFOLD_POINTS],
     pub(super) point_count: usize,
     /// Friction acts at the centre of the points, along the two tangents.
@@ -197,7 +197,7 @@ pub(crate) struct ContactConstraint {
     pub(super) tangent_impulse: [f32; 2],
     /// The friction anchors in the bodies' axes (see [`Contact`]), and how far B's anchor was
     /// from A's along each tangent at the start of the step, m.
-    friction_anchors: [Vec3; 2],
+    pub(super) friction_anchors: [Vec3; 2],
     pub(super) anchor_offset: [f32; 2],
     /// Whether the friction cone clamped the friction impulse this step.
     pub(super) slid: bool,

@@ -78,6 +78,16 @@ impl Mask4 {
         Self(self.0 | other.0)
     }
 
+    /// Lanes set in both masks.
+    pub fn and(self, other: Self) -> Self {
+        Self(self.0 & other.0)
+    }
+
+    /// Lanes set in `self` but not in `other`.
+    pub fn and_not(self, other: Self) -> Self {
+        Self(self.0 & !other.0)
+    }
+
     /// Whether lane `lane` is set.
     pub fn lane(self, lane: usize) -> bool {
         self.0.test(lane)
