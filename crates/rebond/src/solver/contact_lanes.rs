@@ -56,7 +56,7 @@ impl BodyLanes {
 }
 
 /// [`Jacobian`] of four constraints.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy)]
 struct JacobianLanes {
     arm_a: Vec3x4,
     arm_b: Vec3x4,
@@ -66,14 +66,20 @@ struct JacobianLanes {
 }
 
 impl JacobianLanes {
-    fn from_lanes(jacobians: [&Jacobian; LANES]) -> Self {
-        Self {
-            arm_a: Vec3x4::from_lanes(jacobians.map(|j| j.arm_a)),
-            arm_b: Vec3x4::from_lanes(jacobians.map(|j| j.arm_b)),
-            spin_a: Vec3x4::from_lanes(jacobians.map(|j| j.spin_a)),
-            spin_b: Vec3x4::from_lanes(jacobians.map(|j| j.spin_b)),
-            mass: F32x4::from_array(jacobians.map(|j| j.mass)),
-        }
+    const ZERO: Self = Self {
+        arm_a: Vec3x4::ZERO,
+        arm_b: Vec3x4::ZERO,
+        spin_a: Vec3x4::ZERO,
+        spin_b: Vec3x4::ZERO,
+        mass: F32x4::ZERO,
+    };
+
+    fn set_lane(&mut self, lane: usize, jacobian: &Jacobian) {
+        self.arm_a.set_lane(lane, jacobian.arm_a);
+        self.arm_b.set_lane(lane, jacobian.arm_b);
+        self.spin_a.set_lane(lane, jacobian.spin_a);
+        self.spin_b.set_lane(lane, jacobian.spin_b);
+        self.mass.set_lane(lane, jacobian.mass);
     }
 
     /// `d·(v_B − v_A) + ω_B·(r_B × d) − ω_A·(r_A × d)` per lane.
@@ -98,13 +104,23 @@ impl JacobianLanes {
 }
 
 /// The normal part of one point of four constraints.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy)]
 struct PointLanes {
     normal: JacobianLanes,
     base_separation: F32x4,
     approach_velocity: F32x4,
     normal_impulse: F32x4,
     max_normal_impulse: F32x4,
+}
+
+impl PointLanes {
+    const ZERO: Self = Self {
+        normal: JacobianLanes::ZERO,
+        base_separation: F32x4::ZERO,
+        approach_velocity: F32x4::ZERO,
+        normal_impulse: F32x4::ZERO,
+        max_normal_impulse: F32x4::ZERO,
+    };
 }
 
 /// Four constraints of one colour, structure of arrays: built from the contacts, solved, and
@@ -140,51 +156,74 @@ pub(crate) struct ContactLanes {
 }
 
 impl ContactLanes {
-    /// Packs four constraints sharing no moving body into one lane set;
-    /// [`ContactConstraint::EMPTY`] fills the lanes without a contact.
-    pub fn pack(lanes: &[ContactConstraint; LANES], states: &[BodyState]) -> Self {
-        let point_count = lanes.iter().map(|c| c.point_count).max().unwrap_or(0);
-        let mut points = [PointLanes::default(); MAX_MANIFOLD_POINTS];
-        for (index, point) in points.iter_mut().enumerate().take(point_count) {
-            let of_lanes = [0, 1, 2, 3].map(|lane| &lanes[lane].points[index]);
-            *point = PointLanes {
-                normal: JacobianLanes::from_lanes(of_lanes.map(|p| &p.normal)),
-                base_separation: F32x4::from_array(of_lanes.map(|p| p.base_separation)),
-                approach_velocity: F32x4::from_array(of_lanes.map(|p| p.approach_velocity)),
-                normal_impulse: F32x4::from_array(of_lanes.map(|p| p.normal_impulse)),
-                max_normal_impulse: F32x4::from_array(of_lanes.map(|p| p.max_normal_impulse)),
-            };
+    /// A lane set whose lanes are all empty: on solver body 0, with no contact, no points and no
+    /// mass in any direction, so solving them changes nothing. [`Self::set_lane`] fills lanes.
+    pub const EMPTY: Self = Self {
+        contacts: [usize::MAX; LANES],
+        body_a: [0; LANES],
+        body_b: [0; LANES],
+        inverse_mass_a: F32x4::ZERO,
+        inverse_mass_b: F32x4::ZERO,
+        normal: Vec3x4::ZERO,
+        tangents: [Vec3x4::ZERO; 2],
+        friction: F32x4::ZERO,
+        restitution: F32x4::ZERO,
+        bounces: false,
+        point_counts: [0; LANES],
+        point_count: 0,
+        points: [PointLanes::ZERO; MAX_MANIFOLD_POINTS],
+        tangent: [JacobianLanes::ZERO; 2],
+        tangent_impulse: [F32x4::ZERO; 2],
+        friction_anchors: [[Vec3::ZERO; 2]; LANES],
+        anchor_offset: [F32x4::ZERO; 2],
+        slid: Mask4::NONE,
+        twist_spin_a: Vec3x4::ZERO,
+        twist_spin_b: Vec3x4::ZERO,
+        twist_mass: F32x4::ZERO,
+        twist_radius: F32x4::ZERO,
+        twist_impulse: F32x4::ZERO,
+    };
+
+    /// Puts `constraint` into lane `lane`; the lanes of one set must share no moving body.
+    pub fn set_lane(&mut self, lane: usize, constraint: &ContactConstraint, states: &[BodyState]) {
+        self.contacts[lane] = constraint.contact;
+        self.body_a[lane] = constraint.body_a;
+        self.body_b[lane] = constraint.body_b;
+        let inverse_mass = |body: usize| states[body].inverse_mass;
+        self.inverse_mass_a
+            .set_lane(lane, inverse_mass(constraint.body_a));
+        self.inverse_mass_b
+            .set_lane(lane, inverse_mass(constraint.body_b));
+        self.normal.set_lane(lane, constraint.normal);
+        self.friction.set_lane(lane, constraint.friction);
+        self.restitution.set_lane(lane, constraint.restitution);
+        self.bounces |= constraint.restitution > 0.0;
+        self.point_counts[lane] = constraint.point_count;
+        self.point_count = self.point_count.max(constraint.point_count);
+        let points = &constraint.points[..constraint.point_count];
+        for (point, source) in self.points.iter_mut().zip(points) {
+            point.normal.set_lane(lane, &source.normal);
+            point.base_separation.set_lane(lane, source.base_separation);
+            point
+                .approach_velocity
+                .set_lane(lane, source.approach_velocity);
+            point.normal_impulse.set_lane(lane, source.normal_impulse);
+            point
+                .max_normal_impulse
+                .set_lane(lane, source.max_normal_impulse);
         }
-        let lanes = [0, 1, 2, 3].map(|lane| &lanes[lane]);
-        let body_a = lanes.map(|c| c.body_a);
-        let body_b = lanes.map(|c| c.body_b);
-        Self {
-            contacts: lanes.map(|c| c.contact),
-            body_a,
-            body_b,
-            inverse_mass_a: F32x4::from_array(body_a.map(|body| states[body].inverse_mass)),
-            inverse_mass_b: F32x4::from_array(body_b.map(|body| states[body].inverse_mass)),
-            normal: Vec3x4::from_lanes(lanes.map(|c| c.normal)),
-            tangents: [0, 1].map(|axis| Vec3x4::from_lanes(lanes.map(|c| c.tangents[axis]))),
-            friction: F32x4::from_array(lanes.map(|c| c.friction)),
-            restitution: F32x4::from_array(lanes.map(|c| c.restitution)),
-            bounces: lanes.iter().any(|c| c.restitution > 0.0),
-            point_counts: lanes.map(|c| c.point_count),
-            point_count,
-            points,
-            tangent: [0, 1].map(|axis| JacobianLanes::from_lanes(lanes.map(|c| &c.tangent[axis]))),
-            tangent_impulse: [0, 1]
-                .map(|axis| F32x4::from_array(lanes.map(|c| c.tangent_impulse[axis]))),
-            friction_anchors: lanes.map(|c| c.friction_anchors),
-            anchor_offset: [0, 1]
-                .map(|axis| F32x4::from_array(lanes.map(|c| c.anchor_offset[axis]))),
-            slid: Mask4::NONE,
-            twist_spin_a: Vec3x4::from_lanes(lanes.map(|c| c.twist_spin_a)),
-            twist_spin_b: Vec3x4::from_lanes(lanes.map(|c| c.twist_spin_b)),
-            twist_mass: F32x4::from_array(lanes.map(|c| c.twist_mass)),
-            twist_radius: F32x4::from_array(lanes.map(|c| c.twist_radius)),
-            twist_impulse: F32x4::from_array(lanes.map(|c| c.twist_impulse)),
+        for axis in 0..2 {
+            self.tangents[axis].set_lane(lane, constraint.tangents[axis]);
+            self.tangent[axis].set_lane(lane, &constraint.tangent[axis]);
+            self.tangent_impulse[axis].set_lane(lane, constraint.tangent_impulse[axis]);
+            self.anchor_offset[axis].set_lane(lane, constraint.anchor_offset[axis]);
         }
+        self.friction_anchors[lane] = constraint.friction_anchors;
+        self.twist_spin_a.set_lane(lane, constraint.twist_spin_a);
+        self.twist_spin_b.set_lane(lane, constraint.twist_spin_b);
+        self.twist_mass.set_lane(lane, constraint.twist_mass);
+        self.twist_radius.set_lane(lane, constraint.twist_radius);
+        self.twist_impulse.set_lane(lane, constraint.twist_impulse);
     }
 
     /// [`ContactConstraint::apply_restitution`] of the four lanes: a point bounces where its

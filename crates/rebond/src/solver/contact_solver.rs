@@ -213,30 +213,6 @@ pub(crate) struct ContactConstraint {
 }
 
 impl ContactConstraint {
-    /// A constraint on solver body 0 alone with no points and no mass in any direction: solving
-    /// it changes nothing. It fills the empty lanes of a lane set.
-    pub(super) const EMPTY: Self = Self {
-        body_a: 0,
-        body_b: 0,
-        contact: usize::MAX,
-        normal: Vec3A::ZERO,
-        tangents: [Vec3A::ZERO; 2],
-        friction: 0.0,
-        restitution: 0.0,
-        points: [ConstraintPoint::ZERO; MAX_MANIFOLD_POINTS],
-        point_count: 0,
-        tangent: [Jacobian::ZERO; 2],
-        tangent_impulse: [0.0; 2],
-        friction_anchors: [Vec3::ZERO; 2],
-        anchor_offset: [0.0; 2],
-        slid: false,
-        twist_spin_a: Vec3A::ZERO,
-        twist_spin_b: Vec3A::ZERO,
-        twist_mass: 0.0,
-        twist_radius: 0.0,
-        twist_impulse: 0.0,
-    };
-
     /// Builds the constraint of `contact` (index `contact_index`) between solver bodies `body_a`
     /// and `body_b`, warm-started from the contact's cached impulses.
     pub fn new(

@@ -24,7 +24,7 @@ use crate::integration::{
     integrate_pose, integrate_velocities, SpeedLimits, MAX_ROTATION_PER_SUBSTEP,
 };
 use crate::math::{Mat3, Quat, Vec3, Vec3A};
-use contact_lanes::{ContactLanes, LANES};
+use contact_lanes::ContactLanes;
 use contact_solver::{
     ContactConstraint, CONTACT_DAMPING_RATIO, CONTACT_HERTZ, CONTACT_HERTZ_PER_SUBSTEP_RATE,
 };
@@ -241,40 +241,47 @@ impl Solver {
         Some((solver_a, solver_b, (body_a, body_b)))
     }
 
-    /// Builds the lane sets straight from the contacts, four constraints at a time on the stack,
+    /// Builds the lane sets straight from the contacts, each constraint put into its lane in place,
     /// and one constraint for each contact of the overflow.
     fn prepare_contacts(&mut self, bodies: &Arena<RigidBody>, contacts: &ContactCache) {
-        let cached = contacts.contacts();
-        let build = |solver: &Self, pair: usize| {
-            let contact_index = solver.pair_contacts[pair];
-            let contact = &cached[contact_index];
-            let (body_a, body_b, materials) = solver.constraint_bodies(bodies, contact)?;
-            let states = (&solver.states[..], &solver.motions[..]);
-            Some(ContactConstraint::new(
-                contact,
-                contact_index,
-                states,
-                body_a,
-                body_b,
-                materials,
-            ))
-        };
         self.lanes.clear();
         for lane_set in self.colouring.lane_sets() {
-            let mut lanes = [ContactConstraint::EMPTY; LANES];
-            for (lane, &pair) in lanes.iter_mut().zip(lane_set) {
-                if let Some(constraint) = build(self, pair) {
-                    *lane = constraint;
+            let index = self.lanes.len();
+            self.lanes.push(ContactLanes::EMPTY);
+            for (lane, &pair) in lane_set.iter().enumerate() {
+                if let Some(constraint) = &self.build_constraint(bodies, contacts, pair) {
+                    self.lanes[index].set_lane(lane, constraint, &self.states);
                 }
             }
-            self.lanes.push(ContactLanes::pack(&lanes, &self.states));
         }
         self.constraints.clear();
         for &pair in self.colouring.overflow() {
-            if let Some(constraint) = build(self, pair) {
+            if let Some(constraint) = self.build_constraint(bodies, contacts, pair) {
                 self.constraints.push(constraint);
             }
         }
+    }
+
+    /// The constraint of pair `pair` of the colouring, or `None` when its contact has no moving
+    /// body.
+    fn build_constraint(
+        &self,
+        bodies: &Arena<RigidBody>,
+        contacts: &ContactCache,
+        pair: usize,
+    ) -> Option<ContactConstraint> {
+        let contact_index = self.pair_contacts[pair];
+        let contact = &contacts.contacts()[contact_index];
+        let (body_a, body_b, materials) = self.constraint_bodies(bodies, contact)?;
+        let states = (&self.states[..], &self.motions[..]);
+        Some(ContactConstraint::new(
+            contact,
+            contact_index,
+            states,
+            body_a,
+            body_b,
+            materials,
+        ))
     }
 
     /// Applies last step's impulses again: the lane sets, then the overflow.

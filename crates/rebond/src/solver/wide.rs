@@ -28,7 +28,8 @@ impl F32x4 {
         Self(Vec4::splat(value))
     }
 
-    /// Lane `i` holds `values[i]`.
+    /// Lane `i` holds `values[i]` (the tests build lanes with it).
+    #[cfg(test)]
     pub fn from_array(values: [f32; 4]) -> Self {
         Self(Vec4::from_array(values))
     }
@@ -56,6 +57,11 @@ impl F32x4 {
     /// Where `self > other`.
     pub fn greater_than(self, other: Self) -> Mask4 {
         Mask4(self.0.cmpgt(other.0))
+    }
+
+    /// Sets lane `lane` to `value`.
+    pub fn set_lane(&mut self, lane: usize, value: f32) {
+        self.0[lane] = value;
     }
 
     /// Where `self < other`.
@@ -150,6 +156,20 @@ pub(crate) struct Vec3x4 {
 }
 
 impl Vec3x4 {
+    /// Zero in every lane.
+    pub const ZERO: Self = Self {
+        x: F32x4::ZERO,
+        y: F32x4::ZERO,
+        z: F32x4::ZERO,
+    };
+
+    /// Sets lane `lane` to `vector`.
+    pub fn set_lane(&mut self, lane: usize, vector: Vec3A) {
+        self.x.set_lane(lane, vector.x);
+        self.y.set_lane(lane, vector.y);
+        self.z.set_lane(lane, vector.z);
+    }
+
     /// Lane `i` holds `vectors[i]`: a 4×4 transpose (glam's, a few shuffles).
     pub fn from_lanes(vectors: [Vec3A; 4]) -> Self {
         let [a, b, c, d] = vectors;
