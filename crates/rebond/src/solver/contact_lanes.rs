@@ -8,12 +8,15 @@
 //! solver body 0 (no mass, zero Jacobians: their impulses are zero); a manifold with fewer points
 //! than the widest one of the set gets empty points the same way.
 
-use super::contact_solver::{ContactConstraint, Jacobian, LINEAR_SLOP, MAX_PUSH_SPEED};
+use super::contact_solver::{
+    ContactConstraint, Jacobian, LINEAR_SLOP, MAX_PUSH_SPEED, RESTITUTION_THRESHOLD,
+};
 use super::softness::Softness;
 use super::wide::{F32x4, Mask4, Vec3x4};
 use super::BodyState;
+use crate::collision::contact_cache::Contact;
 use crate::collision::MAX_MANIFOLD_POINTS;
-use crate::math::Vec3A;
+use crate::math::{Vec3, Vec3A};
 
 /// Lanes per set.
 pub const LANES: usize = 4;
@@ -53,7 +56,7 @@ impl BodyLanes {
 }
 
 /// [`Jacobian`] of four constraints.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy)]
 struct JacobianLanes {
     arm_a: Vec3x4,
     arm_b: Vec3x4,
@@ -63,14 +66,20 @@ struct JacobianLanes {
 }
 
 impl JacobianLanes {
-    fn from_lanes(jacobians: [&Jacobian; LANES]) -> Self {
-        Self {
-            arm_a: Vec3x4::from_lanes(jacobians.map(|j| j.arm_a)),
-            arm_b: Vec3x4::from_lanes(jacobians.map(|j| j.arm_b)),
-            spin_a: Vec3x4::from_lanes(jacobians.map(|j| j.spin_a)),
-            spin_b: Vec3x4::from_lanes(jacobians.map(|j| j.spin_b)),
-            mass: F32x4::from_array(jacobians.map(|j| j.mass)),
-        }
+    const ZERO: Self = Self {
+        arm_a: Vec3x4::ZERO,
+        arm_b: Vec3x4::ZERO,
+        spin_a: Vec3x4::ZERO,
+        spin_b: Vec3x4::ZERO,
+        mass: F32x4::ZERO,
+    };
+
+    fn set_lane(&mut self, lane: usize, jacobian: &Jacobian) {
+        self.arm_a.set_lane(lane, jacobian.arm_a);
+        self.arm_b.set_lane(lane, jacobian.arm_b);
+        self.spin_a.set_lane(lane, jacobian.spin_a);
+        self.spin_b.set_lane(lane, jacobian.spin_b);
+        self.mass.set_lane(lane, jacobian.mass);
     }
 
     /// `d·(v_B − v_A) + ω_B·(r_B × d) − ω_A·(r_A × d)` per lane.
@@ -95,21 +104,31 @@ impl JacobianLanes {
 }
 
 /// The normal part of one point of four constraints.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy)]
 struct PointLanes {
     normal: JacobianLanes,
     base_separation: F32x4,
+    approach_velocity: F32x4,
     normal_impulse: F32x4,
     max_normal_impulse: F32x4,
 }
 
-/// Four constraints of one colour, structure of arrays.
+impl PointLanes {
+    const ZERO: Self = Self {
+        normal: JacobianLanes::ZERO,
+        base_separation: F32x4::ZERO,
+        approach_velocity: F32x4::ZERO,
+        normal_impulse: F32x4::ZERO,
+        max_normal_impulse: F32x4::ZERO,
+    };
+}
+
+/// Four constraints of one colour, structure of arrays: built from the contacts, solved, and
+/// their impulses stored back into the contact cache, with no scalar constraint kept between.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ContactLanes {
-    /// The constraint of each lane, as an index into the solver's constraint list; only the first
-    /// `constraint_count` lanes hold one.
-    constraints: [usize; LANES],
-    constraint_count: usize,
+    /// The contact of each lane, as an index into the contact cache; `usize::MAX` in empty lanes.
+    contacts: [usize; LANES],
     body_a: [usize; LANES],
     body_b: [usize; LANES],
     inverse_mass_a: F32x4,
@@ -117,11 +136,16 @@ pub(crate) struct ContactLanes {
     normal: Vec3x4,
     tangents: [Vec3x4; 2],
     friction: F32x4,
-    /// The most points of any lane's manifold.
+    restitution: F32x4,
+    /// Whether any lane bounces (restitution above zero).
+    bounces: bool,
+    /// The manifold's points in each lane, and the most of any lane.
+    point_counts: [usize; LANES],
     point_count: usize,
     points: [PointLanes; MAX_MANIFOLD_POINTS],
     tangent: [JacobianLanes; 2],
     tangent_impulse: [F32x4; 2],
+    friction_anchors: [[Vec3; 2]; LANES],
     anchor_offset: [F32x4; 2],
     slid: Mask4,
     twist_spin_a: Vec3x4,
@@ -132,69 +156,126 @@ pub(crate) struct ContactLanes {
 }
 
 impl ContactLanes {
-    /// Packs the constraints `members` (one to four indices into `constraints`, sharing no
-    /// moving body) into one lane set.
-    pub fn pack(
-        members: &[usize],
-        constraints: &[ContactConstraint],
-        states: &[BodyState],
-    ) -> Self {
-        let empty = ContactConstraint::EMPTY;
-        let lane = |i: usize| members.get(i).map_or(&empty, |&index| &constraints[index]);
-        let lanes = [lane(0), lane(1), lane(2), lane(3)];
-        let point_count = lanes.iter().map(|c| c.point_count).max().unwrap_or(0);
-        let mut points = [PointLanes::default(); MAX_MANIFOLD_POINTS];
-        for (index, point) in points.iter_mut().enumerate().take(point_count) {
-            let of_lanes = lanes.map(|c| &c.points[index]);
-            *point = PointLanes {
-                normal: JacobianLanes::from_lanes(of_lanes.map(|p| &p.normal)),
-                base_separation: F32x4::from_array(of_lanes.map(|p| p.base_separation)),
-                normal_impulse: F32x4::from_array(of_lanes.map(|p| p.normal_impulse)),
-                max_normal_impulse: F32x4::from_array(of_lanes.map(|p| p.max_normal_impulse)),
-            };
+    /// A lane set whose lanes are all empty: on solver body 0, with no contact, no points and no
+    /// mass in any direction, so solving them changes nothing. [`Self::set_lane`] fills lanes.
+    pub const EMPTY: Self = Self {
+        contacts: [usize::MAX; LANES],
+        body_a: [0; LANES],
+        body_b: [0; LANES],
+        inverse_mass_a: F32x4::ZERO,
+        inverse_mass_b: F32x4::ZERO,
+        normal: Vec3x4::ZERO,
+        tangents: [Vec3x4::ZERO; 2],
+        friction: F32x4::ZERO,
+        restitution: F32x4::ZERO,
+        bounces: false,
+        point_counts: [0; LANES],
+        point_count: 0,
+        points: [PointLanes::ZERO; MAX_MANIFOLD_POINTS],
+        tangent: [JacobianLanes::ZERO; 2],
+        tangent_impulse: [F32x4::ZERO; 2],
+        friction_anchors: [[Vec3::ZERO; 2]; LANES],
+        anchor_offset: [F32x4::ZERO; 2],
+        slid: Mask4::NONE,
+        twist_spin_a: Vec3x4::ZERO,
+        twist_spin_b: Vec3x4::ZERO,
+        twist_mass: F32x4::ZERO,
+        twist_radius: F32x4::ZERO,
+        twist_impulse: F32x4::ZERO,
+    };
+
+    /// Puts `constraint` into lane `lane`; the lanes of one set must share no moving body.
+    pub fn set_lane(&mut self, lane: usize, constraint: &ContactConstraint, states: &[BodyState]) {
+        self.contacts[lane] = constraint.contact;
+        self.body_a[lane] = constraint.body_a;
+        self.body_b[lane] = constraint.body_b;
+        let inverse_mass = |body: usize| states[body].inverse_mass;
+        self.inverse_mass_a
+            .set_lane(lane, inverse_mass(constraint.body_a));
+        self.inverse_mass_b
+            .set_lane(lane, inverse_mass(constraint.body_b));
+        self.normal.set_lane(lane, constraint.normal);
+        self.friction.set_lane(lane, constraint.friction);
+        self.restitution.set_lane(lane, constraint.restitution);
+        self.bounces |= constraint.restitution > 0.0;
+        self.point_counts[lane] = constraint.point_count;
+        self.point_count = self.point_count.max(constraint.point_count);
+        let points = &constraint.points[..constraint.point_count];
+        for (point, source) in self.points.iter_mut().zip(points) {
+            point.normal.set_lane(lane, &source.normal);
+            point.base_separation.set_lane(lane, source.base_separation);
+            point
+                .approach_velocity
+                .set_lane(lane, source.approach_velocity);
+            point.normal_impulse.set_lane(lane, source.normal_impulse);
+            point
+                .max_normal_impulse
+                .set_lane(lane, source.max_normal_impulse);
         }
-        let mut constraint_indices = [0; LANES];
-        constraint_indices[..members.len()].copy_from_slice(members);
-        let body_a = lanes.map(|c| c.body_a);
-        let body_b = lanes.map(|c| c.body_b);
-        Self {
-            constraints: constraint_indices,
-            constraint_count: members.len(),
-            body_a,
-            body_b,
-            inverse_mass_a: F32x4::from_array(body_a.map(|body| states[body].inverse_mass)),
-            inverse_mass_b: F32x4::from_array(body_b.map(|body| states[body].inverse_mass)),
-            normal: Vec3x4::from_lanes(lanes.map(|c| c.normal)),
-            tangents: [0, 1].map(|axis| Vec3x4::from_lanes(lanes.map(|c| c.tangents[axis]))),
-            friction: F32x4::from_array(lanes.map(|c| c.friction)),
-            point_count,
-            points,
-            tangent: [0, 1].map(|axis| JacobianLanes::from_lanes(lanes.map(|c| &c.tangent[axis]))),
-            tangent_impulse: [0, 1]
-                .map(|axis| F32x4::from_array(lanes.map(|c| c.tangent_impulse[axis]))),
-            anchor_offset: [0, 1]
-                .map(|axis| F32x4::from_array(lanes.map(|c| c.anchor_offset[axis]))),
-            slid: Mask4::NONE,
-            twist_spin_a: Vec3x4::from_lanes(lanes.map(|c| c.twist_spin_a)),
-            twist_spin_b: Vec3x4::from_lanes(lanes.map(|c| c.twist_spin_b)),
-            twist_mass: F32x4::from_array(lanes.map(|c| c.twist_mass)),
-            twist_radius: F32x4::from_array(lanes.map(|c| c.twist_radius)),
-            twist_impulse: F32x4::from_array(lanes.map(|c| c.twist_impulse)),
+        for axis in 0..2 {
+            self.tangents[axis].set_lane(lane, constraint.tangents[axis]);
+            self.tangent[axis].set_lane(lane, &constraint.tangent[axis]);
+            self.tangent_impulse[axis].set_lane(lane, constraint.tangent_impulse[axis]);
+            self.anchor_offset[axis].set_lane(lane, constraint.anchor_offset[axis]);
         }
+        self.friction_anchors[lane] = constraint.friction_anchors;
+        self.twist_spin_a.set_lane(lane, constraint.twist_spin_a);
+        self.twist_spin_b.set_lane(lane, constraint.twist_spin_b);
+        self.twist_mass.set_lane(lane, constraint.twist_mass);
+        self.twist_radius.set_lane(lane, constraint.twist_radius);
+        self.twist_impulse.set_lane(lane, constraint.twist_impulse);
     }
 
-    /// Writes the accumulated impulses and the sliding flag back into the lanes' constraints.
-    pub fn unpack(&self, constraints: &mut [ContactConstraint]) {
-        for (lane, &index) in self.constraints[..self.constraint_count].iter().enumerate() {
-            let constraint = &mut constraints[index];
-            let points = constraint.points.iter_mut().take(constraint.point_count);
-            for (point, solved) in points.zip(&self.points) {
-                point.normal_impulse = solved.normal_impulse.lane(lane);
-                point.max_normal_impulse = solved.max_normal_impulse.lane(lane);
+    /// [`ContactConstraint::apply_restitution`] of the four lanes: a point bounces where its
+    /// lane's restitution is above zero, it approached faster than [`RESTITUTION_THRESHOLD`] and
+    /// it pushed this step; elsewhere the impulse is zero.
+    pub fn apply_restitution(&mut self, states: &mut [BodyState]) {
+        if !self.bounces {
+            return;
+        }
+        let mut a = BodyLanes::gather(states, &self.body_a);
+        let mut b = BodyLanes::gather(states, &self.body_b);
+        let masses = self.inverse_masses();
+        let normal = self.normal;
+        let elastic = self.restitution.greater_than(F32x4::ZERO);
+        let slow = F32x4::splat(-RESTITUTION_THRESHOLD);
+        for point in &mut self.points[..self.point_count] {
+            let bounces = point
+                .max_normal_impulse
+                .greater_than(F32x4::ZERO)
+                .and(elastic)
+                .and_not(point.approach_velocity.greater_than(slow));
+            let jacobian = &point.normal;
+            let normal_velocity = jacobian.velocity(&a, &b, normal);
+            let impulse =
+                -jacobian.mass * (normal_velocity + self.restitution * point.approach_velocity);
+            let total = (point.normal_impulse + impulse).max(F32x4::ZERO);
+            let applied = bounces.select(total - point.normal_impulse, F32x4::ZERO);
+            point.normal_impulse += applied;
+            jacobian.apply((&mut a, &mut b), masses, normal, applied);
+        }
+        a.scatter(states, &self.body_a);
+        b.scatter(states, &self.body_b);
+    }
+
+    /// Writes the accumulated impulses back to the lanes' contacts for the next step's warm
+    /// start, as [`ContactConstraint::store_impulses`] does for one constraint.
+    pub fn store_impulses(&self, contacts: &mut [Contact]) {
+        let tangents = self.tangents.map(|tangent| tangent.lanes());
+        for (lane, &index) in self.contacts.iter().enumerate() {
+            let Some(contact) = contacts.get_mut(index) else {
+                continue;
+            };
+            let points = self.points[..self.point_counts[lane]].iter();
+            for (point, impulse) in points.zip(&mut contact.normal_impulses) {
+                *impulse = point.normal_impulse.lane(lane);
             }
-            constraint.tangent_impulse = self.tangent_impulse.map(|impulse| impulse.lane(lane));
-            constraint.twist_impulse = self.twist_impulse.lane(lane);
-            constraint.slid |= self.slid.lane(lane);
+            let [tangent_1, tangent_2] = self.tangent_impulse.map(|impulse| impulse.lane(lane));
+            contact.friction_impulse =
+                (tangent_1 * tangents[0][lane] + tangent_2 * tangents[1][lane]).into();
+            contact.twist_impulse = self.twist_impulse.lane(lane);
+            contact.friction_anchors =
+                (!self.slid.lane(lane)).then_some(self.friction_anchors[lane]);
         }
     }
 

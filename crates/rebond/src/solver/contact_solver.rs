@@ -151,7 +151,7 @@ pub(super) struct ConstraintPoint {
     /// Separation at the start of the step, metres.
     pub(super) base_separation: f32,
     /// Normal relative velocity at the start of the step, m/s (negative when approaching).
-    approach_velocity: f32,
+    pub(super) approach_velocity: f32,
     /// Accumulated normal impulse, N·s; never negative.
     pub(super) normal_impulse: f32,
     /// Largest normal impulse applied in one iteration this step: zero means the point never
@@ -184,11 +184,11 @@ pub(crate) struct ContactConstraint {
     pub(super) body_a: usize,
     pub(super) body_b: usize,
     /// Index of the contact in the contact cache, to store impulses back.
-    contact: usize,
+    pub(super) contact: usize,
     pub(super) normal: Vec3A,
     pub(super) tangents: [Vec3A; 2],
     pub(super) friction: f32,
-    restitution: f32,
+    pub(super) restitution: f32,
     pub(super) points: [ConstraintPoint; MAX_MANIFOLD_POINTS],
     pub(super) point_count: usize,
     /// Friction acts at the centre of the points, along the two tangents.
@@ -197,7 +197,7 @@ pub(crate) struct ContactConstraint {
     pub(super) tangent_impulse: [f32; 2],
     /// The friction anchors in the bodies' axes (see [`Contact`]), and how far B's anchor was
     /// from A's along each tangent at the start of the step, m.
-    friction_anchors: [Vec3; 2],
+    pub(super) friction_anchors: [Vec3; 2],
     pub(super) anchor_offset: [f32; 2],
     /// Whether the friction cone clamped the friction impulse this step.
     pub(super) slid: bool,
@@ -213,30 +213,6 @@ pub(crate) struct ContactConstraint {
 }
 
 impl ContactConstraint {
-    /// A constraint on solver body 0 alone with no points and no mass in any direction: solving
-    /// it changes nothing. It fills the empty lanes of a lane set.
-    pub(super) const EMPTY: Self = Self {
-        body_a: 0,
-        body_b: 0,
-        contact: usize::MAX,
-        normal: Vec3A::ZERO,
-        tangents: [Vec3A::ZERO; 2],
-        friction: 0.0,
-        restitution: 0.0,
-        points: [ConstraintPoint::ZERO; MAX_MANIFOLD_POINTS],
-        point_count: 0,
-        tangent: [Jacobian::ZERO; 2],
-        tangent_impulse: [0.0; 2],
-        friction_anchors: [Vec3::ZERO; 2],
-        anchor_offset: [0.0; 2],
-        slid: false,
-        twist_spin_a: Vec3A::ZERO,
-        twist_spin_b: Vec3A::ZERO,
-        twist_mass: 0.0,
-        twist_radius: 0.0,
-        twist_impulse: 0.0,
-    };
-
     /// Builds the constraint of `contact` (index `contact_index`) between solver bodies `body_a`
     /// and `body_b`, warm-started from the contact's cached impulses.
     pub fn new(

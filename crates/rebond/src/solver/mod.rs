@@ -18,6 +18,7 @@ mod wide;
 
 use crate::arena::Arena;
 use crate::body::{BodyType, RigidBody};
+use crate::collision::contact_cache::Contact;
 use crate::collision::contact_cache::ContactCache;
 use crate::integration::{
     integrate_pose, integrate_velocities, SpeedLimits, MAX_ROTATION_PER_SUBSTEP,
@@ -118,12 +119,15 @@ pub(crate) struct Solver {
     solver_index_of_slot: Vec<usize>,
     /// Arena slot of each solver body (index 0 unused).
     slot_of_solver_index: Vec<usize>,
-    constraints: Vec<ContactConstraint>,
-    /// The solver bodies of each constraint, for the colouring.
+    /// The solver bodies of each contact to solve, for the colouring, and its index in the
+    /// contact cache.
     pairs: Vec<(usize, usize)>,
+    pair_contacts: Vec<usize>,
     colouring: GraphColouring,
-    /// The constraints in lane sets of up to four, in solving order.
+    /// The contacts in lane sets of up to four, in solving order.
     lanes: Vec<ContactLanes>,
+    /// The contacts left over by the colouring, one constraint each.
+    constraints: Vec<ContactConstraint>,
 }
 
 impl Solver {
@@ -135,8 +139,8 @@ impl Solver {
         settings: StepSettings,
     ) {
         self.gather_bodies(bodies);
+        self.colour_contacts(bodies, contacts);
         self.prepare_contacts(bodies, contacts);
-        self.pack_lanes();
         let h = settings.dt / settings.substeps as f32;
         let inverse_h = 1.0 / h;
         let softness = Softness::new(
@@ -161,11 +165,14 @@ impl Solver {
             }
             self.solve_contacts(&softness, inverse_h, false);
         }
-        for lanes in &self.lanes {
-            lanes.unpack(&mut self.constraints);
+        for lanes in &mut self.lanes {
+            lanes.apply_restitution(&mut self.states);
         }
         for constraint in &mut self.constraints {
             constraint.apply_restitution(&mut self.states);
+        }
+        for lanes in &self.lanes {
+            lanes.store_impulses(contacts.contacts_mut());
         }
         for constraint in &self.constraints {
             constraint.store_impulses(contacts.contacts_mut());
@@ -202,45 +209,79 @@ impl Solver {
         }
     }
 
-    /// One constraint per contact between two bodies of which at least one moves this step.
-    fn prepare_contacts(&mut self, bodies: &Arena<RigidBody>, contacts: &ContactCache) {
-        self.constraints.clear();
+    /// Colours every contact between two bodies of which at least one moves this step into lane
+    /// sets of up to four.
+    fn colour_contacts(&mut self, bodies: &Arena<RigidBody>, contacts: &ContactCache) {
+        self.pairs.clear();
+        self.pair_contacts.clear();
         for (contact_index, contact) in contacts.contacts().iter().enumerate() {
-            let slot_a = contact.key.body_a.slot();
-            let slot_b = contact.key.body_b.slot();
-            let solver_a = self.solver_index_of_slot.get(slot_a).copied().unwrap_or(0);
-            let solver_b = self.solver_index_of_slot.get(slot_b).copied().unwrap_or(0);
-            if solver_a == solver_b {
-                continue;
+            if let Some((solver_a, solver_b, _)) = self.constraint_bodies(bodies, contact) {
+                self.pairs.push((solver_a, solver_b));
+                self.pair_contacts.push(contact_index);
             }
-            let (Some(body_a), Some(body_b)) = (
-                bodies.get(contact.key.body_a.0),
-                bodies.get(contact.key.body_b.0),
-            ) else {
-                continue;
-            };
-            self.constraints.push(ContactConstraint::new(
-                contact,
-                contact_index,
-                (&self.states, &self.motions),
-                solver_a,
-                solver_b,
-                (body_a, body_b),
-            ));
+        }
+        self.colouring.colour(&self.pairs, self.states.len());
+    }
+
+    /// The solver bodies of `contact` and its two bodies, or `None` when neither moves this step
+    /// (or a body is gone).
+    fn constraint_bodies<'a>(
+        &self,
+        bodies: &'a Arena<RigidBody>,
+        contact: &Contact,
+    ) -> Option<(usize, usize, (&'a RigidBody, &'a RigidBody))> {
+        let solver_of = |slot: usize| self.solver_index_of_slot.get(slot).copied().unwrap_or(0);
+        let solver_a = solver_of(contact.key.body_a.slot());
+        let solver_b = solver_of(contact.key.body_b.slot());
+        if solver_a == solver_b {
+            return None;
+        }
+        let body_a = bodies.get(contact.key.body_a.0)?;
+        let body_b = bodies.get(contact.key.body_b.0)?;
+        Some((solver_a, solver_b, (body_a, body_b)))
+    }
+
+    /// Builds the lane sets straight from the contacts, each constraint put into its lane in place,
+    /// and one constraint for each contact of the overflow.
+    fn prepare_contacts(&mut self, bodies: &Arena<RigidBody>, contacts: &ContactCache) {
+        self.lanes.clear();
+        for lane_set in self.colouring.lane_sets() {
+            let index = self.lanes.len();
+            self.lanes.push(ContactLanes::EMPTY);
+            for (lane, &pair) in lane_set.iter().enumerate() {
+                if let Some(constraint) = &self.build_constraint(bodies, contacts, pair) {
+                    self.lanes[index].set_lane(lane, constraint, &self.states);
+                }
+            }
+        }
+        self.constraints.clear();
+        for &pair in self.colouring.overflow() {
+            if let Some(constraint) = self.build_constraint(bodies, contacts, pair) {
+                self.constraints.push(constraint);
+            }
         }
     }
 
-    /// Colours the constraints into lane sets of up to four and packs them.
-    fn pack_lanes(&mut self) {
-        self.pairs.clear();
-        let pairs = self.constraints.iter().map(|c| (c.body_a, c.body_b));
-        self.pairs.extend(pairs);
-        self.colouring.colour(&self.pairs, self.states.len());
-        self.lanes.clear();
-        for lane_set in self.colouring.lane_sets() {
-            let packed = ContactLanes::pack(lane_set, &self.constraints, &self.states);
-            self.lanes.push(packed);
-        }
+    /// The constraint of pair `pair` of the colouring, or `None` when its contact has no moving
+    /// body.
+    fn build_constraint(
+        &self,
+        bodies: &Arena<RigidBody>,
+        contacts: &ContactCache,
+        pair: usize,
+    ) -> Option<ContactConstraint> {
+        let contact_index = self.pair_contacts[pair];
+        let contact = &contacts.contacts()[contact_index];
+        let (body_a, body_b, materials) = self.constraint_bodies(bodies, contact)?;
+        let states = (&self.states[..], &self.motions[..]);
+        Some(ContactConstraint::new(
+            contact,
+            contact_index,
+            states,
+            body_a,
+            body_b,
+            materials,
+        ))
     }
 
     /// Applies last step's impulses again: the lane sets, then the overflow.
@@ -248,8 +289,8 @@ impl Solver {
         for lanes in &self.lanes {
             lanes.warm_start(&mut self.states);
         }
-        for &index in self.colouring.overflow() {
-            self.constraints[index].warm_start(&mut self.states);
+        for constraint in &self.constraints {
+            constraint.warm_start(&mut self.states);
         }
     }
 
@@ -259,8 +300,8 @@ impl Solver {
         for lanes in &mut self.lanes {
             lanes.solve(&mut self.states, softness, inverse_h, use_bias);
         }
-        for &index in self.colouring.overflow() {
-            self.constraints[index].solve(&mut self.states, softness, inverse_h, use_bias);
+        for constraint in &mut self.constraints {
+            constraint.solve(&mut self.states, softness, inverse_h, use_bias);
         }
     }
 

@@ -28,7 +28,8 @@ impl F32x4 {
         Self(Vec4::splat(value))
     }
 
-    /// Lane `i` holds `values[i]`.
+    /// Lane `i` holds `values[i]` (the tests build lanes with it).
+    #[cfg(test)]
     pub fn from_array(values: [f32; 4]) -> Self {
         Self(Vec4::from_array(values))
     }
@@ -58,6 +59,11 @@ impl F32x4 {
         Mask4(self.0.cmpgt(other.0))
     }
 
+    /// Sets lane `lane` to `value`.
+    pub fn set_lane(&mut self, lane: usize, value: f32) {
+        self.0[lane] = value;
+    }
+
     /// Where `self < other`.
     pub fn less_than(self, other: Self) -> Mask4 {
         Mask4(self.0.cmplt(other.0))
@@ -76,6 +82,16 @@ impl Mask4 {
     /// Lanes set in either mask.
     pub fn or(self, other: Self) -> Self {
         Self(self.0 | other.0)
+    }
+
+    /// Lanes set in both masks.
+    pub fn and(self, other: Self) -> Self {
+        Self(self.0 & other.0)
+    }
+
+    /// Lanes set in `self` but not in `other`.
+    pub fn and_not(self, other: Self) -> Self {
+        Self(self.0 & !other.0)
     }
 
     /// Whether lane `lane` is set.
@@ -140,6 +156,20 @@ pub(crate) struct Vec3x4 {
 }
 
 impl Vec3x4 {
+    /// Zero in every lane.
+    pub const ZERO: Self = Self {
+        x: F32x4::ZERO,
+        y: F32x4::ZERO,
+        z: F32x4::ZERO,
+    };
+
+    /// Sets lane `lane` to `vector`.
+    pub fn set_lane(&mut self, lane: usize, vector: Vec3A) {
+        self.x.set_lane(lane, vector.x);
+        self.y.set_lane(lane, vector.y);
+        self.z.set_lane(lane, vector.z);
+    }
+
     /// Lane `i` holds `vectors[i]`: a 4×4 transpose (glam's, a few shuffles).
     pub fn from_lanes(vectors: [Vec3A; 4]) -> Self {
         let [a, b, c, d] = vectors;
