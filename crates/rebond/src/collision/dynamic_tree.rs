@@ -100,8 +100,8 @@ pub struct DynamicTree {
     /// First node of the free list, threaded through [`Node::parent`].
     free_list: u32,
     proxy_count: usize,
-    /// Scratch stack of the sibling search: (node, cost of making it the new leaf's sibling),
-    /// kept between insertions so inserting does not allocate.
+    /// Scratch stack of the sibling search: (node, growth of its ancestors and itself if the new
+    /// leaf goes below it, m²), kept between insertions so inserting does not allocate.
     insertion_stack: Vec<(u32, f32)>,
 }
 
@@ -333,33 +333,33 @@ impl DynamicTree {
     /// included, must pay) could beat the best cost found so far; leaves are priced, never pushed.
     fn find_best_sibling(&mut self, leaf_aabb: &Aabb) -> u32 {
         let leaf_area = half_area(leaf_aabb);
-        let root_cost = half_area(&self.nodes[self.root as usize].aabb.union(leaf_aabb));
+        let root_aabb = &self.nodes[self.root as usize].aabb;
+        let root_cost = half_area(&root_aabb.union(leaf_aabb));
         let (mut best, mut best_cost) = (self.root, root_cost);
         let nodes = &self.nodes;
         let stack = &mut self.insertion_stack;
         stack.clear();
-        stack.push((self.root, root_cost));
-        while let Some((index, cost)) = stack.pop() {
+        stack.push((self.root, root_cost - half_area(root_aabb)));
+        while let Some((index, growth_above)) = stack.pop() {
             let node = &nodes[index as usize];
-            // If the leaf goes below this node, the node and its ancestors grow by this much.
-            let growth_above = cost - half_area(&node.aabb);
             if node.is_leaf() || leaf_area + growth_above >= best_cost {
                 continue;
             }
-            // (cost as the sibling, lower bound of any sibling below it) of one child.
+            // (cost as the sibling, growth of it and its ancestors if the leaf goes below it) of
+            // one child; the growth is infinite for a leaf, below which nothing can go.
             let price = |child: u32| {
                 let child_node = &nodes[child as usize];
                 let child_cost = half_area(&child_node.aabb.union(leaf_aabb)) + growth_above;
-                let bound_below = if child_node.is_leaf() {
+                let growth_below = if child_node.is_leaf() {
                     f32::INFINITY
                 } else {
-                    child_cost - half_area(&child_node.aabb) + leaf_area
+                    child_cost - half_area(&child_node.aabb)
                 };
-                (child_cost, bound_below)
+                (child_cost, growth_below)
             };
             let [mut first, mut second] = node.children;
-            let (mut first_cost, mut first_bound) = price(first);
-            let (mut second_cost, mut second_bound) = price(second);
+            let (first_cost, mut first_growth) = price(first);
+            let (second_cost, mut second_growth) = price(second);
             if first_cost < best_cost {
                 best = first;
                 best_cost = first_cost;
@@ -369,16 +369,15 @@ impl DynamicTree {
                 best_cost = second_cost;
             }
             // The more promising child goes on top, so it is searched first and tightens the bound.
-            if first_bound < second_bound {
+            if first_growth < second_growth {
                 std::mem::swap(&mut first, &mut second);
-                std::mem::swap(&mut first_cost, &mut second_cost);
-                std::mem::swap(&mut first_bound, &mut second_bound);
+                std::mem::swap(&mut first_growth, &mut second_growth);
             }
-            if first_bound < best_cost {
-                stack.push((first, first_cost));
+            if leaf_area + first_growth < best_cost {
+                stack.push((first, first_growth));
             }
-            if second_bound < best_cost {
-                stack.push((second, second_cost));
+            if leaf_area + second_growth < best_cost {
+                stack.push((second, second_growth));
             }
         }
         best
