@@ -53,9 +53,6 @@ impl ProxyId {
 struct Node {
     /// Fat box for a leaf, union of the children's boxes for an internal node.
     aabb: Aabb,
-    /// [`half_area`] of `aabb` for an internal node, kept for the sibling search (m²); zero for a
-    /// leaf, whose area that search never needs.
-    area: f32,
     /// The parent node, or [`NULL_NODE`] for the root; for a free node, the next free node.
     parent: u32,
     /// Both children of an internal node; both [`NULL_NODE`] for a leaf.
@@ -131,7 +128,6 @@ impl DynamicTree {
     pub fn create_proxy(&mut self, tight_aabb: Aabb, user_data: u32) -> ProxyId {
         let leaf = self.allocate_node(Node {
             aabb: fatten(&tight_aabb),
-            area: 0.0,
             parent: NULL_NODE,
             children: [NULL_NODE; 2],
             user_data,
@@ -270,9 +266,6 @@ impl DynamicTree {
                 if node.aabb != left_node.aabb.union(&right_node.aabb) {
                     return Err(format!("node {index}'s box is not its children's union"));
                 }
-                if node.area != half_area(&node.aabb) {
-                    return Err(format!("node {index}'s area is not its box's"));
-                }
                 stack.push(left);
                 stack.push(right);
             }
@@ -340,14 +333,13 @@ impl DynamicTree {
     /// included, must pay) could beat the best cost found so far; leaves are priced, never pushed.
     fn find_best_sibling(&mut self, leaf_aabb: &Aabb) -> u32 {
         let leaf_area = half_area(leaf_aabb);
-        let root = &self.nodes[self.root as usize];
-        let root_cost = half_area(&root.aabb.union(leaf_aabb));
+        let root_aabb = &self.nodes[self.root as usize].aabb;
+        let root_cost = half_area(&root_aabb.union(leaf_aabb));
         let (mut best, mut best_cost) = (self.root, root_cost);
         let nodes = &self.nodes;
         let stack = &mut self.insertion_stack;
         stack.clear();
-        // A leaf root's growth is never read: the search stops at leaves.
-        stack.push((self.root, root_cost - root.area));
+        stack.push((self.root, root_cost - half_area(root_aabb)));
         while let Some((index, growth_above)) = stack.pop() {
             let node = &nodes[index as usize];
             if node.is_leaf() || leaf_area + growth_above >= best_cost {
@@ -361,7 +353,7 @@ impl DynamicTree {
                 let growth_below = if child_node.is_leaf() {
                     f32::INFINITY
                 } else {
-                    child_cost - child_node.area
+                    child_cost - half_area(&child_node.aabb)
                 };
                 (child_cost, growth_below)
             };
@@ -401,10 +393,8 @@ impl DynamicTree {
         let sibling = self.find_best_sibling(&leaf_aabb);
         let sibling_node = self.nodes[sibling as usize];
         let old_parent = sibling_node.parent;
-        let parent_aabb = sibling_node.aabb.union(&leaf_aabb);
         let new_parent = self.allocate_node(Node {
-            aabb: parent_aabb,
-            area: half_area(&parent_aabb),
+            aabb: sibling_node.aabb.union(&leaf_aabb),
             parent: old_parent,
             children: [sibling, leaf],
             user_data: 0,
@@ -471,13 +461,12 @@ impl DynamicTree {
         }
     }
 
-    /// Recomputes an internal node's box, area and height from its children.
+    /// Recomputes an internal node's box and height from its children.
     fn refit(&mut self, index: u32) {
         let [left, right] = self.nodes[index as usize].children;
         let (left_node, right_node) = (self.nodes[left as usize], self.nodes[right as usize]);
         let node = &mut self.nodes[index as usize];
         node.aabb = left_node.aabb.union(&right_node.aabb);
-        node.area = half_area(&node.aabb);
         node.height = 1 + left_node.height.max(right_node.height);
     }
 
