@@ -42,8 +42,8 @@ enum ProxyState {
 }
 
 /// One overlapping pair: the two bodies' keys, smaller first, and their proxies in the same order.
-/// Ordered by keys first, so a sorted list of pairs is sorted by keys.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+/// Lists of pairs are sorted by [`Pair::sort_key`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct Pair {
     keys: (u32, u32),
     proxies: (ProxyHandle, ProxyHandle),
@@ -60,6 +60,12 @@ impl Pair {
             keys: (low.0, high.0),
             proxies: (low.1, high.1),
         }
+    }
+
+    /// The keys packed into one integer, smaller key in the high half: orders pairs as their keys
+    /// do, with one comparison instead of two.
+    fn sort_key(&self) -> u64 {
+        (u64::from(self.keys.0) << 32) | u64::from(self.keys.1)
     }
 }
 
@@ -213,13 +219,14 @@ impl BroadPhase {
                 });
             }
         }
-        found_pairs.sort_unstable();
+        // Keys are unique among live proxies, so no two pairs share a sort key.
+        found_pairs.sort_unstable_by_key(Pair::sort_key);
 
         merged_pairs.clear();
         merged_pairs.reserve(pairs.len() + found_pairs.len());
         let (mut kept, mut found) = (pairs.iter().peekable(), found_pairs.iter().peekable());
         while let (Some(&&next_kept), Some(&&next_found)) = (kept.peek(), found.peek()) {
-            if next_kept <= next_found {
+            if next_kept.sort_key() <= next_found.sort_key() {
                 merged_pairs.push(next_kept);
                 kept.next();
             } else {

@@ -100,8 +100,8 @@ pub struct DynamicTree {
     /// First node of the free list, threaded through [`Node::parent`].
     free_list: u32,
     proxy_count: usize,
-    /// Scratch stack of the sibling search: (node, cost of making it the new leaf's sibling),
-    /// kept between insertions so inserting does not allocate.
+    /// Scratch stack of the sibling search: (node, growth of its ancestors and itself if the new
+    /// leaf goes below it, m²), kept between insertions so inserting does not allocate.
     insertion_stack: Vec<(u32, f32)>,
 }
 
@@ -190,23 +190,24 @@ impl DynamicTree {
     /// unspecified but deterministic order, until it returns false. Walks the tree with a stack
     /// on the program stack, so a query does not allocate.
     pub fn query<F: FnMut(ProxyId) -> bool>(&self, aabb: &Aabb, mut callback: F) {
-        if self.root == NULL_NODE {
+        if self.root == NULL_NODE || !self.nodes[self.root as usize].aabb.overlaps(aabb) {
             return;
         }
+        // Only nodes whose boxes overlap are pushed: each child is tested from its parent.
         let mut stack = NodeStack::new();
         stack.push(self.root);
         while let Some(index) = stack.pop() {
             let node = &self.nodes[index as usize];
-            if !node.aabb.overlaps(aabb) {
-                continue;
-            }
             if node.is_leaf() {
                 if !callback(ProxyId(index)) {
                     return;
                 }
-            } else {
-                stack.push(node.children[0]);
-                stack.push(node.children[1]);
+                continue;
+            }
+            for child in node.children {
+                if self.nodes[child as usize].aabb.overlaps(aabb) {
+                    stack.push(child);
+                }
             }
         }
     }
@@ -327,42 +328,56 @@ impl DynamicTree {
 
     /// The node that, made the sibling of `leaf_aabb`, grows the total half area of the tree the
     /// least: the new parent's area plus the growth of every ancestor. Branch and bound, depth
-    /// first with the more promising child first: a subtree is skipped when even a perfect fit
-    /// inside it (the leaf's own area plus the growth its ancestors, the subtree's root included,
-    /// must pay) cannot beat the best cost found so far.
+    /// first with the more promising child first: a subtree is entered only when even a perfect
+    /// fit inside it (the leaf's own area plus the growth its ancestors, the subtree's root
+    /// included, must pay) could beat the best cost found so far; leaves are priced, never pushed.
     fn find_best_sibling(&mut self, leaf_aabb: &Aabb) -> u32 {
         let leaf_area = half_area(leaf_aabb);
-        let root_cost = half_area(&self.nodes[self.root as usize].aabb.union(leaf_aabb));
+        let root_aabb = &self.nodes[self.root as usize].aabb;
+        let root_cost = half_area(&root_aabb.union(leaf_aabb));
         let (mut best, mut best_cost) = (self.root, root_cost);
-        self.insertion_stack.clear();
-        self.insertion_stack.push((self.root, root_cost));
-        while let Some((index, cost)) = self.insertion_stack.pop() {
-            let node = &self.nodes[index as usize];
-            // If the leaf goes below this node, the node and its ancestors grow by this much.
-            let growth_above = cost - half_area(&node.aabb);
+        let nodes = &self.nodes;
+        let stack = &mut self.insertion_stack;
+        stack.clear();
+        stack.push((self.root, root_cost - half_area(root_aabb)));
+        while let Some((index, growth_above)) = stack.pop() {
+            let node = &nodes[index as usize];
             if node.is_leaf() || leaf_area + growth_above >= best_cost {
                 continue;
             }
-            let mut children = node.children.map(|child| {
-                let child_aabb = &self.nodes[child as usize].aabb;
-                let child_cost = half_area(&child_aabb.union(leaf_aabb)) + growth_above;
-                let bound_below = child_cost - half_area(child_aabb) + leaf_area;
-                (child, child_cost, bound_below)
-            });
-            for &(child, child_cost, _) in &children {
-                if child_cost < best_cost {
-                    best = child;
-                    best_cost = child_cost;
-                }
+            // (cost as the sibling, growth of it and its ancestors if the leaf goes below it) of
+            // one child; the growth is infinite for a leaf, below which nothing can go.
+            let price = |child: u32| {
+                let child_node = &nodes[child as usize];
+                let child_cost = half_area(&child_node.aabb.union(leaf_aabb)) + growth_above;
+                let growth_below = if child_node.is_leaf() {
+                    f32::INFINITY
+                } else {
+                    child_cost - half_area(&child_node.aabb)
+                };
+                (child_cost, growth_below)
+            };
+            let [mut first, mut second] = node.children;
+            let (first_cost, mut first_growth) = price(first);
+            let (second_cost, mut second_growth) = price(second);
+            if first_cost < best_cost {
+                best = first;
+                best_cost = first_cost;
+            }
+            if second_cost < best_cost {
+                best = second;
+                best_cost = second_cost;
             }
             // The more promising child goes on top, so it is searched first and tightens the bound.
-            if children[0].2 < children[1].2 {
-                children.swap(0, 1);
+            if first_growth < second_growth {
+                std::mem::swap(&mut first, &mut second);
+                std::mem::swap(&mut first_growth, &mut second_growth);
             }
-            for (child, child_cost, bound_below) in children {
-                if bound_below < best_cost {
-                    self.insertion_stack.push((child, child_cost));
-                }
+            if leaf_area + first_growth < best_cost {
+                stack.push((first, first_growth));
+            }
+            if leaf_area + second_growth < best_cost {
+                stack.push((second, second_growth));
             }
         }
         best
