@@ -10,12 +10,16 @@
 //! point by about 6e-8 of its magnitude. Closed-form scenes here are at most ~6 m across, so 1e-4 m
 //! covers both with margin; random scenes are at most ~15 m across, so 3e-4 m.
 
+#[path = "common/spiral.rs"]
+mod spiral;
+
 use glam::DVec3;
 use proptest::prelude::*;
 use rebond::collision::epa::{self, ContactInfo, Penetration};
 use rebond::collision::gjk::{self, Distance};
 use rebond::collision::{PosedCore, SupportMap};
 use rebond::{Pose, Quat, Shape, Vec3};
+use spiral::spiral_directions;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, SQRT_2};
@@ -84,19 +88,6 @@ fn cylinder(radius: f32, half_height: f32) -> Shape {
 /// How far B lies beyond A along unit `direction` (negative: their extents overlap).
 fn gap(a: &impl SupportMap, b: &impl SupportMap, direction: Vec3) -> f32 {
     b.support(-direction).dot(direction) - a.support(direction).dot(direction)
-}
-
-/// Roughly uniform unit directions on a Fibonacci spiral.
-fn directions(count: usize) -> Vec<Vec3> {
-    let golden_angle = std::f32::consts::PI * (3.0 - 5.0f32.sqrt());
-    (0..count)
-        .map(|i| {
-            let y = 1.0 - 2.0 * (i as f32 + 0.5) / count as f32;
-            let ring = (1.0 - y * y).max(0.0).sqrt();
-            let angle = golden_angle * i as f32;
-            Vec3::new(ring * angle.cos(), y, ring * angle.sin())
-        })
-        .collect()
 }
 
 /// Bounds on the least overlap of A's and B's extents over all unit directions,
@@ -676,7 +667,7 @@ fn aligned_solid_strategy() -> impl Strategy<Value = Solid> {
 
 /// `point` lies inside `solid` (within `tolerance`) along each sampled direction.
 fn assert_inside(solid: &impl SupportMap, point: Vec3, tolerance: f32, what: &str) {
-    for direction in directions(64) {
+    for direction in spiral_directions(64) {
         let reach = solid.support(direction).dot(direction);
         assert!(
             point.dot(direction) <= reach + tolerance,

@@ -21,11 +21,15 @@
 //! The separating-axis routine (boxes and hulls) biases its choice of axis for stability, which
 //! [`separating_axis_floor`] allows for.
 
+#[path = "common/spiral.rs"]
+mod spiral;
+
 use proptest::prelude::*;
 use rebond::collision::narrow_phase::collide_convex;
 use rebond::collision::{gjk, PosedCore, SupportMap, SPECULATIVE_DISTANCE};
 use rebond::shape::ConvexHull;
 use rebond::{Pose, Quat, Shape, Vec3};
+use spiral::spiral_directions;
 use std::f32::consts::{FRAC_PI_2, PI};
 
 /// Slack of every comparison made at the scale of the scenes (shapes up to 2 m across, poses within
@@ -267,19 +271,6 @@ fn distance_to_triangle(point: Vec3, [a, b, c]: [Vec3; 3]) -> f32 {
 /// How far B lies beyond A along unit `direction`: `min_B d·x − max_A d·x`.
 fn gap(a: &Solid, b: &Solid, direction: Vec3) -> f32 {
     -b.extent(-direction) - a.extent(direction)
-}
-
-/// Roughly uniform unit directions on a Fibonacci spiral.
-fn spiral_directions(count: usize) -> Vec<Vec3> {
-    let golden_angle = PI * (3.0 - 5.0f32.sqrt());
-    (0..count)
-        .map(|index| {
-            let y = 1.0 - 2.0 * (index as f32 + 0.5) / count as f32;
-            let ring = (1.0 - y * y).max(0.0).sqrt();
-            let angle = golden_angle * index as f32;
-            Vec3::new(ring * angle.cos(), y, ring * angle.sin())
-        })
-        .collect()
 }
 
 /// Climbs to a local maximum of the gap from `start`: tries steps of a given angle toward eight
