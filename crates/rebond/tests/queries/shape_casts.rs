@@ -1,6 +1,7 @@
 //! Shape casts against closed-form times of impact, landings on a floor, starts in contact.
 
 use super::*;
+use rebond::ShapeHit;
 
 /// When a ball of `radius` whose centre moves along `o + t d` (box frame, unit `d`) first
 /// touches the box of half extents `half`: the ray against the box rounded by the radius, the
@@ -51,6 +52,32 @@ fn expected_cast(grown: Option<f64>, shrunk: Option<f64>, exact: Option<f64>) ->
     }
 }
 
+/// Checks a cast's answer against its reference: a sure miss must miss, a sure hit must hit
+/// within `tolerance` of the reference time of impact and never more than 1e-5 past it. Returns
+/// the hit when the reference is a sure hit, for the caller's further checks.
+fn clear_hit(
+    expected: Expected,
+    hit: Option<ShapeHit>,
+    tolerance: f64,
+    what: &str,
+) -> Option<ShapeHit> {
+    match (expected, hit) {
+        (Expected::Miss, Some(hit)) => panic!("should miss, got {hit:?}"),
+        (Expected::Hit(t), None) => panic!("should hit at {t}"),
+        (Expected::Hit(t), Some(hit)) => {
+            let error = f64::from(hit.distance) - t;
+            assert!(
+                error.abs() <= tolerance,
+                "time of impact {} instead of {t}",
+                hit.distance
+            );
+            assert!(error <= 1e-5, "the {what} passes the contact by {error}");
+            Some(hit)
+        }
+        _ => None,
+    }
+}
+
 #[test]
 fn a_sphere_swept_at_a_box_finds_the_closed_form_time_of_impact_within_1e_4() {
     let mut random = Random(0xba11);
@@ -83,35 +110,21 @@ fn a_sphere_swept_at_a_box_finds_the_closed_form_time_of_impact_within_1e_4() {
         let (o, d) = to_local(&box_pose, start, direction);
         let half64 = to_f64(half);
         let reference = |grow: f64| ball_box_time_of_impact(o, d, half64, f64::from(radius) + grow);
-        match (
-            expected_cast(reference(GROW), reference(-GROW), reference(0.0)),
-            hit,
-        ) {
-            (Expected::Miss, Some(hit)) => panic!("should miss, got {hit:?}"),
-            (Expected::Hit(t), None) => panic!("should hit at {t}"),
-            (Expected::Hit(t), Some(hit)) => {
-                let error = f64::from(hit.distance) - t;
-                assert!(
-                    error.abs() <= 1e-4,
-                    "time of impact {} instead of {t}",
-                    hit.distance
-                );
-                assert!(error <= 1e-5, "the ball passes the contact by {error}");
-                compared += 1;
-                assert_eq!(hit.body, target);
-                // The point is on the box, the normal points from it to the ball's centre.
-                let centre = start + hit.distance * direction;
-                let (local, _) = to_local(&box_pose, hit.point, Vec3::ZERO);
-                let outside = (local.abs() - half64).max_element();
-                assert!(outside.abs() < 1e-3, "point {local} off the box surface");
-                let towards_centre = (centre - hit.point) / radius;
-                assert!(
-                    hit.normal.dot(towards_centre) > 0.999,
-                    "normal {}",
-                    hit.normal
-                );
-            }
-            _ => {}
+        let expected = expected_cast(reference(GROW), reference(-GROW), reference(0.0));
+        if let Some(hit) = clear_hit(expected, hit, 1e-4, "ball") {
+            compared += 1;
+            assert_eq!(hit.body, target);
+            // The point is on the box, the normal points from it to the ball's centre.
+            let centre = start + hit.distance * direction;
+            let (local, _) = to_local(&box_pose, hit.point, Vec3::ZERO);
+            let outside = (local.abs() - half64).max_element();
+            assert!(outside.abs() < 1e-3, "point {local} off the box surface");
+            let towards_centre = (centre - hit.point) / radius;
+            assert!(
+                hit.normal.dot(towards_centre) > 0.999,
+                "normal {}",
+                hit.normal
+            );
         }
     }
     assert!(compared > 1500, "only {compared} clear hits");
@@ -156,40 +169,26 @@ fn a_box_swept_at_a_box_finds_the_closed_form_time_of_impact_within_1e_3() {
                 to_f64(direction),
             )
         };
-        match (
-            expected_cast(reference(GROW), reference(-GROW), reference(0.0)),
-            hit,
-        ) {
-            (Expected::Miss, Some(hit)) => panic!("should miss, got {hit:?}"),
-            (Expected::Hit(t), None) => panic!("should hit at {t}"),
-            (Expected::Hit(t), Some(hit)) => {
-                let error = f64::from(hit.distance) - t;
-                assert!(
-                    error.abs() <= 1e-3,
-                    "time of impact {} instead of {t}",
-                    hit.distance
-                );
-                assert!(error <= 1e-5, "the box passes the contact by {error}");
-                assert!(
-                    hit.normal.dot(direction) < 0.0,
-                    "normal {} faces away",
-                    hit.normal
-                );
-                let moved = Pose::new(pose_a.position + hit.distance * direction, pose_a.rotation);
-                // The contact plane separates the boxes, to within a few milliradians (GJK's
-                // precision at the distance the normal is measured from).
-                let target = Shape::cuboid(half_b).unwrap();
-                let gaps = [
-                    outward_normal_gap(&target, &pose_b, hit.point, hit.normal),
-                    outward_normal_gap(&moving, &moved, hit.point, -hit.normal),
-                ];
-                assert!(
-                    gaps.iter().all(|&gap| gap <= 2.5e-3),
-                    "normal {hit:?}: {gaps:?}"
-                );
-                compared += 1;
-            }
-            _ => {}
+        let expected = expected_cast(reference(GROW), reference(-GROW), reference(0.0));
+        if let Some(hit) = clear_hit(expected, hit, 1e-3, "box") {
+            assert!(
+                hit.normal.dot(direction) < 0.0,
+                "normal {} faces away",
+                hit.normal
+            );
+            let moved = Pose::new(pose_a.position + hit.distance * direction, pose_a.rotation);
+            // The contact plane separates the boxes, to within a few milliradians (GJK's
+            // precision at the distance the normal is measured from).
+            let target = Shape::cuboid(half_b).unwrap();
+            let gaps = [
+                outward_normal_gap(&target, &pose_b, hit.point, hit.normal),
+                outward_normal_gap(&moving, &moved, hit.point, -hit.normal),
+            ];
+            assert!(
+                gaps.iter().all(|&gap| gap <= 2.5e-3),
+                "normal {hit:?}: {gaps:?}"
+            );
+            compared += 1;
         }
     }
     assert!(compared > 1500, "only {compared} clear hits");
