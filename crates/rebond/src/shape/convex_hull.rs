@@ -82,6 +82,8 @@ pub struct ConvexHull {
     edges: Vec<HullEdge>,
     /// Mass properties at unit density: the mass equals the volume.
     unit: MassProperties,
+    /// Largest `|vertex|`, metres: the radius of the ball about the body origin holding the hull.
+    bounding_radius: f32,
 }
 
 impl ConvexHull {
@@ -127,6 +129,11 @@ impl ConvexHull {
     /// Hull edges, each once, sorted by their vertex indices.
     pub fn edges(&self) -> &[HullEdge] {
         &self.edges
+    }
+
+    /// Radius of the ball about the body origin that holds the hull (its farthest vertex), metres.
+    pub fn bounding_radius(&self) -> f32 {
+        self.bounding_radius
     }
 
     /// Mass properties of the solid hull at uniform `density` (kg/m³), exact for the polyhedron.
@@ -922,11 +929,16 @@ fn assemble(
         return Err(inconsistent());
     }
     let unit = unit_mass_properties(&corners, &faces)?;
+    let vertices: Vec<Vec3> = corners.iter().map(|corner| corner.as_vec3()).collect();
+    let bounding_radius = vertices
+        .iter()
+        .fold(0.0, |largest: f32, vertex| largest.max(vertex.length()));
     Ok(ConvexHull {
-        vertices: corners.iter().map(|corner| corner.as_vec3()).collect(),
+        vertices,
         faces,
         edges,
         unit,
+        bounding_radius,
     })
 }
 
