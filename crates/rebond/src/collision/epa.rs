@@ -15,7 +15,7 @@
 use std::cmp::Ordering;
 
 use crate::collision::gjk::{self, Simplex, SupportPoint};
-use crate::collision::{PosedCore, SupportMap};
+use crate::collision::{LocalCore, PosedCore, RelativeCore, SupportMap};
 use crate::math::Vec3;
 
 /// Most support points one query adds to the polytope. Polytopes need a few dozen at most;
@@ -163,12 +163,13 @@ impl Polytope {
     /// Contact between two convex shape cores when their rounded surfaces are less than `margin`
     /// apart (`margin` may be negative to ask for overlaps only). GJK measures the cores, EPA takes
     /// over when the cores overlap, growing this polytope, and the rounding radii are then
-    /// subtracted.
+    /// subtracted. Both run in A's frame.
     pub fn contact(&mut self, a: &PosedCore, b: &PosedCore, margin: f32) -> Option<ContactInfo> {
         let radius_a = a.shape.core_radius();
         let radius_b = b.shape.core_radius();
         let limit = margin + radius_a + radius_b;
-        let cores = gjk::distance_within(a, b, b.pose.position - a.pose.position, limit)?;
+        let (local_a, local_b) = (LocalCore(a.shape), RelativeCore::new(b, a.pose));
+        let cores = gjk::distance_within(&local_a, &local_b, local_b.position, limit)?;
         // Overlapping cores are as far apart as EPA's depth says, checked below.
         if !cores.overlapping && cores.distance - radius_a - radius_b >= margin {
             return None;
@@ -176,7 +177,7 @@ impl Polytope {
         let (normal, core_separation, core_a, core_b) = match cores.normal() {
             Some(normal) => (normal, cores.distance, cores.point_a, cores.point_b),
             None => {
-                let deepest = self.penetration(a, b, &cores.simplex);
+                let deepest = self.penetration(&local_a, &local_b, &cores.simplex);
                 (
                     deepest.normal,
                     -deepest.depth,
@@ -186,11 +187,12 @@ impl Polytope {
             }
         };
         let separation = core_separation - radius_a - radius_b;
-        (separation < margin).then_some(ContactInfo {
+        let normal = a.pose.transform_vector(normal);
+        (separation < margin).then(|| ContactInfo {
             normal,
             separation,
-            point_a: core_a + radius_a * normal,
-            point_b: core_b - radius_b * normal,
+            point_a: a.pose.transform_point(core_a) + radius_a * normal,
+            point_b: a.pose.transform_point(core_b) - radius_b * normal,
         })
     }
 

@@ -15,7 +15,7 @@ use super::halfspace::collide_halfspace;
 use super::manifold::Manifold;
 use super::polyhedron::Polyhedron;
 use super::polyhedron_contact::collide_polyhedra;
-use super::PosedCore;
+use super::{LocalCore, PosedCore, RelativeCore};
 use crate::math::{Aabb, Pose, Vec3};
 use crate::shape::Shape;
 
@@ -183,8 +183,7 @@ fn apart_beyond(
     margin: f32,
 ) -> bool {
     let radii = shape_a.core_radius() + shape_b.core_radius();
-    let a = PosedCore::new(shape_a, pose_a);
-    let b = PosedCore::new(shape_b, pose_b);
-    gjk::distance_within(&a, &b, pose_b.position - pose_a.position, margin + radii)
+    let b = RelativeCore::new(&PosedCore::new(shape_b, pose_b), pose_a);
+    gjk::distance_within(&LocalCore(shape_a), &b, b.position, margin + radii)
         .is_none_or(|cores| cores.distance - radii >= margin)
 }
