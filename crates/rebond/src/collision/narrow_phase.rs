@@ -3,8 +3,9 @@
 //! Pairs are routed by shape kind to the best routine: closed forms for spheres and capsules,
 //! the plane test for halfspaces, the separating-axis test for boxes and hulls (pairs with a hull
 //! rejected by GJK first when they are apart beyond the margin), and GJK/EPA with
-//! feature clipping for everything with a cylinder or a capsule against a polyhedron. Compounds
-//! collide child by child. A [`NarrowPhase`] keeps the scratch space from pair to pair, so that a
+//! feature clipping for everything with a cylinder or a capsule against a polyhedron. Before
+//! those two, a pair whose bounding balls are apart by the margin is rejected. Compounds collide
+//! child by child. A [`NarrowPhase`] keeps the scratch space from pair to pair, so that a
 //! steady step allocates nothing.
 
 use super::closed_form::{capsule_capsule, sphere_box, sphere_capsule, sphere_sphere};
@@ -64,7 +65,7 @@ impl NarrowPhase {
             (Shape::Sphere(a), Shape::Capsule(b)) => sphere_capsule(a, pose_a, b, pose_b, margin),
             (Shape::Sphere(a), Shape::Cuboid(b)) => sphere_box(a, pose_a, b, pose_b, margin),
             (Shape::Capsule(a), Shape::Capsule(b)) => capsule_capsule(a, pose_a, b, pose_b, margin),
-            _ if balls_apart(shape_a, pose_a, shape_b, pose_b, margin) => None,
+            _ if balls_apart(shape_a, shape_b, pose_b.position - pose_a.position, margin) => None,
             (Shape::Cuboid(_) | Shape::ConvexHull(_), Shape::Cuboid(_) | Shape::ConvexHull(_)) => {
                 let has_hull = matches!(shape_a, Shape::ConvexHull(_))
                     || matches!(shape_b, Shape::ConvexHull(_));
@@ -157,19 +158,13 @@ fn for_each_part(shape: &Shape, pose: &Pose, mut visit: impl FnMut(u32, &Shape, 
     }
 }
 
-/// Whether the balls about the shapes' origins that hold them (see [`Shape::bounding_radius`]) are
-/// at least `margin` apart, `|c_B − c_A| − R_A − R_B ≥ margin`: then so are the shapes, since a
-/// translation that separates the balls separates what they hold. A dozen instructions that
-/// spare GJK most pairs whose bounding boxes merely overlap.
-fn balls_apart(
-    shape_a: &Shape,
-    pose_a: &Pose,
-    shape_b: &Shape,
-    pose_b: &Pose,
-    margin: f32,
-) -> bool {
+/// Whether the balls about the shapes' origins that hold them (see [`Shape::bounding_radius`]),
+/// the origins `offset` apart, are at least `margin` apart, `|offset| − R_A − R_B ≥ margin`: then
+/// so are the shapes, since a translation that separates the balls separates what they hold. A
+/// dozen instructions that spare GJK many pairs whose bounding boxes merely overlap.
+fn balls_apart(shape_a: &Shape, shape_b: &Shape, offset: Vec3, margin: f32) -> bool {
     let reach = shape_a.bounding_radius() + shape_b.bounding_radius() + margin;
-    reach <= 0.0 || pose_a.position.distance_squared(pose_b.position) >= reach * reach
+    reach <= 0.0 || offset.length_squared() >= reach * reach
 }
 
 /// Whether GJK finds two convex shapes more than `margin` apart. For pairs with a hull it rejects
