@@ -295,6 +295,28 @@ fn assert_unique_ids(manifold: &Manifold, context: &str) {
     );
 }
 
+/// The bounding radius the narrow phase rejects pairs with is each shape's farthest point from its
+/// origin: the sphere's radius, the box's half diagonal, the capsule's half height plus radius,
+/// the cylinder's rim corner, the prism's corner (circumradius 0.5 m, half height 0.35 m).
+#[test]
+fn bounding_radii_reach_the_farthest_point() {
+    let expected = [
+        (Kind::Sphere, 0.5),
+        (Kind::Box, Vec3::new(0.6, 0.4, 0.5).length()),
+        (Kind::Capsule, 0.7),
+        (Kind::Cylinder, 0.5f32.hypot(0.4)),
+        (Kind::Hull, 0.5f32.hypot(0.35)),
+    ];
+    for (kind, radius) in expected {
+        let found = shape(kind).bounding_radius();
+        assert!(
+            (found - radius).abs() <= EXACT,
+            "{kind:?}: {found} against {radius}"
+        );
+    }
+    assert_eq!(shape(Kind::Halfspace).bounding_radius(), f32::INFINITY);
+}
+
 #[test]
 fn every_pair_separated_speculative_touching_and_overlapping() {
     for (index, &a) in BOUNDED_KINDS.iter().enumerate() {

@@ -15,7 +15,7 @@
 use std::cmp::Ordering;
 
 use crate::collision::gjk::{self, Simplex, SupportPoint};
-use crate::collision::{PosedCore, SupportMap};
+use crate::collision::{LocalCore, PosedCore, RelativeCore, SupportMap};
 use crate::math::Vec3;
 
 /// Most support points one query adds to the polytope. Polytopes need a few dozen at most;
@@ -163,12 +163,13 @@ impl Polytope {
     /// Contact between two convex shape cores when their rounded surfaces are less than `margin`
     /// apart (`margin` may be negative to ask for overlaps only). GJK measures the cores, EPA takes
     /// over when the cores overlap, growing this polytope, and the rounding radii are then
-    /// subtracted.
+    /// subtracted. Both run in A's frame.
     pub fn contact(&mut self, a: &PosedCore, b: &PosedCore, margin: f32) -> Option<ContactInfo> {
         let radius_a = a.shape.core_radius();
         let radius_b = b.shape.core_radius();
         let limit = margin + radius_a + radius_b;
-        let cores = gjk::distance_within(a, b, b.pose.position - a.pose.position, limit)?;
+        let (local_a, local_b) = (LocalCore(a.shape), RelativeCore::new(b, a.pose));
+        let cores = gjk::distance_within(&local_a, &local_b, local_b.position, limit)?;
         // Overlapping cores are as far apart as EPA's depth says, checked below.
         if !cores.overlapping && cores.distance - radius_a - radius_b >= margin {
             return None;
@@ -176,7 +177,7 @@ impl Polytope {
         let (normal, core_separation, core_a, core_b) = match cores.normal() {
             Some(normal) => (normal, cores.distance, cores.point_a, cores.point_b),
             None => {
-                let deepest = self.penetration(a, b, &cores.simplex);
+                let deepest = self.penetration(&local_a, &local_b, &cores.simplex);
                 (
                     deepest.normal,
                     -deepest.depth,
@@ -186,11 +187,12 @@ impl Polytope {
             }
         };
         let separation = core_separation - radius_a - radius_b;
-        (separation < margin).then_some(ContactInfo {
+        let normal = a.pose.transform_vector(normal);
+        (separation < margin).then(|| ContactInfo {
             normal,
             separation,
-            point_a: core_a + radius_a * normal,
-            point_b: core_b - radius_b * normal,
+            point_a: a.pose.transform_point(core_a) + radius_a * normal,
+            point_b: a.pose.transform_point(core_b) - radius_b * normal,
         })
     }
 
@@ -236,7 +238,7 @@ impl Polytope {
             }
         }
         match best {
-            Some((_, face, support)) => self.answer(self.faces[face].normal, support),
+            Some((_, face, support)) => self.answer(face, support),
             None => Prober::new(a, b, simplex).fallback(),
         }
     }
@@ -470,20 +472,23 @@ impl Polytope {
         true
     }
 
-    /// The penetration along `normal`, whose support point in `A − B` is `support`: as deep as
-    /// that point reaches along it. The points of A and B are found where the ray from the origin
-    /// along the normal leaves the polytope, in the face it meets inside its triangle (usually the
-    /// face the normal came from, but it may be a neighbour in the same plane, as a box face or a
-    /// cylinder cap is split into several triangles, or another face when the normal came from a
-    /// sliver), then moved along the normal onto A's and B's support planes, so that they lie on
-    /// the surfaces and `point_a − point_b = depth · normal` exactly. The move is within the
-    /// tolerance once EPA has converged.
-    fn answer(&self, normal: Vec3, support: SupportPoint) -> Penetration {
-        let mut exit = (f32::INFINITY, Simplex::default());
-        for candidate in &self.faces {
+    /// The penetration along the normal of face `face`, whose support point in `A − B` is
+    /// `support`: as deep as that point reaches along it. The points of A and B are found where
+    /// the ray from the origin along the normal leaves the polytope, in the face it meets inside
+    /// its triangle: that face itself when the ray's crossing of its plane lies inside it, as it
+    /// does once EPA has converged, else the face the ray passes nearest (a neighbour in the same
+    /// plane, as a box face or a cylinder cap is split into several triangles, or another face
+    /// when the normal came from a sliver). They are then moved along the normal onto A's and B's
+    /// support planes, so that they lie on the surfaces and `point_a − point_b = depth · normal`
+    /// exactly. The move is within the tolerance once EPA has converged.
+    fn answer(&self, face: usize, support: SupportPoint) -> Penetration {
+        let normal = self.faces[face].normal;
+        // The face's vertices around the ray's crossing of its plane, reduced to the part
+        // nearest the ray, or `None` when the face does not face along the ray.
+        let exit_through = |candidate: &Face| {
             let facing = candidate.normal.dot(normal);
             if candidate.removed || !candidate.distance.is_finite() || facing <= 0.0 {
-                continue;
+                return None;
             }
             let crossing = candidate.distance / facing * normal;
             let shifted = candidate.vertices.map(|index| {
@@ -494,12 +499,24 @@ impl Polytope {
                 }
             });
             let (nearest, _) = Simplex::reduced(&shifted);
-            let miss = nearest.closest_point().length_squared();
-            if miss < exit.0 {
-                exit = (miss, nearest);
+            Some(nearest)
+        };
+        let exit = match exit_through(&self.faces[face]) {
+            Some(inside) if inside.points().len() == 3 => inside,
+            _ => {
+                let mut nearest = (f32::INFINITY, Simplex::default());
+                for candidate in &self.faces {
+                    if let Some(through) = exit_through(candidate) {
+                        let miss = through.closest_point().length_squared();
+                        if miss < nearest.0 {
+                            nearest = (miss, through);
+                        }
+                    }
+                }
+                nearest.1
             }
-        }
-        let (inside_a, inside_b) = exit.1.witness_points();
+        };
+        let (inside_a, inside_b) = exit.witness_points();
         penetration_along(normal, support, inside_a, inside_b)
     }
 }

@@ -218,8 +218,8 @@ impl Barycentric {
     /// the weights.
     fn triangle(unit: &[Vec3; 4], vertices: [usize; 3]) -> Self {
         let [a, b, c] = vertices.map(|index| unit[index]);
-        let normal = (b - a).cross(c - a);
-        let perimeter = (b - a).length() + (c - b).length() + (a - c).length();
+        let (ab, bc, ca) = (b - a, c - b, a - c);
+        let normal = ab.cross(c - a);
         let edges = [
             (vertices[1], vertices[2]),
             (vertices[2], vertices[0]),
@@ -232,7 +232,11 @@ impl Barycentric {
         let weight_b = (c - a).cross(a).dot(normal) / area;
         let weight_c = a.cross(b - a).dot(normal) / area;
         let weights = [1.0 - weight_b - weight_c, weight_b, weight_c];
-        let flat = normal.length() <= DEGENERACY * perimeter;
+        // Flat when `|normal| ≤ DEGENERACY · perimeter`. As `perimeter² ≤ 3 Σ |edge|²`, a larger
+        // area rules that out without a square root, which spares the roots for most triangles.
+        let edge_squares = ab.length_squared() + bc.length_squared() + ca.length_squared();
+        let flat = area <= DEGENERACY * DEGENERACY * 3.0 * edge_squares
+            && normal.length() <= DEGENERACY * (ab.length() + bc.length() + ca.length());
         if !flat && weights.iter().all(|&weight| weight > 0.0) {
             let height = (a + b + c).dot(normal) / 3.0;
             return Self {
@@ -258,9 +262,15 @@ impl Barycentric {
         let faces = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
         let (ab, ac, ad) = (b - a, c - a, d - a);
         let volume = ab.dot(ac.cross(ad));
-        let edge_products =
-            ab.length() * ac.length() + ac.length() * ad.length() + ad.length() * ab.length();
-        let solid = volume.abs() > DEGENERACY * edge_products;
+        // Solid when `|volume| > DEGENERACY · (|ab||ac| + |ac||ad| + |ad||ab|)`; that sum is at
+        // most `|ab|² + |ac|² + |ad|²`, so a volume above the bound needs no square roots.
+        let edge_squares = ab.length_squared() + ac.length_squared() + ad.length_squared();
+        let solid = volume.abs() > DEGENERACY * edge_squares
+            || volume.abs()
+                > DEGENERACY
+                    * (ab.length() * ac.length()
+                        + ac.length() * ad.length()
+                        + ad.length() * ab.length());
         // The origin is a + wb·ab + wc·ac + wd·ad: Cramer's rule on the edges, the first weight
         // making the sum one. A thin tetrahedron loses precision there, which one round of
         // refinement (solving again for what the weights miss) wins back.

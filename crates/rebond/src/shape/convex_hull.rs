@@ -13,7 +13,7 @@
 
 use std::collections::BTreeMap;
 
-use glam::{DMat3, DVec3};
+use glam::{DMat3, DVec3, Vec4};
 
 use crate::error::{Error, ErrorKind, Result};
 use crate::mass::MassProperties;
@@ -82,6 +82,11 @@ pub struct ConvexHull {
     edges: Vec<HullEdge>,
     /// Mass properties at unit density: the mass equals the volume.
     unit: MassProperties,
+    /// Largest `|vertex|`, metres: the radius of the ball about the body origin holding the hull.
+    bounding_radius: f32,
+    /// The vertices four at a time as x, y and z lanes, the last group padded with vertex 0:
+    /// [`ConvexHull::support`] takes four dot products per SIMD step.
+    vertex_lanes: Vec<[Vec4; 3]>,
 }
 
 impl ConvexHull {
@@ -129,6 +134,11 @@ impl ConvexHull {
         &self.edges
     }
 
+    /// Radius of the ball about the body origin that holds the hull (its farthest vertex), metres.
+    pub fn bounding_radius(&self) -> f32 {
+        self.bounding_radius
+    }
+
     /// Mass properties of the solid hull at uniform `density` (kg/m³), exact for the polyhedron.
     ///
     /// Each face is fanned into triangles `(a, b, c)`, taken relative to the mean vertex `r`; each
@@ -161,17 +171,53 @@ impl ConvexHull {
     /// The vertex with the largest `vertex · direction`; ties (and a NaN direction) go to the
     /// lowest index.
     pub fn support(&self, direction: Vec3) -> Vec3 {
-        let mut best = self.vertices.first().copied().unwrap_or(Vec3::ZERO);
-        let mut best_dot = best.dot(direction);
-        for vertex in self.vertices.iter().skip(1) {
-            let dot = vertex.dot(direction);
-            if dot > best_dot {
-                best = *vertex;
-                best_dot = dot;
+        let [x, y, z] = direction.to_array().map(Vec4::splat);
+        let dots = |[xs, ys, zs]: &[Vec4; 3]| xs * x + ys * y + zs * z;
+        let Some(first) = self.vertex_lanes.first() else {
+            return Vec3::ZERO;
+        };
+        // Each lane keeps its farthest vertex (the earliest on ties, the first on NaN).
+        let (mut best_dot, mut best_index) = (dots(first), Vec4::new(0.0, 1.0, 2.0, 3.0));
+        let mut index = best_index;
+        for group in &self.vertex_lanes[1..] {
+            index += Vec4::splat(4.0);
+            let dot = dots(group);
+            let farther = dot.cmpgt(best_dot);
+            best_dot = Vec4::select(farther, dot, best_dot);
+            best_index = Vec4::select(farther, index, best_index);
+        }
+        let (dots, indices) = (best_dot.to_array(), best_index.to_array());
+        let mut best = 0;
+        for lane in 1..4 {
+            let (dot, current) = (dots[lane], dots[best]);
+            if dot > current || (dot == current && indices[lane] < indices[best]) {
+                best = lane;
             }
         }
-        best
+        // A padding lane (past the last vertex) holds vertex 0.
+        let vertex = self.vertices.get(indices[best] as usize);
+        vertex
+            .or(self.vertices.first())
+            .copied()
+            .unwrap_or(Vec3::ZERO)
     }
+}
+
+/// The vertices as groups of four x, y and z lanes, the last group padded with vertex 0.
+fn vertex_lanes(vertices: &[Vec3]) -> Vec<[Vec4; 3]> {
+    vertices
+        .chunks(4)
+        .map(|group| {
+            let lane = |coordinate: fn(&Vec3) -> f32| {
+                let mut values = [coordinate(&vertices[0]); 4];
+                for (value, vertex) in values.iter_mut().zip(group) {
+                    *value = coordinate(vertex);
+                }
+                Vec4::from_array(values)
+            };
+            [lane(|v| v.x), lane(|v| v.y), lane(|v| v.z)]
+        })
+        .collect()
 }
 
 /// A [`ErrorKind::DegenerateHull`] error on field `points`.
@@ -922,11 +968,17 @@ fn assemble(
         return Err(inconsistent());
     }
     let unit = unit_mass_properties(&corners, &faces)?;
+    let vertices: Vec<Vec3> = corners.iter().map(|corner| corner.as_vec3()).collect();
+    let bounding_radius = vertices
+        .iter()
+        .fold(0.0, |largest: f32, vertex| largest.max(vertex.length()));
     Ok(ConvexHull {
-        vertices: corners.iter().map(|corner| corner.as_vec3()).collect(),
         faces,
         edges,
         unit,
+        bounding_radius,
+        vertex_lanes: vertex_lanes(&vertices),
+        vertices,
     })
 }
 

@@ -116,6 +116,24 @@ impl Shape {
         }
     }
 
+    /// Radius of a ball about the shape's origin that holds the whole shape, metres (the
+    /// smallest such ball for every shape but a compound); infinite for a halfspace.
+    pub fn bounding_radius(&self) -> f32 {
+        match self {
+            Shape::Sphere(sphere) => sphere.radius(),
+            Shape::Cuboid(cuboid) => cuboid.half_extents().length(),
+            Shape::Capsule(capsule) => capsule.half_height() + capsule.radius(),
+            Shape::Cylinder(cylinder) => cylinder.radius().hypot(cylinder.half_height()),
+            Shape::ConvexHull(hull) => hull.bounding_radius(),
+            Shape::Compound(compound) => compound
+                .children()
+                .iter()
+                .map(|child| child.pose.position.length() + child.shape.bounding_radius())
+                .fold(0.0, f32::max),
+            Shape::Halfspace(_) => f32::INFINITY,
+        }
+    }
+
     /// Rounding radius around the shape's core, metres: a sphere's or capsule's radius, zero
     /// for every other shape.
     pub fn core_radius(&self) -> f32 {
