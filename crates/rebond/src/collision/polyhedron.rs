@@ -304,6 +304,16 @@ impl Frame {
         }
     }
 
+    /// The inverse transform, `p ↦ Rᵀ · (p − t)`: `inner`'s frame seen from `outer`'s turned into
+    /// `outer`'s seen from `inner`'s without a second quaternion product.
+    pub(super) fn inverse(&self) -> Self {
+        let rotation = self.rotation.transpose();
+        Self {
+            rotation,
+            translation: -(rotation * self.translation),
+        }
+    }
+
     pub(super) fn point(&self, point: Vec3) -> Vec3 {
         self.rotation * point + self.translation
     }

@@ -145,12 +145,11 @@ pub fn collide_polyhedra(
         return None;
     }
     let b_in_a = Frame::relative(pose_a, pose_b);
-    let a_in_b = Frame::relative(pose_b, pose_a);
-
     let face_a = best_face_axis(a, b, &b_in_a);
     if face_a.separation > margin {
         return None;
     }
+    let a_in_b = b_in_a.inverse();
     let face_b = best_face_axis(b, a, &a_in_b);
     if face_b.separation > margin {
         return None;
