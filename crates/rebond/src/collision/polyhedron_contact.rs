@@ -15,7 +15,7 @@ use crate::collision::clipping::{
 };
 use crate::collision::gjk;
 use crate::collision::manifold::{ContactPoint, Manifold};
-use crate::collision::polyhedron::{Frame, Polyhedron};
+use crate::collision::polyhedron::{Frame, Polyhedron, Topology};
 use crate::collision::separating_axis::{
     best_face_axis, edge_query, EdgeAxis, FaceAxis, ABSOLUTE_TOLERANCE,
 };
@@ -143,6 +143,14 @@ pub fn collide_polyhedra(
 ) -> Option<Manifold> {
     if a.face_count() == 0 || b.face_count() == 0 {
         return None;
+    }
+    if let (Topology::Cuboid(half_a), Topology::Cuboid(half_b)) = (a.topology, b.topology) {
+        // Boxes whose bounding spheres (radius |h| about the centre) are apart by more than the
+        // margin are apart by more than the margin.
+        let reach = half_a.length() + half_b.length() + margin;
+        if pose_a.position.distance_squared(pose_b.position) > reach * reach {
+            return None;
+        }
     }
     let b_in_a = Frame::relative(pose_a, pose_b);
     let face_a = best_face_axis(a, b, &b_in_a);
