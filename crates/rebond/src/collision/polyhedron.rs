@@ -14,7 +14,7 @@ const BOX_VERTEX_COUNT: usize = 8;
 
 /// Box face `f` has normal `+axis` for even `f` and `−axis` for odd `f`, with `axis = f / 2`
 /// (0 = x, 1 = y, 2 = z). Vertex loops are counter-clockwise seen from outside.
-const BOX_FACE_LOOPS: [[u8; 4]; 6] = [
+pub(super) const BOX_FACE_LOOPS: [[u8; 4]; 6] = [
     [1, 3, 7, 5],
     [0, 4, 6, 2],
     [2, 6, 7, 3],
@@ -278,6 +278,64 @@ impl<'a> Polyhedron<'a> {
 pub(super) fn box_vertex(half_extents: Vec3, index: usize) -> Vec3 {
     let sign = |bit: usize| if index & bit != 0 { 1.0 } else { -1.0 };
     Vec3::new(sign(1), sign(2), sign(4)) * half_extents
+}
+
+/// The box face most anti-parallel to `direction` (in the box's frame): the face across the axis
+/// of `direction`'s largest component (the first of equals), on the side that component points
+/// away from (a `+0.0` component counting as positive). It holds the box's support vertex
+/// against `direction`, so it is the incident face the general search finds.
+pub(super) fn box_face_against(direction: Vec3) -> usize {
+    let magnitude = direction.abs();
+    let axis = if magnitude.y > magnitude.x {
+        if magnitude.z > magnitude.y {
+            2
+        } else {
+            1
+        }
+    } else if magnitude.z > magnitude.x {
+        2
+    } else {
+        0
+    };
+    2 * axis + usize::from(direction[axis].is_sign_positive())
+}
+
+/// The loop of box face `face` (as [`Polyhedron::face_loop`]) mapped by `frame`.
+pub(super) fn box_face_loop(half_extents: Vec3, face: usize, frame: &Frame) -> [Vec3; 4] {
+    BOX_FACE_LOOPS[face].map(|corner| frame.point(box_vertex(half_extents, usize::from(corner))))
+}
+
+/// A side plane of a box face in the box's frame: `sign · p[axis] = offset`, facing out of the
+/// face, so that clipping against it needs one coordinate instead of a dot product.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct BoxFaceSide {
+    axis: usize,
+    sign: f32,
+    offset: f32,
+}
+
+impl BoxFaceSide {
+    /// How far `point` (box frame) lies outside this side, metres.
+    pub(super) fn distance(&self, point: Vec3) -> f32 {
+        self.sign * point[self.axis] - self.offset
+    }
+}
+
+/// The sides of box face `face` in the order of its loop: side `j` runs from corner `j` to corner
+/// `j + 1`, along the one axis in which they differ, and lies across the axis that is neither
+/// that one nor the face's, on the corners' side of it.
+pub(super) fn box_face_sides(half_extents: Vec3, face: usize) -> [BoxFaceSide; 4] {
+    let corners = BOX_FACE_LOOPS[face];
+    std::array::from_fn(|side| {
+        let (start, end) = (corners[side], corners[(side + 1) % corners.len()]);
+        let along = (start ^ end).trailing_zeros() as usize;
+        let axis = 3 - face / 2 - along;
+        BoxFaceSide {
+            axis,
+            sign: if start & (1 << axis) != 0 { 1.0 } else { -1.0 },
+            offset: half_extents[axis],
+        }
+    })
 }
 
 /// A rigid transform as a rotation matrix and a translation: `rotation · p + translation`.
