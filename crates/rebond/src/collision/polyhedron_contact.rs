@@ -239,10 +239,12 @@ pub fn collide_polyhedra(
 /// their distance, else one point between their closest points. The separations along the axes
 /// may fall short of the distance (two edges whose closest points are their ends, a vertex near a
 /// vertex), so GJK measures it, starting from the best axis; touching within GJK's tolerance, the
-/// best axis's separation is as near the distance as GJK gets. A face contact needs no GJK when
-/// its deepest point is within [`DEPTH_TOLERANCE`] of the best axis's separation: each of its
-/// points pairs a point of one shape with its projection on the other's face, a distance that
-/// bounds the shapes' distance from above, as any axis's separation bounds it from below.
+/// best axis's separation is as near the distance as GJK gets. The chosen contact needs no GJK
+/// when a pair of points it is built from, one on each shape, is within [`DEPTH_TOLERANCE`] of
+/// the best axis's separation: that pair's distance bounds the shapes' distance from above, as
+/// any axis's separation bounds it from below. A face contact's deepest point pairs a point of
+/// one shape with its projection on the other's face; an edge contact's the closest points of
+/// the two edges.
 fn apart_contact(
     a: &PosedPolyhedron,
     b: &PosedPolyhedron,
@@ -253,10 +255,15 @@ fn apart_contact(
 ) -> Option<Manifold> {
     let lower_bound = best.separation();
     let chosen_contact = contact(chosen);
-    let is_face = matches!(chosen, ContactAxis::FaceOfA(_) | ContactAxis::FaceOfB(_));
-    if is_face
-        && chosen_contact
-            .is_some_and(|manifold| manifold.deepest_separation() <= lower_bound + DEPTH_TOLERANCE)
+    let upper_bound = |manifold: &Manifold| match chosen {
+        ContactAxis::Edges(edge) => {
+            let (on_a, on_b) = edge_closest_points(a, b, &edge);
+            on_a.distance(on_b)
+        }
+        ContactAxis::FaceOfA(_) | ContactAxis::FaceOfB(_) => manifold.deepest_separation(),
+    };
+    if chosen_contact
+        .is_some_and(|manifold| upper_bound(&manifold) <= lower_bound + DEPTH_TOLERANCE)
     {
         return chosen_contact;
     }
@@ -503,17 +510,8 @@ fn edge_contact(
     edge: &EdgeAxis,
     margin: f32,
 ) -> Option<Manifold> {
-    let (world_a, world_b) = (&a.frame, &b.frame);
-    let (a, b) = (a.polyhedron, b.polyhedron);
-    let edge_a = a.edge(edge.edge_a);
-    let edge_b = b.edge(edge.edge_b);
-    let (on_a, on_b) = closest_points_between_segments(
-        world_a.point(edge_a.start),
-        world_a.point(edge_a.end),
-        world_b.point(edge_b.start),
-        world_b.point(edge_b.end),
-    );
-    let normal = world_a.vector(edge.axis);
+    let (on_a, on_b) = edge_closest_points(a, b, edge);
+    let normal = a.frame.vector(edge.axis);
     let separation = normal.dot(on_b - on_a);
     let within_margin = separation <= margin;
     if !within_margin {
@@ -526,6 +524,18 @@ fn edge_contact(
         id: (1 << 31) | ((edge.edge_a as u32 & 0x7FFF) << 16) | (edge.edge_b as u32 & 0xFFFF),
     });
     Some(manifold)
+}
+
+/// The closest points, in the world, of edge `edge.edge_a` of A and edge `edge.edge_b` of B.
+fn edge_closest_points(a: &PosedPolyhedron, b: &PosedPolyhedron, edge: &EdgeAxis) -> (Vec3, Vec3) {
+    let edge_a = a.polyhedron.edge(edge.edge_a);
+    let edge_b = b.polyhedron.edge(edge.edge_b);
+    closest_points_between_segments(
+        a.frame.point(edge_a.start),
+        a.frame.point(edge_a.end),
+        b.frame.point(edge_b.start),
+        b.frame.point(edge_b.end),
+    )
 }
 
 /// The closest points of segments `[p0, p1]` and `[q0, q1]`: minimise `|p(s) − q(t)|²` over
