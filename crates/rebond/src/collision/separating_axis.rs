@@ -250,46 +250,69 @@ fn out_of_reach(reach: f32, threshold: f32) -> bool {
 /// centre is the larger separation, `|n · c| − Σₖ aₖ |n · eₖ| − Σₖ bₖ |n · fₖ|` (`c` B's centre in
 /// A's frame), between A's edge along `eᵢ` supporting `n` and B's edge along `fⱼ` supporting
 /// `−n`, read from the signs of the other components. A crossing on a face normal (a zero
-/// component) is left to the face axes, as a parallel pair is.
+/// component) is left to the face axes, as a parallel pair is. Each product is read off B's axes
+/// in A's frame: `eᵢ × fⱼ` has two components of `fⱼ`, and `n · eₖ`, `n · fₖ` are components of
+/// `n` and 2×2 sums, with `n · fⱼ = 0`.
 fn best_box_box_edge_axis(half_a: Vec3, half_b: Vec3, b_in_a: &Frame) -> Option<EdgeAxis> {
     let mut best: Option<EdgeAxis> = None;
-    let centre = b_in_a.translation;
-    let axes_b = [
+    // columns[j][k]: component k, in A's frame, of B's axis fⱼ.
+    let columns = [
         b_in_a.rotation.x_axis,
         b_in_a.rotation.y_axis,
         b_in_a.rotation.z_axis,
-    ];
-    for (index_a, &axis_a) in Vec3::AXES.iter().enumerate() {
-        for (index_b, &axis_b) in axes_b.iter().enumerate() {
-            let cross = axis_a.cross(axis_b);
-            let length_squared = cross.length_squared();
+    ]
+    .map(|axis| axis.to_array());
+    let centre = b_in_a.translation.to_array();
+    let (half_a, half_b) = (half_a.to_array(), half_b.to_array());
+    for index_a in 0..3 {
+        // eᵢ × f has no eᵢ component, −f[last] along e_next and f[next] along e_last (cyclic).
+        let (next, last) = ((index_a + 1) % 3, (index_a + 2) % 3);
+        for (index_b, column) in columns.iter().enumerate() {
+            let (mut along_next, mut along_last) = (-column[last], column[next]);
+            let length_squared = along_next * along_next + along_last * along_last;
             // Written so that a NaN (from overflow on absurdly large shapes) also rejects it.
             let crosses = length_squared > PARALLEL_SINE * PARALLEL_SINE;
             if !crosses {
                 continue;
             }
-            let mut axis = cross / length_squared.sqrt();
-            if axis.dot(centre) < 0.0 {
-                axis = -axis;
+            let mut toward_centre = along_next * centre[next] + along_last * centre[last];
+            if toward_centre < 0.0 {
+                (along_next, along_last, toward_centre) =
+                    (-along_next, -along_last, -toward_centre);
             }
-            let against_in_b = b_in_a.inverse_vector(-axis);
-            let (Some(edge_a), Some(edge_b)) = (
-                box_edge_along(index_a, axis),
-                box_edge_along(index_b, against_in_b),
-            ) else {
+            let inverse_length = length_squared.sqrt().recip();
+            let mut axis = [0.0; 3];
+            axis[next] = along_next * inverse_length;
+            axis[last] = along_last * inverse_length;
+            // −fₖ · axis; zero for fⱼ, which the axis is normal to.
+            let against_in_b: [f32; 3] = std::array::from_fn(|k| {
+                if k == index_b {
+                    0.0
+                } else {
+                    -(axis[next] * columns[k][next] + axis[last] * columns[k][last])
+                }
+            });
+            let reach_b: f32 = (0..3).map(|k| half_b[k] * against_in_b[k].abs()).sum();
+            let separation = toward_centre * inverse_length
+                - half_a[next] * axis[next].abs()
+                - half_a[last] * axis[last].abs()
+                - reach_b;
+            // The edges are read only for a candidate that would be kept.
+            if best.is_some_and(|best| separation <= best.separation) {
                 continue;
-            };
-            let separation =
-                axis.dot(centre) - half_a.dot(axis.abs()) - half_b.dot(against_in_b.abs());
-            keep_larger(
-                &mut best,
-                EdgeAxis {
+            }
+            let axis = Vec3::from_array(axis);
+            if let (Some(edge_a), Some(edge_b)) = (
+                box_edge_along(index_a, axis),
+                box_edge_along(index_b, Vec3::from_array(against_in_b)),
+            ) {
+                best = Some(EdgeAxis {
                     edge_a,
                     edge_b,
                     axis,
                     separation,
-                },
-            );
+                });
+            }
         }
     }
     best
