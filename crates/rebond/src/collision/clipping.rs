@@ -270,6 +270,17 @@ fn clip_by_plane<const CAPACITY: usize>(
 /// Each polygon is read up to [`MAX_POLYGON_VERTICES`] vertices. The points keep the
 /// incident order and are tagged with [`ClipFeature`]s indexed by position in the inputs.
 pub fn clip_polygon(incident: &[Vec3], reference: &[Vec3], normal: Vec3) -> ClipPolygon {
+    clip_polygon_within(incident, reference, normal)
+}
+
+/// [`clip_polygon`] into a polygon of `CAPACITY` vertices, for callers whose polygons are known
+/// to be small (`CAPACITY` at least the two polygons' vertex counts together): less to clear and
+/// copy than [`MAX_CLIP_VERTICES`].
+pub fn clip_polygon_within<const CAPACITY: usize>(
+    incident: &[Vec3],
+    reference: &[Vec3],
+    normal: Vec3,
+) -> ClipPolygon<CAPACITY> {
     clip_by_sides(
         incident,
         side_planes(reference, normal)

@@ -11,8 +11,8 @@
 //! an edge) get one point between their closest points, found by GJK.
 
 use crate::collision::clipping::{
-    clip_by_sides, clip_polygon, reduce_contacts_on_face, ClipFeature, ClipPolygon,
-    MAX_POLYGON_VERTICES,
+    clip_by_sides, clip_polygon_within, reduce_contacts_on_face, ClipFeature, ClipPolygon,
+    MAX_CLIP_VERTICES, MAX_POLYGON_VERTICES,
 };
 use crate::collision::gjk;
 use crate::collision::manifold::{ContactPoint, Manifold};
@@ -364,22 +364,44 @@ fn polygon_face_contact(
     let incident_count = incident.face_loop(incident_face, incident_frame, &mut incident_loop);
     let mut reference_loop = [Vec3::ZERO; MAX_POLYGON_VERTICES];
     let reference_count = reference.face_loop(reference_face, reference_frame, &mut reference_loop);
-    let clipped = clip_polygon(
+    let (incident_loop, reference_loop) = (
         &incident_loop[..incident_count],
         &reference_loop[..reference_count],
-        normal,
     );
-    clipped_face_manifold(
-        &clipped,
-        &world_plane,
-        reference_loop[1] - reference_loop[0],
-        FacePair {
-            reference_is_b,
-            reference_face,
-            incident_face,
-        },
-        margin,
-    )
+    let faces = FacePair {
+        reference_is_b,
+        reference_face,
+        incident_face,
+    };
+    if incident_count + reference_count <= SMALL_CLIP_VERTICES {
+        clip_loops::<SMALL_CLIP_VERTICES>(
+            incident_loop,
+            reference_loop,
+            &world_plane,
+            faces,
+            margin,
+        )
+    } else {
+        clip_loops::<MAX_CLIP_VERTICES>(incident_loop, reference_loop, &world_plane, faces, margin)
+    }
+}
+
+/// Capacity of the clipped polygon for faces of at most this many corners together (two
+/// triangles, a triangle and a hexagon, two octagons), which most hull faces are.
+const SMALL_CLIP_VERTICES: usize = 16;
+
+/// The face contact of the `incident` loop clipped by the sides of the `reference` loop (both in
+/// the world, the reference face on `plane`) into a polygon of `CAPACITY` points (at least the
+/// two loops' lengths together), by [`clipped_face_manifold`].
+fn clip_loops<const CAPACITY: usize>(
+    incident: &[Vec3],
+    reference: &[Vec3],
+    plane: &FacePlane,
+    faces: FacePair,
+    margin: f32,
+) -> Option<Manifold> {
+    let clipped: ClipPolygon<CAPACITY> = clip_polygon_within(incident, reference, plane.normal);
+    clipped_face_manifold(&clipped, plane, reference[1] - reference[0], faces, margin)
 }
 
 /// Most vertices of a box face clipped by another box face: the quads' 4 + 4 corners.
