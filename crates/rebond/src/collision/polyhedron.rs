@@ -6,7 +6,7 @@
 
 use crate::collision::clipping::MAX_POLYGON_VERTICES;
 use crate::math::{Mat3, Pose, Vec3};
-use crate::shape::{ConvexHull, Cuboid, Shape};
+use crate::shape::{ConvexHull, Cuboid, HullEdge, HullFace, Shape};
 
 /// Box vertex `i` is `(±hx, ±hy, ±hz)` with the sign of x from bit 0 of `i`, y from bit 1 and z
 /// from bit 2 (set = positive).
@@ -193,17 +193,25 @@ impl<'a> Polyhedron<'a> {
                     ],
                 }
             }
-            Topology::Hull(hull) => {
-                let edge = &hull.edges()[index];
-                let vertex = |end: usize| hull.vertices()[edge.vertices[end] as usize];
-                let normal = |side: usize| hull.faces()[edge.faces[side] as usize].normal;
-                PolyhedronEdge {
-                    start: vertex(0),
-                    end: vertex(1),
-                    face_normals: [normal(0), normal(1)],
-                }
-            }
+            Topology::Hull(hull) => hull_edge(hull.vertices(), hull.faces(), &hull.edges()[index]),
         }
+    }
+
+    /// Every edge in index order, as [`Polyhedron::edge`] gives them; a hull's are read straight
+    /// from its slices.
+    pub(super) fn edges(&self) -> impl Iterator<Item = PolyhedronEdge> + '_ {
+        let (box_edges, hull) = match self.topology {
+            Topology::Cuboid(_) => (BOX_EDGES.len(), None),
+            Topology::Hull(hull) => (0, Some(hull)),
+        };
+        let hull_edges = hull.map_or(&[][..], ConvexHull::edges);
+        let (vertices, faces) =
+            hull.map_or((&[][..], &[][..]), |hull| (hull.vertices(), hull.faces()));
+        (0..box_edges).map(|index| self.edge(index)).chain(
+            hull_edges
+                .iter()
+                .map(move |edge| hull_edge(vertices, faces, edge)),
+        )
     }
 
     /// The vertex farthest along `direction` (a box picks the positive side on a zero
@@ -271,6 +279,17 @@ impl<'a> Polyhedron<'a> {
             *slot = frame.point(self.face_vertex(face, corner * total / count));
         }
         count
+    }
+}
+
+/// Hull edge `edge` with its ends among `vertices` and its faces' normals among `faces`.
+fn hull_edge(vertices: &[Vec3], faces: &[HullFace], edge: &HullEdge) -> PolyhedronEdge {
+    let vertex = |end: usize| vertices[edge.vertices[end] as usize];
+    let normal = |side: usize| faces[edge.faces[side] as usize].normal;
+    PolyhedronEdge {
+        start: vertex(0),
+        end: vertex(1),
+        face_normals: [normal(0), normal(1)],
     }
 }
 

@@ -402,7 +402,8 @@ fn best_box_edge_axis(
 
 /// Over the edge pairs that build a face of the Minkowski difference A − B, the largest
 /// separation along their cross product, computed in A's frame (`b_in_a` places B there) by
-/// trying every pair. B's edges are moved into A's frame [`EDGE_CHUNK`] at a time, on the stack.
+/// trying every pair. B's edges within reach are moved into A's frame [`EDGE_CHUNK`] at a time,
+/// on the stack; with none within reach, A's edges are not read.
 fn best_edge_axis(
     a: &Polyhedron,
     b: &Polyhedron,
@@ -414,30 +415,30 @@ fn best_edge_axis(
     let inside_b = b_in_a.point(b.interior_point());
     let mut best: Option<EdgeAxis> = None;
     let mut chunk = [MovedEdge::default(); EDGE_CHUNK];
-    let mut next_b = 0;
-    while next_b < b.edge_count() {
+    let mut within_reach_b = b.edges().enumerate().filter(|(_, local)| {
+        !out_of_reach(
+            edge_reach(local.face_normals, inside_a - local.start),
+            threshold,
+        )
+    });
+    loop {
         let mut chunk_len = 0;
-        while chunk_len < EDGE_CHUNK && next_b < b.edge_count() {
-            let local = b.edge(next_b);
-            if !out_of_reach(
-                edge_reach(local.face_normals, inside_a - local.start),
-                threshold,
-            ) {
-                chunk[chunk_len] = MovedEdge {
-                    index: next_b,
-                    start: b_in_a.point(local.start),
-                    direction: b_in_a.vector(local.direction()),
-                    negated_normals: [
-                        -b_in_a.vector(local.face_normals[0]),
-                        -b_in_a.vector(local.face_normals[1]),
-                    ],
-                };
-                chunk_len += 1;
-            }
-            next_b += 1;
+        for (index, local) in within_reach_b.by_ref().take(EDGE_CHUNK) {
+            chunk[chunk_len] = MovedEdge {
+                index,
+                start: b_in_a.point(local.start),
+                direction: b_in_a.vector(local.direction()),
+                negated_normals: [
+                    -b_in_a.vector(local.face_normals[0]),
+                    -b_in_a.vector(local.face_normals[1]),
+                ],
+            };
+            chunk_len += 1;
         }
-        for edge_a in 0..a.edge_count() {
-            let edge = a.edge(edge_a);
+        if chunk_len == 0 {
+            return best;
+        }
+        for (edge_a, edge) in a.edges().enumerate() {
             if out_of_reach(
                 edge_reach(edge.face_normals, inside_b - edge.start),
                 threshold,
@@ -460,7 +461,6 @@ fn best_edge_axis(
             }
         }
     }
-    best
 }
 
 /// The axis of an edge of A and an edge of B (both in A's frame), pointing from A to B, with the
