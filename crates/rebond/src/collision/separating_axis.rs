@@ -415,6 +415,7 @@ fn best_edge_axis(
     let inside_b = b_in_a.point(b.interior_point());
     let mut best: Option<EdgeAxis> = None;
     let mut chunk = [MovedEdge::default(); EDGE_CHUNK];
+    let mut groups = [EdgeLanes::default(); EDGE_CHUNK / 4];
     let mut within_reach_b = b.edges().enumerate().filter(|(_, local)| {
         !out_of_reach(
             edge_reach(local.face_normals, inside_a - local.start),
@@ -438,6 +439,11 @@ fn best_edge_axis(
         if chunk_len == 0 {
             return best;
         }
+        let moved = &chunk[..chunk_len];
+        let group_count = chunk_len.div_ceil(4);
+        for (group, lanes) in groups.iter_mut().enumerate().take(group_count) {
+            *lanes = EdgeLanes::of(moved, group);
+        }
         for (edge_a, edge) in a.edges().enumerate() {
             if out_of_reach(
                 edge_reach(edge.face_normals, inside_b - edge.start),
@@ -445,42 +451,89 @@ fn best_edge_axis(
             ) {
                 continue;
             }
-            for moved in &chunk[..chunk_len] {
-                let Some((axis, separation)) = edge_pair_axis(&edge, moved) else {
-                    continue;
-                };
-                keep_larger(
-                    &mut best,
-                    EdgeAxis {
-                        edge_a,
-                        edge_b: moved.index,
-                        axis,
-                        separation,
-                    },
-                );
+            for (group, lanes) in groups[..group_count].iter().enumerate() {
+                let mut crossing = lanes.arcs_cross(&edge);
+                while crossing != 0 {
+                    let moved = &moved[4 * group + crossing.trailing_zeros() as usize];
+                    crossing &= crossing - 1;
+                    let Some((axis, separation)) = crossing_axis(&edge, moved) else {
+                        continue;
+                    };
+                    keep_larger(
+                        &mut best,
+                        EdgeAxis {
+                            edge_a,
+                            edge_b: moved.index,
+                            axis,
+                            separation,
+                        },
+                    );
+                }
             }
         }
     }
 }
 
-/// The axis of an edge of A and an edge of B (both in A's frame), pointing from A to B, with the
-/// separation along it; `None` unless the pair builds a face of the Minkowski difference.
+/// Four of B's moved edges laid out by coordinate (a lane each, zero in lanes past the last), so
+/// that [`EdgeLanes::arcs_cross`] tests an edge of A against four at a step.
+#[derive(Debug, Clone, Copy, Default)]
+struct EdgeLanes {
+    direction: [Vec4; 3],
+    negated_normals: [[Vec4; 3]; 2],
+}
+
+impl EdgeLanes {
+    /// Edges `4 · group` to `4 · group + 3` of `moved`.
+    fn of(moved: &[MovedEdge], group: usize) -> Self {
+        let by_coordinate = |value: &dyn Fn(&MovedEdge) -> Vec3| {
+            let [p, q, r, s] =
+                std::array::from_fn(|lane| moved.get(4 * group + lane).map_or(Vec3::ZERO, value));
+            [
+                Vec4::new(p.x, q.x, r.x, s.x),
+                Vec4::new(p.y, q.y, r.y, s.y),
+                Vec4::new(p.z, q.z, r.z, s.z),
+            ]
+        };
+        Self {
+            direction: by_coordinate(&|moved| moved.direction),
+            negated_normals: [
+                by_coordinate(&|moved| moved.negated_normals[0]),
+                by_coordinate(&|moved| moved.negated_normals[1]),
+            ],
+        }
+    }
+
+    /// A bit per lane, set where the arc of `edge` (of A) and the lane's negated arc cross on the
+    /// Gauss map: each one's ends lie on opposite sides of the other's great circle, whose plane
+    /// normal is the edge direction (`(m₁ · eA)(m₂ · eA) < 0` and `(n₁ · eB)(n₂ · eB) < 0`). The
+    /// products are those of the scalar dot products, bit for bit; empty lanes give zero.
+    fn arcs_cross(&self, edge: &PolyhedronEdge) -> u32 {
+        let dot = |lanes: &[Vec4; 3], vector: Vec3| {
+            lanes[0] * vector.x + lanes[1] * vector.y + lanes[2] * vector.z
+        };
+        let a_direction = edge.direction();
+        let [first, second] = self.negated_normals;
+        let [n1, n2] = edge.face_normals;
+        let across_a = dot(&first, a_direction) * dot(&second, a_direction);
+        let across_b = dot(&self.direction, n1) * dot(&self.direction, n2);
+        (across_a.cmplt(Vec4::ZERO) & across_b.cmplt(Vec4::ZERO)).bitmask()
+    }
+}
+
+/// The axis of an edge of A and an edge of B (both in A's frame) whose arcs cross
+/// ([`EdgeLanes::arcs_cross`]), pointing from A to B, with the separation along it; `None` unless
+/// the pair builds a face of the Minkowski difference.
 ///
 /// Edge A's arc on the Gauss map runs between its face normals `n₁, n₂`; edge B's, negated for
-/// the difference, between `−m₁, −m₂`. The arcs cross when each one's ends lie on opposite
-/// sides of the other's great circle (whose plane normal is the edge direction), and the two
-/// crossings of the great circles are the same point: the axis `±(eA × eB)` that lies on A's arc
-/// (positive on `n₁ + n₂`) must also lie on B's (positive on `−m₁ − m₂`). Then A's edge is A's
-/// support along the axis and B's edge is B's support against it.
-fn edge_pair_axis(edge: &PolyhedronEdge, moved: &MovedEdge) -> Option<(Vec3, f32)> {
+/// the difference, between `−m₁, −m₂`. With the ends of each on opposite sides of the other's
+/// great circle, the two crossings of the great circles are the same point: the axis
+/// `±(eA × eB)` that lies on A's arc (positive on `n₁ + n₂`) must also lie on B's (positive on
+/// `−m₁ − m₂`). Then A's edge is A's support along the axis and B's edge is B's support against
+/// it.
+fn crossing_axis(edge: &PolyhedronEdge, moved: &MovedEdge) -> Option<(Vec3, f32)> {
     let a_direction = edge.direction();
     let [n1, n2] = edge.face_normals;
     let [m1, m2] = moved.negated_normals;
-    if m1.dot(a_direction) * m2.dot(a_direction) >= 0.0
-        || n1.dot(moved.direction) * n2.dot(moved.direction) >= 0.0
-    {
-        return None;
-    }
     let mut axis = a_direction.cross(moved.direction);
     let length_squared = axis.length_squared();
     let parallel_limit = PARALLEL_SINE
