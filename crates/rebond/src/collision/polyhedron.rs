@@ -409,6 +409,26 @@ impl Frame {
     }
 }
 
+/// The poses at time `t` of two shapes turning and sliding through each other (for the tests that
+/// compare one route with another over many relative poses).
+#[cfg(test)]
+pub(super) fn crossing_poses(t: f32) -> (Pose, Pose) {
+    use crate::math::Quat;
+    let pose_a = Pose::new(
+        Vec3::new(0.1 * t.sin(), 0.2, -0.1),
+        Quat::from_scaled_axis(Vec3::new(0.3 * t, 0.7 * t.cos(), 0.11 * t)),
+    );
+    let pose_b = Pose::new(
+        Vec3::new(
+            0.9 * (0.37 * t).cos(),
+            1.1 * (0.53 * t).sin(),
+            0.8 * (0.29 * t).cos(),
+        ),
+        Quat::from_scaled_axis(Vec3::new(0.05 * t, -0.2 * t, 0.4 * t.sin())),
+    );
+    (pose_a, pose_b)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

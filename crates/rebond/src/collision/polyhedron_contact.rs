@@ -605,7 +605,7 @@ fn closest_points_between_segments(p0: Vec3, p1: Vec3, q0: Vec3, q1: Vec3) -> (V
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::Quat;
+    use crate::collision::polyhedron::crossing_poses;
     use crate::shape::Cuboid;
 
     /// Two boxes turned and overlapping in many ways: the box route gives the general route's
@@ -619,18 +619,7 @@ mod tests {
         let mut compared = 0;
         for step in 0..400 {
             let t = step as f32;
-            let pose_a = Pose::new(
-                Vec3::new(0.1 * t.sin(), 0.2, -0.1),
-                Quat::from_scaled_axis(Vec3::new(0.3 * t, 0.7 * t.cos(), 0.11 * t)),
-            );
-            let pose_b = Pose::new(
-                Vec3::new(
-                    0.9 * (0.37 * t).cos(),
-                    1.1 * (0.53 * t).sin(),
-                    0.8 * (0.29 * t).cos(),
-                ),
-                Quat::from_scaled_axis(Vec3::new(0.05 * t, -0.2 * t, 0.4 * t.sin())),
-            );
+            let (pose_a, pose_b) = crossing_poses(t);
             let a = Polyhedron::cuboid(&cuboids[step % 2]);
             let b = Polyhedron::cuboid(&cuboids[step / 2 % 2]);
             let posed_a = PosedPolyhedron {

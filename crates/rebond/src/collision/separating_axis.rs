@@ -558,7 +558,7 @@ fn crossing_axis(edge: &PolyhedronEdge, moved: &MovedEdge) -> Option<(Vec3, f32)
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::{Pose, Quat};
+    use crate::collision::polyhedron::crossing_poses;
     use crate::shape::{ConvexHull, Cuboid};
 
     fn unit_box() -> Cuboid {
@@ -588,18 +588,7 @@ mod tests {
         let (mut compared, mut same_pair) = (0, 0);
         for step in 0..200 {
             let t = step as f32;
-            let pose_a = Pose::new(
-                Vec3::new(0.1 * t.sin(), 0.2, -0.1),
-                Quat::from_scaled_axis(Vec3::new(0.3 * t, 0.7 * t.cos(), 0.11 * t)),
-            );
-            let pose_b = Pose::new(
-                Vec3::new(
-                    0.9 * (0.37 * t).cos(),
-                    1.1 * (0.53 * t).sin(),
-                    0.8 * (0.29 * t).cos(),
-                ),
-                Quat::from_scaled_axis(Vec3::new(0.05 * t, -0.2 * t, 0.4 * t.sin())),
-            );
+            let (pose_a, pose_b) = crossing_poses(t);
             for a in &shapes {
                 for b in &shapes {
                     for (a, b, pose_a, pose_b) in [(a, b, pose_a, pose_b), (b, a, pose_b, pose_a)] {
