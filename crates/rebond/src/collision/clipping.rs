@@ -90,30 +90,30 @@ enum Along {
     Side(u8),
 }
 
-/// A convex polygon being clipped: up to [`MAX_CLIP_VERTICES`] tagged vertices in order, with the
-/// line each edge runs along. Lives on the stack.
+/// A convex polygon being clipped: up to `CAPACITY` (by default [`MAX_CLIP_VERTICES`]) tagged
+/// vertices in order, with the line each edge runs along. Lives on the stack.
 #[derive(Debug, Clone, Copy)]
-pub struct ClipPolygon {
-    vertices: [ClipVertex; MAX_CLIP_VERTICES],
+pub struct ClipPolygon<const CAPACITY: usize = MAX_CLIP_VERTICES> {
+    vertices: [ClipVertex; CAPACITY],
     /// `incoming[k]`: the line of the edge from vertex `k − 1` to vertex `k`.
-    incoming: [Along; MAX_CLIP_VERTICES],
+    incoming: [Along; CAPACITY],
     len: usize,
 }
 
-impl Default for ClipPolygon {
+impl<const CAPACITY: usize> Default for ClipPolygon<CAPACITY> {
     fn default() -> Self {
         Self {
             vertices: [ClipVertex {
                 position: Vec3::ZERO,
                 feature: ClipFeature::IncidentVertex(0),
-            }; MAX_CLIP_VERTICES],
-            incoming: [Along::IncidentEdge(0); MAX_CLIP_VERTICES],
+            }; CAPACITY],
+            incoming: [Along::IncidentEdge(0); CAPACITY],
             len: 0,
         }
     }
 }
 
-impl ClipPolygon {
+impl<const CAPACITY: usize> ClipPolygon<CAPACITY> {
     /// The vertices, in the incident polygon's order.
     pub fn vertices(&self) -> &[ClipVertex] {
         &self.vertices[..self.len]
@@ -129,9 +129,10 @@ impl ClipPolygon {
         self.len == 0
     }
 
-    /// The incident polygon itself: vertex `i` tagged [`ClipFeature::IncidentVertex`]`(i)`.
+    /// The incident polygon itself: vertex `i` tagged [`ClipFeature::IncidentVertex`]`(i)`, up to
+    /// [`MAX_POLYGON_VERTICES`] and the capacity.
     fn from_incident(points: &[Vec3]) -> Self {
-        let points = &points[..points.len().min(MAX_POLYGON_VERTICES)];
+        let points = &points[..points.len().min(MAX_POLYGON_VERTICES).min(CAPACITY)];
         let mut polygon = Self::default();
         for (index, &position) in points.iter().enumerate() {
             let previous = (index + points.len() - 1) % points.len();
@@ -149,7 +150,7 @@ impl ClipPolygon {
     /// Appends a vertex reached along `incoming`; past the capacity the vertex is dropped, which
     /// leaves a convex polygon inside the true one.
     fn push(&mut self, vertex: ClipVertex, incoming: Along) {
-        if self.len < MAX_CLIP_VERTICES {
+        if self.len < CAPACITY {
             self.vertices[self.len] = vertex;
             self.incoming[self.len] = incoming;
             self.len += 1;
@@ -196,18 +197,26 @@ fn crossing(from: Vec3, to: Vec3, from_distance: f32, to_distance: f32) -> Vec3 
     from + (to - from) * t
 }
 
-/// Cuts `polygon` by one side plane (Sutherland–Hodgman), writing the part inside to `out`. A
-/// vertex counts as inside up to [`SIDE_PLANE_SLOP`] out; an edge leaving or entering at such a
-/// vertex is not cut, since its crossing of the exact plane would lie behind that vertex.
-fn clip_by_plane(polygon: &ClipPolygon, side: u8, plane: &SidePlane, out: &mut ClipPolygon) {
+/// Cuts `polygon` by one side plane (Sutherland–Hodgman), writing the part inside to `out`;
+/// `distance` is how far a point lies outside the plane. A vertex counts as inside up to
+/// [`SIDE_PLANE_SLOP`] out; an edge leaving or entering at such a vertex is not cut, since its
+/// crossing of the exact plane would lie behind that vertex.
+fn clip_by_plane<const CAPACITY: usize>(
+    polygon: &ClipPolygon<CAPACITY>,
+    side: u8,
+    distance: impl Fn(Vec3) -> f32,
+    out: &mut ClipPolygon<CAPACITY>,
+) {
     out.len = 0;
-    let count = polygon.len;
-    for current_index in 0..count {
-        let previous = polygon.vertices[(current_index + count - 1) % count];
-        let current = polygon.vertices[current_index];
-        let edge_line = polygon.incoming[current_index];
-        let previous_distance = plane.distance(previous.position);
-        let current_distance = plane.distance(current.position);
+    let vertices = &polygon.vertices[..polygon.len];
+    let Some(&last) = vertices.last() else {
+        return;
+    };
+    // Each vertex's distance is measured once, as the current vertex, and carried on as the
+    // previous one.
+    let (mut previous, mut previous_distance) = (last, distance(last.position));
+    for (&current, &edge_line) in vertices.iter().zip(&polygon.incoming) {
+        let current_distance = distance(current.position);
         let cut = |distance_inside: f32| {
             (distance_inside < 0.0).then(|| ClipVertex {
                 position: crossing(
@@ -245,6 +254,7 @@ fn clip_by_plane(polygon: &ClipPolygon, side: u8, plane: &SidePlane, out: &mut C
             },
             (false, false) => {}
         }
+        (previous, previous_distance) = (current, current_distance);
     }
 }
 
@@ -260,10 +270,37 @@ fn clip_by_plane(polygon: &ClipPolygon, side: u8, plane: &SidePlane, out: &mut C
 /// Each polygon is read up to [`MAX_POLYGON_VERTICES`] vertices. The points keep the
 /// incident order and are tagged with [`ClipFeature`]s indexed by position in the inputs.
 pub fn clip_polygon(incident: &[Vec3], reference: &[Vec3], normal: Vec3) -> ClipPolygon {
+    clip_polygon_within(incident, reference, normal)
+}
+
+/// [`clip_polygon`] into a polygon of `CAPACITY` vertices, for callers whose polygons are known
+/// to be small (`CAPACITY` at least the two polygons' vertex counts together): less to clear and
+/// copy than [`MAX_CLIP_VERTICES`].
+pub fn clip_polygon_within<const CAPACITY: usize>(
+    incident: &[Vec3],
+    reference: &[Vec3],
+    normal: Vec3,
+) -> ClipPolygon<CAPACITY> {
+    clip_by_sides(
+        incident,
+        side_planes(reference, normal)
+            .map(|(side, plane)| (side, move |point| plane.distance(point))),
+    )
+}
+
+/// Clips the convex `incident` polygon by side planes in turn, as [`clip_polygon`] does, into a
+/// polygon of `CAPACITY` vertices (enough for the incident's vertices plus one per side). Each
+/// side comes as its index, which tags the points it makes, and the distance of a point outside
+/// it: a reference face whose sides have a simpler form (a box face in the box's frame) skips the
+/// general planes.
+pub fn clip_by_sides<const CAPACITY: usize, Distance: Fn(Vec3) -> f32>(
+    incident: &[Vec3],
+    sides: impl Iterator<Item = (u8, Distance)>,
+) -> ClipPolygon<CAPACITY> {
     // Two buffers used in turn: each side plane reads one and writes the other.
     let mut buffers = [ClipPolygon::from_incident(incident), ClipPolygon::default()];
     let mut current = 0;
-    for (side, plane) in side_planes(reference, normal) {
+    for (side, distance) in sides {
         if buffers[current].is_empty() {
             break;
         }
@@ -273,7 +310,7 @@ pub fn clip_polygon(incident: &[Vec3], reference: &[Vec3], normal: Vec3) -> Clip
         } else {
             (second, first)
         };
-        clip_by_plane(from, side, &plane, to);
+        clip_by_plane(from, side, distance, to);
         current = 1 - current;
     }
     let [first, second] = buffers;

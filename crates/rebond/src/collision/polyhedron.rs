@@ -6,7 +6,7 @@
 
 use crate::collision::clipping::MAX_POLYGON_VERTICES;
 use crate::math::{Mat3, Pose, Vec3};
-use crate::shape::{ConvexHull, Cuboid, Shape};
+use crate::shape::{ConvexHull, Cuboid, HullEdge, HullFace, Shape};
 
 /// Box vertex `i` is `(±hx, ±hy, ±hz)` with the sign of x from bit 0 of `i`, y from bit 1 and z
 /// from bit 2 (set = positive).
@@ -14,7 +14,7 @@ const BOX_VERTEX_COUNT: usize = 8;
 
 /// Box face `f` has normal `+axis` for even `f` and `−axis` for odd `f`, with `axis = f / 2`
 /// (0 = x, 1 = y, 2 = z). Vertex loops are counter-clockwise seen from outside.
-const BOX_FACE_LOOPS: [[u8; 4]; 6] = [
+pub(super) const BOX_FACE_LOOPS: [[u8; 4]; 6] = [
     [1, 3, 7, 5],
     [0, 4, 6, 2],
     [2, 6, 7, 3],
@@ -193,17 +193,25 @@ impl<'a> Polyhedron<'a> {
                     ],
                 }
             }
-            Topology::Hull(hull) => {
-                let edge = &hull.edges()[index];
-                let vertex = |end: usize| hull.vertices()[edge.vertices[end] as usize];
-                let normal = |side: usize| hull.faces()[edge.faces[side] as usize].normal;
-                PolyhedronEdge {
-                    start: vertex(0),
-                    end: vertex(1),
-                    face_normals: [normal(0), normal(1)],
-                }
-            }
+            Topology::Hull(hull) => hull_edge(hull.vertices(), hull.faces(), &hull.edges()[index]),
         }
+    }
+
+    /// Every edge in index order, as [`Polyhedron::edge`] gives them; a hull's are read straight
+    /// from its slices.
+    pub(super) fn edges(&self) -> impl Iterator<Item = PolyhedronEdge> + '_ {
+        let (box_edges, hull) = match self.topology {
+            Topology::Cuboid(_) => (BOX_EDGES.len(), None),
+            Topology::Hull(hull) => (0, Some(hull)),
+        };
+        let hull_edges = hull.map_or(&[][..], ConvexHull::edges);
+        let (vertices, faces) =
+            hull.map_or((&[][..], &[][..]), |hull| (hull.vertices(), hull.faces()));
+        (0..box_edges).map(|index| self.edge(index)).chain(
+            hull_edges
+                .iter()
+                .map(move |edge| hull_edge(vertices, faces, edge)),
+        )
     }
 
     /// The vertex farthest along `direction` (a box picks the positive side on a zero
@@ -274,10 +282,79 @@ impl<'a> Polyhedron<'a> {
     }
 }
 
+/// Hull edge `edge` with its ends among `vertices` and its faces' normals among `faces`.
+fn hull_edge(vertices: &[Vec3], faces: &[HullFace], edge: &HullEdge) -> PolyhedronEdge {
+    let vertex = |end: usize| vertices[edge.vertices[end] as usize];
+    let normal = |side: usize| faces[edge.faces[side] as usize].normal;
+    PolyhedronEdge {
+        start: vertex(0),
+        end: vertex(1),
+        face_normals: [normal(0), normal(1)],
+    }
+}
+
 /// Box vertex `index` as laid out in [`BOX_VERTEX_COUNT`].
 pub(super) fn box_vertex(half_extents: Vec3, index: usize) -> Vec3 {
     let sign = |bit: usize| if index & bit != 0 { 1.0 } else { -1.0 };
     Vec3::new(sign(1), sign(2), sign(4)) * half_extents
+}
+
+/// The box face most anti-parallel to `direction` (in the box's frame): the face across the axis
+/// of `direction`'s largest component (the first of equals), on the side that component points
+/// away from (a `+0.0` component counting as positive). It holds the box's support vertex
+/// against `direction`, so it is the incident face the general search finds.
+pub(super) fn box_face_against(direction: Vec3) -> usize {
+    let magnitude = direction.abs();
+    let axis = if magnitude.y > magnitude.x {
+        if magnitude.z > magnitude.y {
+            2
+        } else {
+            1
+        }
+    } else if magnitude.z > magnitude.x {
+        2
+    } else {
+        0
+    };
+    2 * axis + usize::from(direction[axis].is_sign_positive())
+}
+
+/// The loop of box face `face` (as [`Polyhedron::face_loop`]) mapped by `frame`.
+pub(super) fn box_face_loop(half_extents: Vec3, face: usize, frame: &Frame) -> [Vec3; 4] {
+    BOX_FACE_LOOPS[face].map(|corner| frame.point(box_vertex(half_extents, usize::from(corner))))
+}
+
+/// A side plane of a box face in the box's frame: `sign · p[axis] = offset`, facing out of the
+/// face, so that clipping against it needs one coordinate instead of a dot product.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct BoxFaceSide {
+    axis: usize,
+    sign: f32,
+    offset: f32,
+}
+
+impl BoxFaceSide {
+    /// How far `point` (box frame) lies outside this side, metres.
+    pub(super) fn distance(&self, point: Vec3) -> f32 {
+        self.sign * point[self.axis] - self.offset
+    }
+}
+
+/// The sides of box face `face` in the order of its loop: side `j` runs from corner `j` to corner
+/// `j + 1`, along the one axis in which they differ, and lies across the axis that is neither
+/// that one nor the face's, on the corners' side of it.
+pub(super) fn box_face_sides(half_extents: Vec3, face: usize) -> [BoxFaceSide; 4] {
+    let corners = BOX_FACE_LOOPS[face];
+    std::array::from_fn(|side| {
+        let (start, end) = (corners[side], corners[(side + 1) % corners.len()]);
+        let along = (start ^ end).trailing_zeros() as usize;
+        let axis = 3 - face / 2 - along;
+        BoxFaceSide {
+            axis,
+            sign: if start & (1 << axis) != 0 { 1.0 } else { -1.0 },
+            offset: half_extents[axis],
+        }
+    })
 }
 
 /// A rigid transform as a rotation matrix and a translation: `rotation · p + translation`.
@@ -304,6 +381,16 @@ impl Frame {
         }
     }
 
+    /// The inverse transform, `p ↦ Rᵀ · (p − t)`: `inner`'s frame seen from `outer`'s turned into
+    /// `outer`'s seen from `inner`'s without a second quaternion product.
+    pub(super) fn inverse(&self) -> Self {
+        let rotation = self.rotation.transpose();
+        Self {
+            rotation,
+            translation: -(rotation * self.translation),
+        }
+    }
+
     pub(super) fn point(&self, point: Vec3) -> Vec3 {
         self.rotation * point + self.translation
     }
@@ -320,6 +407,26 @@ impl Frame {
             self.rotation.z_axis.dot(vector),
         )
     }
+}
+
+/// The poses at time `t` of two shapes turning and sliding through each other (for the tests that
+/// compare one route with another over many relative poses).
+#[cfg(test)]
+pub(super) fn crossing_poses(t: f32) -> (Pose, Pose) {
+    use crate::math::Quat;
+    let pose_a = Pose::new(
+        Vec3::new(0.1 * t.sin(), 0.2, -0.1),
+        Quat::from_scaled_axis(Vec3::new(0.3 * t, 0.7 * t.cos(), 0.11 * t)),
+    );
+    let pose_b = Pose::new(
+        Vec3::new(
+            0.9 * (0.37 * t).cos(),
+            1.1 * (0.53 * t).sin(),
+            0.8 * (0.29 * t).cos(),
+        ),
+        Quat::from_scaled_axis(Vec3::new(0.05 * t, -0.2 * t, 0.4 * t.sin())),
+    );
+    (pose_a, pose_b)
 }
 
 #[cfg(test)]

@@ -11,11 +11,15 @@
 //! an edge) get one point between their closest points, found by GJK.
 
 use crate::collision::clipping::{
-    clip_polygon, reduce_contacts_on_face, ClipFeature, MAX_CLIP_VERTICES, MAX_POLYGON_VERTICES,
+    clip_by_sides, clip_polygon_within, reduce_contacts_on_face, ClipFeature, ClipPolygon,
+    MAX_CLIP_VERTICES, MAX_POLYGON_VERTICES,
 };
 use crate::collision::gjk;
 use crate::collision::manifold::{ContactPoint, Manifold};
-use crate::collision::polyhedron::{Frame, Polyhedron};
+use crate::collision::polyhedron::{
+    box_face_against, box_face_loop, box_face_sides, box_vertex, FacePlane, Frame, Polyhedron,
+    Topology, BOX_FACE_LOOPS,
+};
 use crate::collision::separating_axis::{
     best_face_axis, edge_query, EdgeAxis, FaceAxis, ABSOLUTE_TOLERANCE,
 };
@@ -144,13 +148,20 @@ pub fn collide_polyhedra(
     if a.face_count() == 0 || b.face_count() == 0 {
         return None;
     }
+    if let (Topology::Cuboid(half_a), Topology::Cuboid(half_b)) = (a.topology, b.topology) {
+        // Boxes whose bounding spheres (radius |h| about the centre) are apart by more than the
+        // margin are apart by more than the margin.
+        let reach = half_a.length() + half_b.length() + margin;
+        if pose_a.position.distance_squared(pose_b.position) > reach * reach {
+            return None;
+        }
+    }
     let b_in_a = Frame::relative(pose_a, pose_b);
-    let a_in_b = Frame::relative(pose_b, pose_a);
-
     let face_a = best_face_axis(a, b, &b_in_a);
     if face_a.separation > margin {
         return None;
     }
+    let a_in_b = b_in_a.inverse();
     let face_b = best_face_axis(b, a, &a_in_b);
     if face_b.separation > margin {
         return None;
@@ -171,8 +182,14 @@ pub fn collide_polyhedra(
         return None;
     }
 
-    let world_a = Frame::from_pose(pose_a);
-    let world_b = Frame::from_pose(pose_b);
+    let posed_a = PosedPolyhedron {
+        polyhedron: a,
+        frame: Frame::from_pose(pose_a),
+    };
+    let posed_b = PosedPolyhedron {
+        polyhedron: b,
+        frame: Frame::from_pose(pose_b),
+    };
     let chosen = match edge {
         Some(edge)
             if clearly_larger(edge.separation, face.separation(), EDGE_RELATIVE_TOLERANCE) =>
@@ -192,22 +209,14 @@ pub fn collide_polyhedra(
 
     let contact = |axis: ContactAxis| match axis {
         ContactAxis::FaceOfA(face) => {
-            face_contact(a, &world_a, face.face, b, &world_b, false, margin)
+            face_contact(&posed_a, face.face, &posed_b, &b_in_a, false, margin)
         }
         ContactAxis::FaceOfB(face) => {
-            face_contact(b, &world_b, face.face, a, &world_a, true, margin)
+            face_contact(&posed_b, face.face, &posed_a, &a_in_b, true, margin)
         }
-        ContactAxis::Edges(edge) => edge_contact(a, &world_a, b, &world_b, &edge, margin),
+        ContactAxis::Edges(edge) => edge_contact(&posed_a, &posed_b, &edge, margin),
     };
     if best.separation() > 0.0 {
-        let posed_a = PosedPolyhedron {
-            polyhedron: a,
-            frame: world_a,
-        };
-        let posed_b = PosedPolyhedron {
-            polyhedron: b,
-            frame: world_b,
-        };
         return apart_contact(&posed_a, &posed_b, chosen, best, margin, contact);
     }
     // Overlapping, the best axis's separation is the penetration depth. The axis kept by the
@@ -230,10 +239,12 @@ pub fn collide_polyhedra(
 /// their distance, else one point between their closest points. The separations along the axes
 /// may fall short of the distance (two edges whose closest points are their ends, a vertex near a
 /// vertex), so GJK measures it, starting from the best axis; touching within GJK's tolerance, the
-/// best axis's separation is as near the distance as GJK gets. A face contact needs no GJK when
-/// its deepest point is within [`DEPTH_TOLERANCE`] of the best axis's separation: each of its
-/// points pairs a point of one shape with its projection on the other's face, a distance that
-/// bounds the shapes' distance from above, as any axis's separation bounds it from below.
+/// best axis's separation is as near the distance as GJK gets. The chosen contact needs no GJK
+/// when a pair of points it is built from, one on each shape, is within [`DEPTH_TOLERANCE`] of
+/// the best axis's separation: that pair's distance bounds the shapes' distance from above, as
+/// any axis's separation bounds it from below. A face contact's deepest point pairs a point of
+/// one shape with its projection on the other's face; an edge contact's the closest points of
+/// the two edges.
 fn apart_contact(
     a: &PosedPolyhedron,
     b: &PosedPolyhedron,
@@ -244,10 +255,15 @@ fn apart_contact(
 ) -> Option<Manifold> {
     let lower_bound = best.separation();
     let chosen_contact = contact(chosen);
-    let is_face = matches!(chosen, ContactAxis::FaceOfA(_) | ContactAxis::FaceOfB(_));
-    if is_face
-        && chosen_contact
-            .is_some_and(|manifold| manifold.deepest_separation() <= lower_bound + DEPTH_TOLERANCE)
+    let upper_bound = |manifold: &Manifold| match chosen {
+        ContactAxis::Edges(edge) => {
+            let (on_a, on_b) = edge_closest_points(a, b, &edge);
+            on_a.distance(on_b)
+        }
+        ContactAxis::FaceOfA(_) | ContactAxis::FaceOfB(_) => manifold.deepest_separation(),
+    };
+    if chosen_contact
+        .is_some_and(|manifold| upper_bound(&manifold) <= lower_bound + DEPTH_TOLERANCE)
     {
         return chosen_contact;
     }
@@ -281,20 +297,53 @@ fn apart_contact(
 }
 
 /// Clips the incident face of `incident` (through its vertex deepest below the reference plane,
-/// the most anti-parallel) against face `reference_face` of `reference` (both placed in the world
-/// by their frames). `reference_is_b` says which side of the manifold the reference is on.
+/// the most anti-parallel) against face `reference_face` of `reference` (both placed in the world;
+/// `incident_in_reference` places the incident in the reference's frame): two boxes by
+/// [`box_face_contact`], else by [`polygon_face_contact`]. `reference_is_b` says which side of
+/// the manifold the reference is on.
 fn face_contact(
-    reference: &Polyhedron,
-    reference_frame: &Frame,
+    reference: &PosedPolyhedron,
     reference_face: usize,
-    incident: &Polyhedron,
-    incident_frame: &Frame,
+    incident: &PosedPolyhedron,
+    incident_in_reference: &Frame,
     reference_is_b: bool,
     margin: f32,
 ) -> Option<Manifold> {
+    if let (Topology::Cuboid(reference_half), Topology::Cuboid(incident_half)) =
+        (reference.polyhedron.topology, incident.polyhedron.topology)
+    {
+        return box_face_contact(
+            &BoxFace {
+                half_extents: reference_half,
+                face: reference_face,
+                frame: reference.frame,
+            },
+            incident_half,
+            incident_in_reference,
+            reference_is_b,
+            margin,
+        );
+    }
+    polygon_face_contact(reference, reference_face, incident, reference_is_b, margin)
+}
+
+/// [`face_contact`] for any two polyhedra, worked in the world: the faces' loops are placed there
+/// and clipped by [`clip_polygon`].
+fn polygon_face_contact(
+    reference: &PosedPolyhedron,
+    reference_face: usize,
+    incident: &PosedPolyhedron,
+    reference_is_b: bool,
+    margin: f32,
+) -> Option<Manifold> {
+    let (reference_frame, incident_frame) = (&reference.frame, &incident.frame);
+    let (reference, incident) = (reference.polyhedron, incident.polyhedron);
     let plane = reference.face_plane(reference_face);
     let normal = reference_frame.vector(plane.normal);
-    let offset = plane.offset + normal.dot(reference_frame.translation);
+    let world_plane = FacePlane {
+        normal,
+        offset: plane.offset + normal.dot(reference_frame.translation),
+    };
 
     let toward_incident = incident_frame.inverse_vector(normal);
     let deepest_vertex = incident.support_index(-toward_incident);
@@ -315,26 +364,138 @@ fn face_contact(
     let incident_count = incident.face_loop(incident_face, incident_frame, &mut incident_loop);
     let mut reference_loop = [Vec3::ZERO; MAX_POLYGON_VERTICES];
     let reference_count = reference.face_loop(reference_face, reference_frame, &mut reference_loop);
-    let clipped = clip_polygon(
+    let (incident_loop, reference_loop) = (
         &incident_loop[..incident_count],
         &reference_loop[..reference_count],
-        normal,
     );
+    let faces = FacePair {
+        reference_is_b,
+        reference_face,
+        incident_face,
+    };
+    if incident_count + reference_count <= SMALL_CLIP_VERTICES {
+        clip_loops::<SMALL_CLIP_VERTICES>(
+            incident_loop,
+            reference_loop,
+            &world_plane,
+            faces,
+            margin,
+        )
+    } else {
+        clip_loops::<MAX_CLIP_VERTICES>(incident_loop, reference_loop, &world_plane, faces, margin)
+    }
+}
 
-    let mut candidates = [ContactPoint::default(); MAX_CLIP_VERTICES];
+/// Capacity of the clipped polygon for faces of at most this many corners together (two
+/// triangles, a triangle and a hexagon, two octagons), which most hull faces are.
+const SMALL_CLIP_VERTICES: usize = 16;
+
+/// The face contact of the `incident` loop clipped by the sides of the `reference` loop (both in
+/// the world, the reference face on `plane`) into a polygon of `CAPACITY` points (at least the
+/// two loops' lengths together), by [`clipped_face_manifold`].
+fn clip_loops<const CAPACITY: usize>(
+    incident: &[Vec3],
+    reference: &[Vec3],
+    plane: &FacePlane,
+    faces: FacePair,
+    margin: f32,
+) -> Option<Manifold> {
+    let clipped: ClipPolygon<CAPACITY> = clip_polygon_within(incident, reference, plane.normal);
+    clipped_face_manifold(&clipped, plane, reference[1] - reference[0], faces, margin)
+}
+
+/// Most vertices of a box face clipped by another box face: the quads' 4 + 4 corners.
+const BOX_CLIP_VERTICES: usize = 8;
+
+/// A face of a box placed in the world.
+#[derive(Debug, Clone, Copy)]
+struct BoxFace {
+    half_extents: Vec3,
+    face: usize,
+    /// Places the box in the world.
+    frame: Frame,
+}
+
+/// [`face_contact`] between two boxes, worked in the reference box's frame: there the reference
+/// face's sides are coordinate planes ([`box_face_sides`]), the incident face (most anti-parallel
+/// to the reference normal, [`box_face_against`]) a quad placed by one relative frame, and the
+/// clipped polygon has at most [`BOX_CLIP_VERTICES`] points; only the kept points are moved to
+/// the world. Points and ids are those of the general route, up to rounding.
+fn box_face_contact(
+    reference: &BoxFace,
+    incident_half: Vec3,
+    incident_in_reference: &Frame,
+    reference_is_b: bool,
+    margin: f32,
+) -> Option<Manifold> {
+    let axis = reference.face / 2;
+    let sign = if reference.face % 2 == 0 { 1.0 } else { -1.0 };
+    let plane = FacePlane {
+        normal: Vec3::AXES[axis] * sign,
+        offset: reference.half_extents[axis],
+    };
+    let incident_face = box_face_against(incident_in_reference.inverse_vector(plane.normal));
+    let incident_loop = box_face_loop(incident_half, incident_face, incident_in_reference);
+    let sides = box_face_sides(reference.half_extents, reference.face);
+    let clipped: ClipPolygon<BOX_CLIP_VERTICES> = clip_by_sides(
+        &incident_loop,
+        (0..)
+            .zip(sides)
+            .map(|(index, side)| (index, move |point| side.distance(point))),
+    );
+    let corner = |slot: usize| {
+        box_vertex(
+            reference.half_extents,
+            BOX_FACE_LOOPS[reference.face][slot].into(),
+        )
+    };
+    let mut manifold = clipped_face_manifold(
+        &clipped,
+        &plane,
+        corner(1) - corner(0),
+        FacePair {
+            reference_is_b,
+            reference_face: reference.face,
+            incident_face,
+        },
+        margin,
+    )?;
+    manifold.normal = reference.frame.vector(manifold.normal);
+    for point in manifold.points_mut() {
+        point.position = reference.frame.point(point.position);
+    }
+    Some(manifold)
+}
+
+/// The faces a face contact is made of, for its ids.
+#[derive(Debug, Clone, Copy)]
+struct FacePair {
+    reference_is_b: bool,
+    reference_face: usize,
+    incident_face: usize,
+}
+
+/// The face contact from the incident face clipped by the reference face's sides, all in one
+/// frame, in which the reference face lies on `plane` and its loop starts along `first_edge`: the
+/// points at most `margin` beyond the plane, each moved halfway to it, reduced to four
+/// ([`reduce_contacts_on_face`]); `None` when there is none.
+fn clipped_face_manifold<const CAPACITY: usize>(
+    clipped: &ClipPolygon<CAPACITY>,
+    plane: &FacePlane,
+    first_edge: Vec3,
+    faces: FacePair,
+    margin: f32,
+) -> Option<Manifold> {
+    let normal = plane.normal;
+    let mut candidates = [ContactPoint::default(); CAPACITY];
     let mut count = 0;
     for vertex in clipped.vertices() {
-        let separation = normal.dot(vertex.position) - offset;
+        let separation = normal.dot(vertex.position) - plane.offset;
         if separation <= margin {
             candidates[count] = ContactPoint {
                 position: vertex.position - normal * (0.5 * separation),
                 separation,
-                id: face_contact_id(
-                    reference_is_b,
-                    reference_face,
-                    incident_face,
-                    vertex.feature,
-                ),
+                id: face_contact_id(faces, vertex.feature),
             };
             count += 1;
         }
@@ -342,8 +503,12 @@ fn face_contact(
     if count == 0 {
         return None;
     }
-    let manifold_normal = if reference_is_b { -normal } else { normal };
-    let edge = (reference_loop[1] - reference_loop[0]).normalize_or_zero();
+    let manifold_normal = if faces.reference_is_b {
+        -normal
+    } else {
+        normal
+    };
+    let edge = first_edge.normalize_or_zero();
     let tangent = edge * REDUCTION_ANGLE.cos() + normal.cross(edge) * REDUCTION_ANGLE.sin();
     Some(reduce_contacts_on_face(
         manifold_normal,
@@ -353,36 +518,22 @@ fn face_contact(
 }
 
 /// The id of a face-contact point; layout in [`collide_polyhedra`].
-fn face_contact_id(
-    reference_is_b: bool,
-    reference_face: usize,
-    incident_face: usize,
-    feature: ClipFeature,
-) -> u32 {
-    (u32::from(reference_is_b) << 30)
-        | ((reference_face as u32 & 0x7F) << 23)
-        | ((incident_face as u32 & 0x7F) << 16)
+fn face_contact_id(faces: FacePair, feature: ClipFeature) -> u32 {
+    (u32::from(faces.reference_is_b) << 30)
+        | ((faces.reference_face as u32 & 0x7F) << 23)
+        | ((faces.incident_face as u32 & 0x7F) << 16)
         | u32::from(feature.key())
 }
 
 /// One point between edge `edge.edge_a` of A and `edge.edge_b` of B.
 fn edge_contact(
-    a: &Polyhedron,
-    world_a: &Frame,
-    b: &Polyhedron,
-    world_b: &Frame,
+    a: &PosedPolyhedron,
+    b: &PosedPolyhedron,
     edge: &EdgeAxis,
     margin: f32,
 ) -> Option<Manifold> {
-    let edge_a = a.edge(edge.edge_a);
-    let edge_b = b.edge(edge.edge_b);
-    let (on_a, on_b) = closest_points_between_segments(
-        world_a.point(edge_a.start),
-        world_a.point(edge_a.end),
-        world_b.point(edge_b.start),
-        world_b.point(edge_b.end),
-    );
-    let normal = world_a.vector(edge.axis);
+    let (on_a, on_b) = edge_closest_points(a, b, edge);
+    let normal = a.frame.vector(edge.axis);
     let separation = normal.dot(on_b - on_a);
     let within_margin = separation <= margin;
     if !within_margin {
@@ -395,6 +546,18 @@ fn edge_contact(
         id: (1 << 31) | ((edge.edge_a as u32 & 0x7FFF) << 16) | (edge.edge_b as u32 & 0xFFFF),
     });
     Some(manifold)
+}
+
+/// The closest points, in the world, of edge `edge.edge_a` of A and edge `edge.edge_b` of B.
+fn edge_closest_points(a: &PosedPolyhedron, b: &PosedPolyhedron, edge: &EdgeAxis) -> (Vec3, Vec3) {
+    let edge_a = a.polyhedron.edge(edge.edge_a);
+    let edge_b = b.polyhedron.edge(edge.edge_b);
+    closest_points_between_segments(
+        a.frame.point(edge_a.start),
+        a.frame.point(edge_a.end),
+        b.frame.point(edge_b.start),
+        b.frame.point(edge_b.end),
+    )
 }
 
 /// The closest points of segments `[p0, p1]` and `[q0, q1]`: minimise `|p(s) − q(t)|²` over
@@ -442,6 +605,68 @@ fn closest_points_between_segments(p0: Vec3, p1: Vec3, q0: Vec3, q1: Vec3) -> (V
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::collision::polyhedron::crossing_poses;
+    use crate::shape::Cuboid;
+
+    /// Two boxes turned and overlapping in many ways: the box route gives the general route's
+    /// contact on each box's best face, with the same ids, points to rounding and the same normal.
+    #[test]
+    fn box_face_contact_matches_the_polygon_route() {
+        let cuboids = [
+            Cuboid::new(Vec3::new(0.5, 0.5, 0.5)).expect("valid box"),
+            Cuboid::new(Vec3::new(1.5, 0.2, 0.7)).expect("valid box"),
+        ];
+        let mut compared = 0;
+        for step in 0..400 {
+            let t = step as f32;
+            let (pose_a, pose_b) = crossing_poses(t);
+            let a = Polyhedron::cuboid(&cuboids[step % 2]);
+            let b = Polyhedron::cuboid(&cuboids[step / 2 % 2]);
+            let posed_a = PosedPolyhedron {
+                polyhedron: &a,
+                frame: Frame::from_pose(&pose_a),
+            };
+            let posed_b = PosedPolyhedron {
+                polyhedron: &b,
+                frame: Frame::from_pose(&pose_b),
+            };
+            let b_in_a = Frame::relative(&pose_a, &pose_b);
+            let a_in_b = b_in_a.inverse();
+            for (reference, incident, incident_in_reference, reference_is_b) in [
+                (&posed_a, &posed_b, &b_in_a, false),
+                (&posed_b, &posed_a, &a_in_b, true),
+            ] {
+                let face = best_face_axis(
+                    reference.polyhedron,
+                    incident.polyhedron,
+                    incident_in_reference,
+                )
+                .face;
+                let general = polygon_face_contact(reference, face, incident, reference_is_b, 0.05);
+                let boxes = face_contact(
+                    reference,
+                    face,
+                    incident,
+                    incident_in_reference,
+                    reference_is_b,
+                    0.05,
+                );
+                let (Some(general), Some(boxes)) = (general, boxes) else {
+                    assert_eq!(general.is_some(), boxes.is_some());
+                    continue;
+                };
+                assert!((general.normal - boxes.normal).length() < 1e-6);
+                assert_eq!(general.len(), boxes.len());
+                for (expected, actual) in general.points().iter().zip(boxes.points()) {
+                    assert_eq!(expected.id, actual.id);
+                    assert!((expected.position - actual.position).length() < 1e-5);
+                    assert!((expected.separation - actual.separation).abs() < 1e-5);
+                }
+                compared += 1;
+            }
+        }
+        assert!(compared > 300, "{compared} contacts compared");
+    }
 
     #[test]
     fn closest_points_of_segments() {

@@ -9,6 +9,7 @@ use crate::collision::polyhedron::{
     box_vertex, Frame, Polyhedron, PolyhedronEdge, Topology, BOX_EDGES,
 };
 use crate::math::Vec3;
+use glam::Vec4;
 
 /// Absolute part of the axis-choice tolerances, metres.
 pub(super) const ABSOLUTE_TOLERANCE: f32 = 5.0e-4;
@@ -41,7 +42,8 @@ pub(super) struct EdgeAxis {
 
 /// The face of `reference` beyond whose plane `other` (placed in the reference frame by
 /// `other_in_reference`) lies farthest, or reaches in least (the first of equals): in closed form
-/// for two boxes, else by [`best_face_axis_by_support`].
+/// for two boxes, by [`best_face_axis_by_vertices`] against a hull of at most
+/// [`MAX_LANE_VERTICES`] vertices, else by [`best_face_axis_by_support`].
 pub(super) fn best_face_axis(
     reference: &Polyhedron,
     other: &Polyhedron,
@@ -51,8 +53,62 @@ pub(super) fn best_face_axis(
         (Topology::Cuboid(half_reference), Topology::Cuboid(half_other)) => {
             best_box_box_face_axis(half_reference, half_other, other_in_reference)
         }
+        (_, Topology::Hull(hull)) if hull.vertices().len() <= MAX_LANE_VERTICES => {
+            best_face_axis_by_vertices(reference, hull.vertices(), other_in_reference)
+        }
         _ => best_face_axis_by_support(reference, other, other_in_reference),
     }
+}
+
+/// Most vertices of the other polyhedron that [`best_face_axis_by_vertices`] holds on the stack,
+/// in groups of four.
+const MAX_LANE_VERTICES: usize = 64;
+
+/// [`best_face_axis`] against the `vertices` of a hull (at most [`MAX_LANE_VERTICES`]), placed
+/// in the reference frame once and laid out four to a vector by coordinate, so that each face
+/// measures four vertices per step: its separation is `min over v of n · v − offset`, the
+/// vertex deepest along the inward normal.
+fn best_face_axis_by_vertices(
+    reference: &Polyhedron,
+    vertices: &[Vec3],
+    other_in_reference: &Frame,
+) -> FaceAxis {
+    let mut best = FaceAxis {
+        face: 0,
+        separation: f32::NEG_INFINITY,
+    };
+    let Some(&first) = vertices.first() else {
+        return best;
+    };
+    // Lanes past the last vertex repeat the first, which leaves every minimum unchanged.
+    let mut coordinates = [[0.0; MAX_LANE_VERTICES]; 3];
+    for lane in 0..vertices.len().next_multiple_of(4) {
+        let placed = other_in_reference.point(vertices.get(lane).copied().unwrap_or(first));
+        for (axis, column) in coordinates.iter_mut().enumerate() {
+            column[lane] = placed[axis];
+        }
+    }
+    let groups = vertices.len().div_ceil(4);
+    let [xs, ys, zs] = coordinates.map(|column| {
+        let mut lanes = [Vec4::ZERO; MAX_LANE_VERTICES / 4];
+        for (group, slot) in lanes.iter_mut().enumerate().take(groups) {
+            *slot = Vec4::from_slice(&column[4 * group..]);
+        }
+        lanes
+    });
+    for face in 0..reference.face_count() {
+        let plane = reference.face_plane(face);
+        let normal = plane.normal;
+        let lowest = (0..groups)
+            .map(|group| xs[group] * normal.x + ys[group] * normal.y + zs[group] * normal.z)
+            .fold(Vec4::INFINITY, Vec4::min)
+            .min_element();
+        let separation = lowest - plane.offset;
+        if separation > best.separation {
+            best = FaceAxis { face, separation };
+        }
+    }
+    best
 }
 
 /// [`best_face_axis`] for two boxes: along the reference's axis `eᵢ`, the other box (centre `c`,
@@ -194,46 +250,69 @@ fn out_of_reach(reach: f32, threshold: f32) -> bool {
 /// centre is the larger separation, `|n · c| − Σₖ aₖ |n · eₖ| − Σₖ bₖ |n · fₖ|` (`c` B's centre in
 /// A's frame), between A's edge along `eᵢ` supporting `n` and B's edge along `fⱼ` supporting
 /// `−n`, read from the signs of the other components. A crossing on a face normal (a zero
-/// component) is left to the face axes, as a parallel pair is.
+/// component) is left to the face axes, as a parallel pair is. Each product is read off B's axes
+/// in A's frame: `eᵢ × fⱼ` has two components of `fⱼ`, and `n · eₖ`, `n · fₖ` are components of
+/// `n` and 2×2 sums, with `n · fⱼ = 0`.
 fn best_box_box_edge_axis(half_a: Vec3, half_b: Vec3, b_in_a: &Frame) -> Option<EdgeAxis> {
     let mut best: Option<EdgeAxis> = None;
-    let centre = b_in_a.translation;
-    let axes_b = [
+    // columns[j][k]: component k, in A's frame, of B's axis fⱼ.
+    let columns = [
         b_in_a.rotation.x_axis,
         b_in_a.rotation.y_axis,
         b_in_a.rotation.z_axis,
-    ];
-    for (index_a, &axis_a) in Vec3::AXES.iter().enumerate() {
-        for (index_b, &axis_b) in axes_b.iter().enumerate() {
-            let cross = axis_a.cross(axis_b);
-            let length_squared = cross.length_squared();
+    ]
+    .map(|axis| axis.to_array());
+    let centre = b_in_a.translation.to_array();
+    let (half_a, half_b) = (half_a.to_array(), half_b.to_array());
+    for index_a in 0..3 {
+        // eᵢ × f has no eᵢ component, −f[last] along e_next and f[next] along e_last (cyclic).
+        let (next, last) = ((index_a + 1) % 3, (index_a + 2) % 3);
+        for (index_b, column) in columns.iter().enumerate() {
+            let (mut along_next, mut along_last) = (-column[last], column[next]);
+            let length_squared = along_next * along_next + along_last * along_last;
             // Written so that a NaN (from overflow on absurdly large shapes) also rejects it.
             let crosses = length_squared > PARALLEL_SINE * PARALLEL_SINE;
             if !crosses {
                 continue;
             }
-            let mut axis = cross / length_squared.sqrt();
-            if axis.dot(centre) < 0.0 {
-                axis = -axis;
+            let mut toward_centre = along_next * centre[next] + along_last * centre[last];
+            if toward_centre < 0.0 {
+                (along_next, along_last, toward_centre) =
+                    (-along_next, -along_last, -toward_centre);
             }
-            let against_in_b = b_in_a.inverse_vector(-axis);
-            let (Some(edge_a), Some(edge_b)) = (
-                box_edge_along(index_a, axis),
-                box_edge_along(index_b, against_in_b),
-            ) else {
+            let inverse_length = length_squared.sqrt().recip();
+            let mut axis = [0.0; 3];
+            axis[next] = along_next * inverse_length;
+            axis[last] = along_last * inverse_length;
+            // −fₖ · axis; zero for fⱼ, which the axis is normal to.
+            let against_in_b: [f32; 3] = std::array::from_fn(|k| {
+                if k == index_b {
+                    0.0
+                } else {
+                    -(axis[next] * columns[k][next] + axis[last] * columns[k][last])
+                }
+            });
+            let reach_b: f32 = (0..3).map(|k| half_b[k] * against_in_b[k].abs()).sum();
+            let separation = toward_centre * inverse_length
+                - half_a[next] * axis[next].abs()
+                - half_a[last] * axis[last].abs()
+                - reach_b;
+            // The edges are read only for a candidate that would be kept.
+            if best.is_some_and(|best| separation <= best.separation) {
                 continue;
-            };
-            let separation =
-                axis.dot(centre) - half_a.dot(axis.abs()) - half_b.dot(against_in_b.abs());
-            keep_larger(
-                &mut best,
-                EdgeAxis {
+            }
+            let axis = Vec3::from_array(axis);
+            if let (Some(edge_a), Some(edge_b)) = (
+                box_edge_along(index_a, axis),
+                box_edge_along(index_b, Vec3::from_array(against_in_b)),
+            ) {
+                best = Some(EdgeAxis {
                     edge_a,
                     edge_b,
                     axis,
                     separation,
-                },
-            );
+                });
+            }
         }
     }
     best
@@ -323,7 +402,8 @@ fn best_box_edge_axis(
 
 /// Over the edge pairs that build a face of the Minkowski difference A − B, the largest
 /// separation along their cross product, computed in A's frame (`b_in_a` places B there) by
-/// trying every pair. B's edges are moved into A's frame [`EDGE_CHUNK`] at a time, on the stack.
+/// trying every pair. B's edges within reach are moved into A's frame [`EDGE_CHUNK`] at a time,
+/// on the stack; with none within reach, A's edges are not read.
 fn best_edge_axis(
     a: &Polyhedron,
     b: &Polyhedron,
@@ -335,73 +415,125 @@ fn best_edge_axis(
     let inside_b = b_in_a.point(b.interior_point());
     let mut best: Option<EdgeAxis> = None;
     let mut chunk = [MovedEdge::default(); EDGE_CHUNK];
-    let mut next_b = 0;
-    while next_b < b.edge_count() {
+    let mut groups = [EdgeLanes::default(); EDGE_CHUNK / 4];
+    let mut within_reach_b = b.edges().enumerate().filter(|(_, local)| {
+        !out_of_reach(
+            edge_reach(local.face_normals, inside_a - local.start),
+            threshold,
+        )
+    });
+    loop {
         let mut chunk_len = 0;
-        while chunk_len < EDGE_CHUNK && next_b < b.edge_count() {
-            let local = b.edge(next_b);
-            if !out_of_reach(
-                edge_reach(local.face_normals, inside_a - local.start),
-                threshold,
-            ) {
-                chunk[chunk_len] = MovedEdge {
-                    index: next_b,
-                    start: b_in_a.point(local.start),
-                    direction: b_in_a.vector(local.direction()),
-                    negated_normals: [
-                        -b_in_a.vector(local.face_normals[0]),
-                        -b_in_a.vector(local.face_normals[1]),
-                    ],
-                };
-                chunk_len += 1;
-            }
-            next_b += 1;
+        for (index, local) in within_reach_b.by_ref().take(EDGE_CHUNK) {
+            chunk[chunk_len] = MovedEdge {
+                index,
+                start: b_in_a.point(local.start),
+                direction: b_in_a.vector(local.direction()),
+                negated_normals: [
+                    -b_in_a.vector(local.face_normals[0]),
+                    -b_in_a.vector(local.face_normals[1]),
+                ],
+            };
+            chunk_len += 1;
         }
-        for edge_a in 0..a.edge_count() {
-            let edge = a.edge(edge_a);
+        if chunk_len == 0 {
+            return best;
+        }
+        let moved = &chunk[..chunk_len];
+        let group_count = chunk_len.div_ceil(4);
+        for (group, lanes) in groups.iter_mut().enumerate().take(group_count) {
+            *lanes = EdgeLanes::of(moved, group);
+        }
+        for (edge_a, edge) in a.edges().enumerate() {
             if out_of_reach(
                 edge_reach(edge.face_normals, inside_b - edge.start),
                 threshold,
             ) {
                 continue;
             }
-            for moved in &chunk[..chunk_len] {
-                let Some((axis, separation)) = edge_pair_axis(&edge, moved) else {
-                    continue;
-                };
-                keep_larger(
-                    &mut best,
-                    EdgeAxis {
-                        edge_a,
-                        edge_b: moved.index,
-                        axis,
-                        separation,
-                    },
-                );
+            for (group, lanes) in groups[..group_count].iter().enumerate() {
+                let mut crossing = lanes.arcs_cross(&edge);
+                while crossing != 0 {
+                    let moved = &moved[4 * group + crossing.trailing_zeros() as usize];
+                    crossing &= crossing - 1;
+                    let Some((axis, separation)) = crossing_axis(&edge, moved) else {
+                        continue;
+                    };
+                    keep_larger(
+                        &mut best,
+                        EdgeAxis {
+                            edge_a,
+                            edge_b: moved.index,
+                            axis,
+                            separation,
+                        },
+                    );
+                }
             }
         }
     }
-    best
 }
 
-/// The axis of an edge of A and an edge of B (both in A's frame), pointing from A to B, with the
-/// separation along it; `None` unless the pair builds a face of the Minkowski difference.
+/// Four of B's moved edges laid out by coordinate (a lane each, zero in lanes past the last), so
+/// that [`EdgeLanes::arcs_cross`] tests an edge of A against four at a step.
+#[derive(Debug, Clone, Copy, Default)]
+struct EdgeLanes {
+    direction: [Vec4; 3],
+    negated_normals: [[Vec4; 3]; 2],
+}
+
+impl EdgeLanes {
+    /// Edges `4 · group` to `4 · group + 3` of `moved`.
+    fn of(moved: &[MovedEdge], group: usize) -> Self {
+        let by_coordinate = |value: &dyn Fn(&MovedEdge) -> Vec3| {
+            let [p, q, r, s] =
+                std::array::from_fn(|lane| moved.get(4 * group + lane).map_or(Vec3::ZERO, value));
+            [
+                Vec4::new(p.x, q.x, r.x, s.x),
+                Vec4::new(p.y, q.y, r.y, s.y),
+                Vec4::new(p.z, q.z, r.z, s.z),
+            ]
+        };
+        Self {
+            direction: by_coordinate(&|moved| moved.direction),
+            negated_normals: [
+                by_coordinate(&|moved| moved.negated_normals[0]),
+                by_coordinate(&|moved| moved.negated_normals[1]),
+            ],
+        }
+    }
+
+    /// A bit per lane, set where the arc of `edge` (of A) and the lane's negated arc cross on the
+    /// Gauss map: each one's ends lie on opposite sides of the other's great circle, whose plane
+    /// normal is the edge direction (`(m₁ · eA)(m₂ · eA) < 0` and `(n₁ · eB)(n₂ · eB) < 0`). The
+    /// products are those of the scalar dot products, bit for bit; empty lanes give zero.
+    fn arcs_cross(&self, edge: &PolyhedronEdge) -> u32 {
+        let dot = |lanes: &[Vec4; 3], vector: Vec3| {
+            lanes[0] * vector.x + lanes[1] * vector.y + lanes[2] * vector.z
+        };
+        let a_direction = edge.direction();
+        let [first, second] = self.negated_normals;
+        let [n1, n2] = edge.face_normals;
+        let across_a = dot(&first, a_direction) * dot(&second, a_direction);
+        let across_b = dot(&self.direction, n1) * dot(&self.direction, n2);
+        (across_a.cmplt(Vec4::ZERO) & across_b.cmplt(Vec4::ZERO)).bitmask()
+    }
+}
+
+/// The axis of an edge of A and an edge of B (both in A's frame) whose arcs cross
+/// ([`EdgeLanes::arcs_cross`]), pointing from A to B, with the separation along it; `None` unless
+/// the pair builds a face of the Minkowski difference.
 ///
 /// Edge A's arc on the Gauss map runs between its face normals `n₁, n₂`; edge B's, negated for
-/// the difference, between `−m₁, −m₂`. The arcs cross when each one's ends lie on opposite
-/// sides of the other's great circle (whose plane normal is the edge direction), and the two
-/// crossings of the great circles are the same point: the axis `±(eA × eB)` that lies on A's arc
-/// (positive on `n₁ + n₂`) must also lie on B's (positive on `−m₁ − m₂`). Then A's edge is A's
-/// support along the axis and B's edge is B's support against it.
-fn edge_pair_axis(edge: &PolyhedronEdge, moved: &MovedEdge) -> Option<(Vec3, f32)> {
+/// the difference, between `−m₁, −m₂`. With the ends of each on opposite sides of the other's
+/// great circle, the two crossings of the great circles are the same point: the axis
+/// `±(eA × eB)` that lies on A's arc (positive on `n₁ + n₂`) must also lie on B's (positive on
+/// `−m₁ − m₂`). Then A's edge is A's support along the axis and B's edge is B's support against
+/// it.
+fn crossing_axis(edge: &PolyhedronEdge, moved: &MovedEdge) -> Option<(Vec3, f32)> {
     let a_direction = edge.direction();
     let [n1, n2] = edge.face_normals;
     let [m1, m2] = moved.negated_normals;
-    if m1.dot(a_direction) * m2.dot(a_direction) >= 0.0
-        || n1.dot(moved.direction) * n2.dot(moved.direction) >= 0.0
-    {
-        return None;
-    }
     let mut axis = a_direction.cross(moved.direction);
     let length_squared = axis.length_squared();
     let parallel_limit = PARALLEL_SINE
@@ -426,16 +558,16 @@ fn edge_pair_axis(edge: &PolyhedronEdge, moved: &MovedEdge) -> Option<(Vec3, f32
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::{Pose, Quat};
+    use crate::collision::polyhedron::crossing_poses;
     use crate::shape::{ConvexHull, Cuboid};
 
     fn unit_box() -> Cuboid {
         Cuboid::new(Vec3::new(0.5, 1.0, 1.5)).expect("valid box")
     }
 
-    /// The box routes find the same face as every support point, and the box routes and the
-    /// skipping of edges out of reach the same edge pair, axis and separation as trying every
-    /// pair, for boxes and a hull, either way round.
+    /// The box routes and the vertex lanes find the same face as every support point, and the
+    /// box routes and the skipping of edges out of reach the same edge pair, axis and separation
+    /// as trying every pair, for boxes and a hull, either way round.
     #[test]
     fn box_queries_match_the_general_ones() {
         let other = unit_box();
@@ -456,18 +588,7 @@ mod tests {
         let (mut compared, mut same_pair) = (0, 0);
         for step in 0..200 {
             let t = step as f32;
-            let pose_a = Pose::new(
-                Vec3::new(0.1 * t.sin(), 0.2, -0.1),
-                Quat::from_scaled_axis(Vec3::new(0.3 * t, 0.7 * t.cos(), 0.11 * t)),
-            );
-            let pose_b = Pose::new(
-                Vec3::new(
-                    0.9 * (0.37 * t).cos(),
-                    1.1 * (0.53 * t).sin(),
-                    0.8 * (0.29 * t).cos(),
-                ),
-                Quat::from_scaled_axis(Vec3::new(0.05 * t, -0.2 * t, 0.4 * t.sin())),
-            );
+            let (pose_a, pose_b) = crossing_poses(t);
             for a in &shapes {
                 for b in &shapes {
                     for (a, b, pose_a, pose_b) in [(a, b, pose_a, pose_b), (b, a, pose_b, pose_a)] {
