@@ -57,6 +57,11 @@ impl ProxyId {
     pub fn index(self) -> usize {
         self.0 as usize
     }
+
+    /// The id of node `index`, for callers that pack ids into their own handles.
+    pub(crate) fn from_index(index: u32) -> Self {
+        Self(index)
+    }
 }
 
 /// A box as two SIMD vectors, the form in which the tree stores and tests boxes: a union or a
