@@ -11,22 +11,34 @@
 use super::dynamic_tree::{DynamicTree, ProxyId};
 use crate::math::Aabb;
 
-/// Names one body's proxy in a [`BroadPhase`]: which tree it is in and its id there.
+/// Names one body's proxy in a [`BroadPhase`]: which tree it is in and its id there, packed in
+/// one `u32` (the top bit set for the static tree) so that a pair of them takes 8 bytes. Ordered
+/// as (moving before static, then by id).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct ProxyHandle {
-    is_static: bool,
-    proxy: ProxyId,
-}
+pub struct ProxyHandle(u32);
+
+/// The bit of [`ProxyHandle`] that says the proxy is in the static tree.
+const STATIC_BIT: u32 = 1 << 31;
 
 impl ProxyHandle {
+    /// # Panics
+    /// If the proxy's index needs the top bit (more than 2³¹ nodes in one tree).
+    fn new(is_static: bool, proxy: ProxyId) -> Self {
+        let index = u32::try_from(proxy.index())
+            .ok()
+            .filter(|&index| index < STATIC_BIT)
+            .unwrap_or_else(|| panic!("a broad-phase tree holds at most {STATIC_BIT} nodes"));
+        Self(if is_static { index | STATIC_BIT } else { index })
+    }
+
     /// Whether the proxy is in the static tree.
     pub fn is_static(self) -> bool {
-        self.is_static
+        self.0 & STATIC_BIT != 0
     }
 
     /// The proxy's id in its tree.
     pub fn proxy(self) -> ProxyId {
-        self.proxy
+        ProxyId::from_index(self.0 & !STATIC_BIT)
     }
 }
 
@@ -41,11 +53,13 @@ enum ProxyState {
     Removed,
 }
 
-/// One overlapping pair: the two bodies' keys, smaller first, and their proxies in the same order.
-/// Lists of pairs are sorted by [`Pair::sort_key`].
+/// One overlapping pair: the two bodies' keys, smaller first, and their proxies in the same order,
+/// in 16 bytes. Lists of pairs are sorted by [`Pair::sort_key`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct Pair {
-    keys: (u32, u32),
+    /// The keys packed into one integer, smaller key in the high half: orders pairs as their keys
+    /// do, with one comparison instead of two.
+    sort_key: u64,
     proxies: (ProxyHandle, ProxyHandle),
 }
 
@@ -57,15 +71,14 @@ impl Pair {
             (second, first)
         };
         Self {
-            keys: (low.0, high.0),
+            sort_key: (u64::from(low.0) << 32) | u64::from(high.0),
             proxies: (low.1, high.1),
         }
     }
 
-    /// The keys packed into one integer, smaller key in the high half: orders pairs as their keys
-    /// do, with one comparison instead of two.
-    fn sort_key(&self) -> u64 {
-        (u64::from(self.keys.0) << 32) | u64::from(self.keys.1)
+    /// The two keys, smaller first.
+    fn keys(&self) -> (u32, u32) {
+        ((self.sort_key >> 32) as u32, self.sort_key as u32)
     }
 }
 
@@ -126,7 +139,7 @@ impl BroadPhase {
     pub fn insert(&mut self, key: u32, aabb: Aabb, is_static: bool) -> ProxyHandle {
         let side = self.side_mut(is_static);
         let proxy = side.tree.create_proxy(aabb, key);
-        let handle = ProxyHandle { is_static, proxy };
+        let handle = ProxyHandle::new(is_static, proxy);
         self.mark(handle, ProxyState::Moved);
         handle
     }
@@ -137,9 +150,9 @@ impl BroadPhase {
     /// # Panics
     /// If `handle` does not name a live proxy of this broad phase.
     pub fn remove(&mut self, handle: ProxyHandle) {
-        self.side_mut(handle.is_static)
+        self.side_mut(handle.is_static())
             .tree
-            .destroy_proxy(handle.proxy);
+            .destroy_proxy(handle.proxy());
         self.mark(handle, ProxyState::Removed);
     }
 
@@ -151,9 +164,9 @@ impl BroadPhase {
     /// If `handle` does not name a live proxy of this broad phase.
     pub fn update(&mut self, handle: ProxyHandle, tight_aabb: Aabb) -> bool {
         let moved = self
-            .side_mut(handle.is_static)
+            .side_mut(handle.is_static())
             .tree
-            .move_proxy(handle.proxy, tight_aabb);
+            .move_proxy(handle.proxy(), tight_aabb);
         if moved {
             self.mark(handle, ProxyState::Moved);
         }
@@ -184,30 +197,27 @@ impl BroadPhase {
             merged_pairs,
         } = self;
         let sides = [&*moving_side, &*static_side];
-        let side_of = |handle: ProxyHandle| sides[usize::from(handle.is_static)];
+        let side_of = |handle: ProxyHandle| sides[usize::from(handle.is_static())];
         let is_unchanged =
-            |handle: ProxyHandle| side_of(handle).state(handle.proxy) == ProxyState::Unchanged;
+            |handle: ProxyHandle| side_of(handle).state(handle.proxy()) == ProxyState::Unchanged;
         pairs.retain(|pair| is_unchanged(pair.proxies.0) && is_unchanged(pair.proxies.1));
 
         found_pairs.clear();
         for &handle in changed.iter() {
             let side = side_of(handle);
-            if side.state(handle.proxy) != ProxyState::Moved {
+            if side.state(handle.proxy()) != ProxyState::Moved {
                 continue;
             }
-            let key = side.tree.user_data(handle.proxy);
-            let fat_aabb = side.tree.fat_aabb(handle.proxy);
-            let searched: &[&TreeWithStates] = if handle.is_static {
+            let key = side.tree.user_data(handle.proxy());
+            let fat_aabb = side.tree.fat_aabb(handle.proxy());
+            let searched: &[&TreeWithStates] = if handle.is_static() {
                 &sides[..1]
             } else {
                 &sides
             };
             for (other_is_static, other_side) in [false, true].into_iter().zip(searched) {
                 other_side.tree.query(&fat_aabb, |other_proxy| {
-                    let other = ProxyHandle {
-                        is_static: other_is_static,
-                        proxy: other_proxy,
-                    };
+                    let other = ProxyHandle::new(other_is_static, other_proxy);
                     let other_key = other_side.tree.user_data(other_proxy);
                     // Two moved proxies find each other: only the smaller one adds the pair.
                     let found_by_other =
@@ -220,13 +230,13 @@ impl BroadPhase {
             }
         }
         // Keys are unique among live proxies, so no two pairs share a sort key.
-        found_pairs.sort_unstable_by_key(Pair::sort_key);
+        found_pairs.sort_unstable_by_key(|pair| pair.sort_key);
 
         merged_pairs.clear();
         merged_pairs.reserve(pairs.len() + found_pairs.len());
         let (mut kept, mut found) = (pairs.iter().peekable(), found_pairs.iter().peekable());
         while let (Some(&&next_kept), Some(&&next_found)) = (kept.peek(), found.peek()) {
-            if next_kept.sort_key() <= next_found.sort_key() {
+            if next_kept.sort_key <= next_found.sort_key {
                 merged_pairs.push(next_kept);
                 kept.next();
             } else {
@@ -238,15 +248,15 @@ impl BroadPhase {
         merged_pairs.extend(found);
         std::mem::swap(pairs, merged_pairs);
         pair_keys.clear();
-        pair_keys.extend(pairs.iter().map(|pair| pair.keys));
+        pair_keys.extend(pairs.iter().map(Pair::keys));
 
         for handle in changed.drain(..) {
-            let side = if handle.is_static {
+            let side = if handle.is_static() {
                 &mut *static_side
             } else {
                 &mut *moving_side
             };
-            *side.state_mut(handle.proxy) = ProxyState::Unchanged;
+            *side.state_mut(handle.proxy()) = ProxyState::Unchanged;
         }
     }
 
@@ -274,7 +284,7 @@ impl BroadPhase {
     /// # Panics
     /// If `handle` does not name a live proxy of this broad phase.
     pub fn fat_aabb(&self, handle: ProxyHandle) -> Aabb {
-        self.side(handle.is_static).tree.fat_aabb(handle.proxy)
+        self.side(handle.is_static()).tree.fat_aabb(handle.proxy())
     }
 
     /// The key the proxy was inserted with.
@@ -282,7 +292,7 @@ impl BroadPhase {
     /// # Panics
     /// If `handle` does not name a live proxy of this broad phase.
     pub fn key(&self, handle: ProxyHandle) -> u32 {
-        self.side(handle.is_static).tree.user_data(handle.proxy)
+        self.side(handle.is_static()).tree.user_data(handle.proxy())
     }
 
     /// The tree of static bodies.
@@ -313,7 +323,7 @@ impl BroadPhase {
 
     /// Records a change to a proxy, listing it for the next update if it was not listed yet.
     fn mark(&mut self, handle: ProxyHandle, state: ProxyState) {
-        let slot = self.side_mut(handle.is_static).state_mut(handle.proxy);
+        let slot = self.side_mut(handle.is_static()).state_mut(handle.proxy());
         let already_listed = *slot != ProxyState::Unchanged;
         *slot = state;
         if !already_listed {
