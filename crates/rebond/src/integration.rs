@@ -18,8 +18,9 @@ pub(crate) struct SpeedLimits {
 
 /// Advances a dynamic body's velocities by one substep `h` (seconds):
 /// `v ← (v + h·(g + F/m)) / (1 + h·c_lin)` and `ω ← (ω + h·I⁻¹τ)` followed by the implicit
-/// gyroscopic step and `ω ← ω / (1 + h·c_ang)`, each then held to its speed limit. Static and
-/// kinematic bodies are left alone.
+/// gyroscopic step (skipped for isotropic inertia, where `ω × Iω = 0`) and
+/// `ω ← ω / (1 + h·c_ang)`, each then held to its speed limit. Static and kinematic bodies are
+/// left alone.
 pub(crate) fn integrate_velocities(
     state: &mut BodyState,
     motion: &BodyMotion,
@@ -34,7 +35,11 @@ pub(crate) fn integrate_velocities(
         Vec3::from(state.linear_velocity) + h * (gravity + state.inverse_mass * motion.force);
     let angular =
         Vec3::from(state.angular_velocity) + h * (motion.world_inverse_inertia * motion.torque);
-    let angular = implicit_gyroscopic_step(motion, angular, h);
+    let angular = if motion.has_isotropic_inertia {
+        angular
+    } else {
+        implicit_gyroscopic_step(motion, angular, h)
+    };
     state.linear_velocity = (linear / (1.0 + h * motion.linear_damping))
         .clamp_length_max(limits.linear)
         .into();

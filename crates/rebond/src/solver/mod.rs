@@ -63,6 +63,9 @@ pub(crate) struct BodyMotion {
     /// `R I⁻¹ Rᵀ` at the start of the step; the contact solver uses it for the whole step.
     pub world_inverse_inertia: Mat3,
     pub local_inertia: Mat3,
+    /// Whether `local_inertia` is `s·1` (spheres, cubes): then `ω × Iω = 0` and the gyroscopic
+    /// step changes nothing.
+    pub has_isotropic_inertia: bool,
     /// User forces plus the constant force, N; and torques, N·m.
     pub force: Vec3,
     pub torque: Vec3,
@@ -79,6 +82,7 @@ impl BodyMotion {
         rotation: Quat::IDENTITY,
         world_inverse_inertia: Mat3::ZERO,
         local_inertia: Mat3::ZERO,
+        has_isotropic_inertia: true,
         force: Vec3::ZERO,
         torque: Vec3::ZERO,
         linear_damping: 0.0,
@@ -92,6 +96,8 @@ impl BodyMotion {
             rotation: body.rotation,
             world_inverse_inertia: body.world_inverse_inertia,
             local_inertia: body.local_inertia,
+            has_isotropic_inertia: body.local_inertia
+                == Mat3::from_diagonal(Vec3::splat(body.local_inertia.x_axis.x)),
             force: body.force + body.constant_force,
             torque: body.torque + body.constant_torque,
             linear_damping: body.linear_damping,
