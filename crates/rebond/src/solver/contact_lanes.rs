@@ -34,7 +34,8 @@ struct BodyLanes {
 
 impl BodyLanes {
     fn gather(states: &[BodyState], bodies: &[usize; LANES]) -> Self {
-        let [a, b, c, d] = [0, 1, 2, 3].map(|lane| &states[bodies[lane]]);
+        let [a, b, c, d] = *bodies;
+        let (a, b, c, d) = (&states[a], &states[b], &states[c], &states[d]);
         let field = |f: fn(&BodyState) -> Vec3A| Vec3x4::from_lanes([f(a), f(b), f(c), f(d)]);
         Self {
             linear_velocity: field(|s| s.linear_velocity),
@@ -261,11 +262,9 @@ impl ContactLanes {
             filled[lane] = Some(lane_contact);
         }
         let side = |bodies: &[usize; LANES]| {
-            let [a, b, c, d] = [0, 1, 2, 3].map(|lane| bodies[lane]);
-            let (states, motions) = (
-                [a, b, c, d].map(|i| &states[i]),
-                [a, b, c, d].map(|i| &motions[i]),
-            );
+            let [a, b, c, d] = *bodies;
+            let states = [&states[a], &states[b], &states[c], &states[d]];
+            let motions = [&motions[a], &motions[b], &motions[c], &motions[d]];
             BodyFrame {
                 center_of_mass: Vec3x4::from_lanes(motions.map(|m| m.center_of_mass.into())),
                 inverse_inertia: Mat3x4::from_lanes(motions.map(|m| &m.world_inverse_inertia)),
