@@ -212,7 +212,7 @@ pub(crate) struct ContactLanes {
 
 impl ContactLanes {
     /// A lane set whose lanes are all empty: on solver body 0, with no contact, no points and no
-    /// mass in any direction, so solving them changes nothing. [`Self::set_lane`] fills lanes.
+    /// mass in any direction, so solving them changes nothing. [`Self::fill`] fills lanes.
     pub const EMPTY: Self = Self {
         contacts: [usize::MAX; LANES],
         body_a: [0; LANES],
@@ -239,16 +239,17 @@ impl ContactLanes {
         twist_impulse: F32x4::ZERO,
     };
 
-    /// The lane set of up to four contacts, which must share no moving body, warm-started from
-    /// their cached impulses. What differs from contact to contact (normal, tangents, materials,
+    /// Fills this lane set, empty before ([`Self::EMPTY`]), in place with up to four contacts,
+    /// which must share no moving body, warm-started from their cached impulses. What differs from contact to contact (normal, tangents, materials,
     /// friction anchors) is set lane by lane; the Jacobians of every point and of the friction
     /// and twist are then computed for the four lanes at once.
-    pub fn new<'a>(
+    pub fn fill<'a>(
+        &mut self,
         lane_contacts: impl IntoIterator<Item = LaneContact<'a>>,
         states: &[BodyState],
         motions: &[BodyMotion],
-    ) -> Self {
-        let mut lanes = Self::EMPTY;
+    ) {
+        let lanes = self;
         let mut positions = [[Vec3A::ZERO; LANES]; MAX_MANIFOLD_POINTS];
         let mut point_counts = F32x4::ZERO;
         let mut filled: [Option<LaneContact>; LANES] = [None; LANES];
@@ -318,7 +319,6 @@ impl ContactLanes {
                 lanes.set_friction_anchors(lane, lane_contact, centers[lane]);
             }
         }
-        lanes
     }
 
     /// Sets what lane `lane` takes straight from its contact: the bodies, the normal and its
@@ -502,18 +502,17 @@ impl ContactLanes {
     /// One sequential-impulse pass of the four lanes: the normal impulse of each point with
     /// accumulated clamping (the total never pulls), then the manifold's friction clamped to the
     /// cone `|λ_t| ≤ μ Σλ_n` and its twist to `μ Σλ_n r̄`. A point still apart by `s > 0` may
-    /// close by `s` this substep (speculative contact). With `use_bias`, a point deeper than
+    /// close by `s` this substep (speculative contact). With `USE_BIAS`, a point deeper than
     /// [`LINEAR_SLOP`] is pushed out by a soft constraint, and friction also pulls the anchors
     /// back together; within the slop the contact is rigid, so a resting contact carries its load
     /// without the sag a soft spring has under load (docs/physics.md compares the variants).
-    /// Without `use_bias` (the relax pass) only velocities are solved, which removes the energy
+    /// Without `USE_BIAS` (the relax pass) only velocities are solved, which removes the energy
     /// the push added.
-    pub fn solve(
+    pub fn solve<const USE_BIAS: bool>(
         &mut self,
         states: &mut [BodyState],
         softness: &Softness,
         inverse_h: f32,
-        use_bias: bool,
     ) {
         let mut a = BodyLanes::gather(states, &self.body_a);
         let mut b = BodyLanes::gather(states, &self.body_b);
@@ -535,7 +534,7 @@ impl ContactLanes {
             // Apart: may close by s this substep. Deeper than the slop (biased pass): soft push
             // out at the bias rate, at most MAX_PUSH_SPEED. Otherwise rigid, no bias.
             let apart = separation.greater_than(F32x4::ZERO);
-            let deep = if use_bias {
+            let deep = if USE_BIAS {
                 separation.less_than(-slop)
             } else {
                 Mask4::NONE
@@ -562,7 +561,7 @@ impl ContactLanes {
         for axis in 0..2 {
             let jacobian = &self.tangent[axis];
             let mut velocity = jacobian.velocity(&a, &b, self.tangents[axis]);
-            if use_bias {
+            if USE_BIAS {
                 // The anchor offset now: start offset plus the motion since, along the tangent.
                 let offset = self.anchor_offset[axis]
                     + self.tangents[axis].dot(relative_motion)

@@ -161,12 +161,12 @@ impl Solver {
             }
             self.warm_start();
             for _ in 0..BIASED_ITERATIONS {
-                self.solve_contacts(&softness, inverse_h, true);
+                self.solve_contacts::<true>(&softness, inverse_h);
             }
             for (state, motion) in self.states.iter_mut().zip(&mut self.motions).skip(1) {
                 integrate_pose(state, motion, h);
             }
-            self.solve_contacts(&softness, inverse_h, false);
+            self.solve_contacts::<false>(&softness, inverse_h);
         }
         for lanes in &mut self.lanes {
             lanes.apply_restitution(&mut self.states);
@@ -240,7 +240,8 @@ impl Solver {
 
     /// Builds the lane sets straight from the contacts, lane by lane.
     fn prepare_contacts(&mut self, bodies: &Arena<RigidBody>, contacts: &ContactCache) {
-        self.lanes.clear();
+        let mut lane_sets = std::mem::take(&mut self.lanes);
+        lane_sets.clear();
         for lane_set in self.colouring.lane_sets() {
             let lane_contacts = lane_set.iter().filter_map(|&pair| {
                 let index = self.pair_contacts[pair];
@@ -254,9 +255,11 @@ impl Solver {
                     materials,
                 })
             });
-            let lanes = ContactLanes::new(lane_contacts, &self.states, &self.motions);
-            self.lanes.push(lanes);
+            let index = lane_sets.len();
+            lane_sets.push(ContactLanes::EMPTY);
+            lane_sets[index].fill(lane_contacts, &self.states, &self.motions);
         }
+        self.lanes = lane_sets;
     }
 
     /// Applies last step's impulses again.
@@ -266,10 +269,10 @@ impl Solver {
         }
     }
 
-    /// One pass over every contact (biased or relax): the lane sets in order.
-    fn solve_contacts(&mut self, softness: &Softness, inverse_h: f32, use_bias: bool) {
+    /// One pass over every contact (biased with `USE_BIAS`, else relax): the lane sets in order.
+    fn solve_contacts<const USE_BIAS: bool>(&mut self, softness: &Softness, inverse_h: f32) {
         for lanes in &mut self.lanes {
-            lanes.solve(&mut self.states, softness, inverse_h, use_bias);
+            lanes.solve::<USE_BIAS>(&mut self.states, softness, inverse_h);
         }
     }
 
