@@ -467,17 +467,15 @@ impl ContactLanes {
         let mut linear = Vec3x4::default();
         let mut spin_a = self.twist_spin_a.scale(self.twist_impulse);
         let mut spin_b = self.twist_spin_b.scale(self.twist_impulse);
-        let directions = [self.tangents[0], self.tangents[1]];
-        let tangents = self
-            .tangent
-            .iter()
-            .zip(directions)
-            .zip(self.tangent_impulse);
-        let normals = self.points[..self.point_count]
-            .iter()
-            .map(|point| ((&point.normal, self.normal), point.normal_impulse));
-        for ((jacobian, direction), impulse) in normals.chain(tangents) {
-            linear += direction.scale(impulse);
+        for point in &self.points[..self.point_count] {
+            let impulse = point.normal_impulse;
+            linear += self.normal.scale(impulse);
+            spin_a += point.normal.spin_a.scale(impulse);
+            spin_b += point.normal.spin_b.scale(impulse);
+        }
+        for axis in 0..2 {
+            let (jacobian, impulse) = (&self.tangent[axis], self.tangent_impulse[axis]);
+            linear += self.tangents[axis].scale(impulse);
             spin_a += jacobian.spin_a.scale(impulse);
             spin_b += jacobian.spin_b.scale(impulse);
         }
