@@ -1,7 +1,7 @@
 //! Time integration of body velocities and poses by semi-implicit (symplectic) Euler:
 //! velocities first from forces, then positions from the new velocities.
 
-use crate::math::{skew, Quat, Vec3};
+use crate::math::{skew, Quat, Vec3, Vec3A};
 use crate::solver::{BodyMotion, BodyState};
 
 /// Largest rotation of a body in one substep, radians: a quarter turn.
@@ -18,8 +18,9 @@ pub(crate) struct SpeedLimits {
 
 /// Advances a dynamic body's velocities by one substep `h` (seconds):
 /// `v ← (v + h·(g + F/m)) / (1 + h·c_lin)` and `ω ← (ω + h·I⁻¹τ)` followed by the implicit
-/// gyroscopic step and `ω ← ω / (1 + h·c_ang)`, each then held to its speed limit. Static and
-/// kinematic bodies are left alone.
+/// gyroscopic step (skipped for isotropic inertia, where `ω × Iω = 0`) and
+/// `ω ← ω / (1 + h·c_ang)`, each then held to its speed limit. Static and kinematic bodies are
+/// left alone.
 pub(crate) fn integrate_velocities(
     state: &mut BodyState,
     motion: &BodyMotion,
@@ -30,17 +31,19 @@ pub(crate) fn integrate_velocities(
     if !motion.is_dynamic {
         return;
     }
-    let linear =
-        Vec3::from(state.linear_velocity) + h * (gravity + state.inverse_mass * motion.force);
-    let angular =
-        Vec3::from(state.angular_velocity) + h * (motion.world_inverse_inertia * motion.torque);
-    let angular = implicit_gyroscopic_step(motion, angular, h);
-    state.linear_velocity = (linear / (1.0 + h * motion.linear_damping))
-        .clamp_length_max(limits.linear)
-        .into();
-    state.angular_velocity = (angular / (1.0 + h * motion.angular_damping))
-        .clamp_length_max(limits.angular)
-        .into();
+    let acceleration = Vec3A::from(gravity) + state.inverse_mass * Vec3A::from(motion.force);
+    let linear = state.linear_velocity + h * acceleration;
+    let torque = Vec3A::from(motion.torque);
+    let angular = state.angular_velocity + h * motion.world_inverse_inertia.mul_vec3a(torque);
+    let angular = if motion.has_isotropic_inertia {
+        angular
+    } else {
+        implicit_gyroscopic_step(motion, angular.into(), h).into()
+    };
+    state.linear_velocity =
+        (linear / (1.0 + h * motion.linear_damping)).clamp_length_max(limits.linear);
+    state.angular_velocity =
+        (angular / (1.0 + h * motion.angular_damping)).clamp_length_max(limits.angular);
 }
 
 /// Below this relative size the gyroscopic change `h ω × I ω` is lost in f32 rounding of `I ω`

@@ -2,18 +2,21 @@
 //! solver idea; our own code).
 //!
 //! The four constraints share no moving body (`graph_colour.rs`), so solving them side by side
-//! gives each the result solving it alone gives: lane `i` runs exactly the sequential-impulse
-//! step of [`ContactConstraint::solve`] on constraint `i`, with each branch turned into a
-//! per-lane select. A lane set with fewer than four constraints fills the rest with empty lanes on
-//! solver body 0 (no mass, zero Jacobians: their impulses are zero); a manifold with fewer points
-//! than the widest one of the set gets empty points the same way.
+//! gives each the result solving it alone gives: lane `i` runs the sequential-impulse step of
+//! constraint `i`, with each branch turned into a per-lane select. A lane set with fewer than four
+//! constraints fills the rest with empty lanes on solver body 0 (no mass, zero Jacobians: their
+//! impulses are zero); a manifold with fewer points than the widest one of the set gets empty
+//! points of no mass the same way. The constraints are built straight into their lanes, from the
+//! contacts, and their impulses go straight back to the contacts.
 
 use super::contact_solver::{
-    ContactConstraint, Jacobian, LINEAR_SLOP, MAX_PUSH_SPEED, RESTITUTION_THRESHOLD,
+    combine_friction, combine_restitution, FRICTION_ANCHOR_MAX_SLIP, LINEAR_SLOP, MAX_PUSH_SPEED,
+    RESTITUTION_THRESHOLD,
 };
 use super::softness::Softness;
-use super::wide::{F32x4, Mask4, Vec3x4};
-use super::BodyState;
+use super::wide::{F32x4, Mask4, Mat3x4, Vec3x4};
+use super::{BodyMotion, BodyState};
+use crate::body::RigidBody;
 use crate::collision::contact_cache::Contact;
 use crate::collision::MAX_MANIFOLD_POINTS;
 use crate::math::{Vec3, Vec3A};
@@ -31,7 +34,8 @@ struct BodyLanes {
 
 impl BodyLanes {
     fn gather(states: &[BodyState], bodies: &[usize; LANES]) -> Self {
-        let [a, b, c, d] = [0, 1, 2, 3].map(|lane| &states[bodies[lane]]);
+        let [a, b, c, d] = *bodies;
+        let (a, b, c, d) = (&states[a], &states[b], &states[c], &states[d]);
         let field = |f: fn(&BodyState) -> Vec3A| Vec3x4::from_lanes([f(a), f(b), f(c), f(d)]);
         Self {
             linear_velocity: field(|s| s.linear_velocity),
@@ -55,13 +59,49 @@ impl BodyLanes {
     }
 }
 
-/// [`Jacobian`] of four constraints.
+/// What the constraint builder reads of the bodies on one side of four contacts.
+struct BodyFrame {
+    center_of_mass: Vec3x4,
+    inverse_inertia: Mat3x4,
+    linear_velocity: Vec3x4,
+    angular_velocity: Vec3x4,
+}
+
+impl BodyFrame {
+    /// The velocity of the point at `anchor` from the centre of mass, `v + ω × r`, per lane.
+    fn velocity_at(&self, anchor: Vec3x4) -> Vec3x4 {
+        self.linear_velocity + self.angular_velocity.cross(anchor)
+    }
+}
+
+/// `1 / k` per lane, or zero where `k` is not above zero.
+fn inverse_or_zero(k: F32x4) -> F32x4 {
+    k.greater_than(F32x4::ZERO)
+        .select(F32x4::ONE / k, F32x4::ZERO)
+}
+
+/// One contact to put into a lane: the contact, its index in the contact cache, its solver
+/// bodies and the two bodies, for their materials and poses.
+#[derive(Clone, Copy)]
+pub(crate) struct LaneContact<'a> {
+    pub contact: &'a Contact,
+    pub index: usize,
+    pub body_a: usize,
+    pub body_b: usize,
+    pub materials: (&'a RigidBody, &'a RigidBody),
+}
+
+/// The velocity Jacobian of one direction `d` of four contacts, for both bodies, with the
+/// angular response precomputed from the inverse inertia at the start of the step.
 #[derive(Debug, Clone, Copy)]
 struct JacobianLanes {
+    /// `r_A × d` and `r_B × d`: how each body's spin moves the contact along `d`.
     arm_a: Vec3x4,
     arm_b: Vec3x4,
+    /// `I_A⁻¹ (r_A × d)` and `I_B⁻¹ (r_B × d)`: the spin a unit impulse along `d` gives.
     spin_a: Vec3x4,
     spin_b: Vec3x4,
+    /// The effective mass along `d`, kg.
     mass: F32x4,
 }
 
@@ -74,12 +114,27 @@ impl JacobianLanes {
         mass: F32x4::ZERO,
     };
 
-    fn set_lane(&mut self, lane: usize, jacobian: &Jacobian) {
-        self.arm_a.set_lane(lane, jacobian.arm_a);
-        self.arm_b.set_lane(lane, jacobian.arm_b);
-        self.spin_a.set_lane(lane, jacobian.spin_a);
-        self.spin_b.set_lane(lane, jacobian.spin_b);
-        self.mass.set_lane(lane, jacobian.mass);
+    /// The Jacobian of direction `direction` at the anchors `r_A`, `r_B` (from each centre of
+    /// mass) per lane, with `mass = 1 / (m_A⁻¹ + m_B⁻¹ + (r_A × d)·I_A⁻¹(r_A × d) +
+    /// (r_B × d)·I_B⁻¹(r_B × d))`, or zero where nothing can move along `d`.
+    fn new(
+        (a, b): (&BodyFrame, &BodyFrame),
+        (inverse_mass_a, inverse_mass_b): (F32x4, F32x4),
+        (anchor_a, anchor_b): (Vec3x4, Vec3x4),
+        direction: Vec3x4,
+    ) -> Self {
+        let arm_a = anchor_a.cross(direction);
+        let arm_b = anchor_b.cross(direction);
+        let spin_a = a.inverse_inertia.mul_vec3(arm_a);
+        let spin_b = b.inverse_inertia.mul_vec3(arm_b);
+        let k = inverse_mass_a + inverse_mass_b + arm_a.dot(spin_a) + arm_b.dot(spin_b);
+        Self {
+            arm_a,
+            arm_b,
+            spin_a,
+            spin_b,
+            mass: inverse_or_zero(k),
+        }
     }
 
     /// `d·(v_B − v_A) + ω_B·(r_B × d) − ω_A·(r_A × d)` per lane.
@@ -157,7 +212,7 @@ pub(crate) struct ContactLanes {
 
 impl ContactLanes {
     /// A lane set whose lanes are all empty: on solver body 0, with no contact, no points and no
-    /// mass in any direction, so solving them changes nothing. [`Self::set_lane`] fills lanes.
+    /// mass in any direction, so solving them changes nothing. [`Self::fill`] fills lanes.
     pub const EMPTY: Self = Self {
         contacts: [usize::MAX; LANES],
         body_a: [0; LANES],
@@ -184,51 +239,167 @@ impl ContactLanes {
         twist_impulse: F32x4::ZERO,
     };
 
-    /// Puts `constraint` into lane `lane`; the lanes of one set must share no moving body.
-    pub fn set_lane(&mut self, lane: usize, constraint: &ContactConstraint, states: &[BodyState]) {
-        self.contacts[lane] = constraint.contact;
-        self.body_a[lane] = constraint.body_a;
-        self.body_b[lane] = constraint.body_b;
-        let inverse_mass = |body: usize| states[body].inverse_mass;
-        self.inverse_mass_a
-            .set_lane(lane, inverse_mass(constraint.body_a));
-        self.inverse_mass_b
-            .set_lane(lane, inverse_mass(constraint.body_b));
-        self.normal.set_lane(lane, constraint.normal);
-        self.friction.set_lane(lane, constraint.friction);
-        self.restitution.set_lane(lane, constraint.restitution);
-        self.bounces |= constraint.restitution > 0.0;
-        self.point_counts[lane] = constraint.point_count;
-        self.point_count = self.point_count.max(constraint.point_count);
-        let points = &constraint.points[..constraint.point_count];
-        for (point, source) in self.points.iter_mut().zip(points) {
-            point.normal.set_lane(lane, &source.normal);
-            point.base_separation.set_lane(lane, source.base_separation);
-            point
-                .approach_velocity
-                .set_lane(lane, source.approach_velocity);
-            point.normal_impulse.set_lane(lane, source.normal_impulse);
-            point
-                .max_normal_impulse
-                .set_lane(lane, source.max_normal_impulse);
+    /// Fills this lane set, empty before ([`Self::EMPTY`]), in place with up to four contacts,
+    /// which must share no moving body, warm-started from their cached impulses. What differs from contact to contact (normal, tangents, materials,
+    /// friction anchors) is set lane by lane; the Jacobians of every point and of the friction
+    /// and twist are then computed for the four lanes at once.
+    pub fn fill<'a>(
+        &mut self,
+        lane_contacts: impl IntoIterator<Item = LaneContact<'a>>,
+        states: &[BodyState],
+        motions: &[BodyMotion],
+    ) {
+        let lanes = self;
+        let mut positions = [[Vec3A::ZERO; LANES]; MAX_MANIFOLD_POINTS];
+        let mut point_counts = F32x4::ZERO;
+        let mut filled: [Option<LaneContact>; LANES] = [None; LANES];
+        for (lane, lane_contact) in lane_contacts.into_iter().enumerate() {
+            lanes.set_contact(lane, &lane_contact, states);
+            let points = lane_contact.contact.manifold.points();
+            for (point, slot) in points.iter().zip(&mut positions) {
+                slot[lane] = point.position.into();
+            }
+            point_counts.set_lane(lane, points.len() as f32);
+            filled[lane] = Some(lane_contact);
         }
+        let side = |bodies: &[usize; LANES]| {
+            let [a, b, c, d] = *bodies;
+            let states = [&states[a], &states[b], &states[c], &states[d]];
+            let motions = [&motions[a], &motions[b], &motions[c], &motions[d]];
+            BodyFrame {
+                center_of_mass: Vec3x4::from_lanes(motions.map(|m| m.center_of_mass.into())),
+                inverse_inertia: Mat3x4::from_lanes(motions.map(|m| &m.world_inverse_inertia)),
+                linear_velocity: Vec3x4::from_lanes(states.map(|s| s.linear_velocity)),
+                angular_velocity: Vec3x4::from_lanes(states.map(|s| s.angular_velocity)),
+            }
+        };
+        let (a, b) = (side(&lanes.body_a), side(&lanes.body_b));
+        let masses = lanes.inverse_masses();
+        let normal = lanes.normal;
+        let mut center = Vec3x4::ZERO;
+        for (index, point) in lanes.points[..lanes.point_count].iter_mut().enumerate() {
+            let position = Vec3x4::from_lanes(positions[index]);
+            let (anchor_a, anchor_b) = (position - a.center_of_mass, position - b.center_of_mass);
+            let in_manifold = point_counts.greater_than(F32x4::splat(index as f32));
+            let jacobian = JacobianLanes::new((&a, &b), masses, (anchor_a, anchor_b), normal);
+            point.normal = JacobianLanes {
+                mass: in_manifold.select(jacobian.mass, F32x4::ZERO),
+                ..jacobian
+            };
+            point.approach_velocity =
+                (b.velocity_at(anchor_b) - a.velocity_at(anchor_a)).dot(normal);
+            center += position;
+        }
+        let counts = point_counts.max(F32x4::ONE);
+        let center = Vec3x4 {
+            x: center.x / counts,
+            y: center.y / counts,
+            z: center.z / counts,
+        };
+        let mut radius = F32x4::ZERO;
+        for (index, point_positions) in positions[..lanes.point_count].iter().enumerate() {
+            let offset = Vec3x4::from_lanes(*point_positions) - center;
+            let in_manifold = point_counts.greater_than(F32x4::splat(index as f32));
+            radius += in_manifold.select(offset.dot(offset).sqrt(), F32x4::ZERO);
+        }
+        lanes.twist_radius = radius / counts;
+        let (center_a, center_b) = (center - a.center_of_mass, center - b.center_of_mass);
         for axis in 0..2 {
-            self.tangents[axis].set_lane(lane, constraint.tangents[axis]);
-            self.tangent[axis].set_lane(lane, &constraint.tangent[axis]);
-            self.tangent_impulse[axis].set_lane(lane, constraint.tangent_impulse[axis]);
-            self.anchor_offset[axis].set_lane(lane, constraint.anchor_offset[axis]);
+            let direction = lanes.tangents[axis];
+            lanes.tangent[axis] =
+                JacobianLanes::new((&a, &b), masses, (center_a, center_b), direction);
         }
-        self.friction_anchors[lane] = constraint.friction_anchors;
-        self.twist_spin_a.set_lane(lane, constraint.twist_spin_a);
-        self.twist_spin_b.set_lane(lane, constraint.twist_spin_b);
-        self.twist_mass.set_lane(lane, constraint.twist_mass);
-        self.twist_radius.set_lane(lane, constraint.twist_radius);
-        self.twist_impulse.set_lane(lane, constraint.twist_impulse);
+        lanes.twist_spin_a = a.inverse_inertia.mul_vec3(normal);
+        lanes.twist_spin_b = b.inverse_inertia.mul_vec3(normal);
+        lanes.twist_mass =
+            inverse_or_zero(normal.dot(lanes.twist_spin_a) + normal.dot(lanes.twist_spin_b));
+        let centers = center.lanes();
+        for (lane, lane_contact) in filled.iter().enumerate() {
+            if let Some(lane_contact) = lane_contact {
+                lanes.set_friction_anchors(lane, lane_contact, centers[lane]);
+            }
+        }
     }
 
-    /// [`ContactConstraint::apply_restitution`] of the four lanes: a point bounces where its
-    /// lane's restitution is above zero, it approached faster than [`RESTITUTION_THRESHOLD`] and
-    /// it pushed this step; elsewhere the impulse is zero.
+    /// Sets what lane `lane` takes straight from its contact: the bodies, the normal and its
+    /// tangents, the materials, the points' separations and the cached impulses.
+    fn set_contact(&mut self, lane: usize, lane_contact: &LaneContact, states: &[BodyState]) {
+        let LaneContact {
+            contact,
+            index,
+            body_a,
+            body_b,
+            materials: (material_a, material_b),
+        } = *lane_contact;
+        self.contacts[lane] = index;
+        self.body_a[lane] = body_a;
+        self.body_b[lane] = body_b;
+        self.inverse_mass_a
+            .set_lane(lane, states[body_a].inverse_mass);
+        self.inverse_mass_b
+            .set_lane(lane, states[body_b].inverse_mass);
+        let normal = Vec3A::from(contact.manifold.normal);
+        let (tangent_1, tangent_2) = normal.any_orthonormal_pair();
+        self.normal.set_lane(lane, normal);
+        self.tangents[0].set_lane(lane, tangent_1);
+        self.tangents[1].set_lane(lane, tangent_2);
+        let restitution = combine_restitution(material_a.restitution, material_b.restitution);
+        let friction = combine_friction(material_a.friction, material_b.friction);
+        self.friction.set_lane(lane, friction);
+        self.restitution.set_lane(lane, restitution);
+        self.bounces |= restitution > 0.0;
+        let points = contact.manifold.points();
+        self.point_counts[lane] = points.len();
+        self.point_count = self.point_count.max(points.len());
+        let cached = points.iter().zip(&contact.normal_impulses);
+        for (point, (source, &impulse)) in self.points.iter_mut().zip(cached) {
+            point.base_separation.set_lane(lane, source.separation);
+            point.normal_impulse.set_lane(lane, impulse);
+        }
+        let friction_impulse = Vec3A::from(contact.friction_impulse);
+        self.tangent_impulse[0].set_lane(lane, friction_impulse.dot(tangent_1));
+        self.tangent_impulse[1].set_lane(lane, friction_impulse.dot(tangent_2));
+        self.twist_impulse.set_lane(lane, contact.twist_impulse);
+    }
+
+    /// Sets the friction anchors of lane `lane`: the contact's anchors carried from last step,
+    /// with B's offset from A's along the tangents, unless they slipped apart by more than
+    /// [`FRICTION_ANCHOR_MAX_SLIP`] along the contact plane; else fresh ones at the manifold's
+    /// centre `center`, with no offset.
+    fn set_friction_anchors(&mut self, lane: usize, lane_contact: &LaneContact, center: Vec3A) {
+        let (material_a, material_b) = lane_contact.materials;
+        let normal = self.normal.lane(lane);
+        let carried = lane_contact.contact.friction_anchors.map(|[on_a, on_b]| {
+            let anchor_a = material_a.center_of_mass + material_a.rotation * on_a;
+            let anchor_b = material_b.center_of_mass + material_b.rotation * on_b;
+            ([on_a, on_b], Vec3A::from(anchor_b - anchor_a))
+        });
+        let (anchors, offset) = match carried {
+            Some((anchors, offset))
+                if (offset - normal * normal.dot(offset)).length_squared()
+                    <= FRICTION_ANCHOR_MAX_SLIP * FRICTION_ANCHOR_MAX_SLIP =>
+            {
+                (anchors, offset)
+            }
+            _ => {
+                let center = Vec3::from(center);
+                let fresh = [
+                    material_a.rotation.inverse() * (center - material_a.center_of_mass),
+                    material_b.rotation.inverse() * (center - material_b.center_of_mass),
+                ];
+                (fresh, Vec3A::ZERO)
+            }
+        };
+        self.friction_anchors[lane] = anchors;
+        for axis in 0..2 {
+            let tangent = self.tangents[axis].lane(lane);
+            self.anchor_offset[axis].set_lane(lane, offset.dot(tangent));
+        }
+    }
+
+    /// After the substeps: points that were approaching faster than [`RESTITUTION_THRESHOLD`] and
+    /// pushed this step leave with `v_n = −e · v_n,start`, where their lane's restitution `e` is
+    /// above zero; elsewhere the impulse is zero.
     pub fn apply_restitution(&mut self, states: &mut [BodyState]) {
         if !self.bounces {
             return;
@@ -259,7 +430,7 @@ impl ContactLanes {
     }
 
     /// Writes the accumulated impulses back to the lanes' contacts for the next step's warm
-    /// start, as [`ContactConstraint::store_impulses`] does for one constraint.
+    /// start, and the friction anchors where friction held (`None` where it slid).
     pub fn store_impulses(&self, contacts: &mut [Contact]) {
         let tangents = self.tangents.map(|tangent| tangent.lanes());
         for (lane, &index) in self.contacts.iter().enumerate() {
@@ -289,24 +460,22 @@ impl ContactLanes {
         b.angular_velocity += self.twist_spin_b.scale(impulse);
     }
 
-    /// [`ContactConstraint::warm_start`] of the four lanes. The impulses only add up, so they
-    /// are summed first, `P = Σλ_i n + Σλ_t t + …` and `L_A = Σλ I_A⁻¹(r_A × d)`, and each body
+    /// Applies last step's accumulated impulses again (warm starting). The impulses only add up,
+    /// so they are summed first, `P = Σλ_i n + Σλ_t t + …` and `L_A = Σλ I_A⁻¹(r_A × d)`, and each body
     /// gets `Δv = ±P / m`, `Δω = ∓L_A` or `±L_B` once.
     pub fn warm_start(&self, states: &mut [BodyState]) {
         let mut linear = Vec3x4::default();
         let mut spin_a = self.twist_spin_a.scale(self.twist_impulse);
         let mut spin_b = self.twist_spin_b.scale(self.twist_impulse);
-        let directions = [self.tangents[0], self.tangents[1]];
-        let tangents = self
-            .tangent
-            .iter()
-            .zip(directions)
-            .zip(self.tangent_impulse);
-        let normals = self.points[..self.point_count]
-            .iter()
-            .map(|point| ((&point.normal, self.normal), point.normal_impulse));
-        for ((jacobian, direction), impulse) in normals.chain(tangents) {
-            linear += direction.scale(impulse);
+        for point in &self.points[..self.point_count] {
+            let impulse = point.normal_impulse;
+            linear += self.normal.scale(impulse);
+            spin_a += point.normal.spin_a.scale(impulse);
+            spin_b += point.normal.spin_b.scale(impulse);
+        }
+        for axis in 0..2 {
+            let (jacobian, impulse) = (&self.tangent[axis], self.tangent_impulse[axis]);
+            linear += self.tangents[axis].scale(impulse);
             spin_a += jacobian.spin_a.scale(impulse);
             spin_b += jacobian.spin_b.scale(impulse);
         }
@@ -328,14 +497,20 @@ impl ContactLanes {
         }
     }
 
-    /// [`ContactConstraint::solve`] of the four lanes: the normal impulse of each point, then the
-    /// friction clamped to the cone `|λ_t| ≤ μ Σλ_n` and the twist to `μ Σλ_n r̄`.
-    pub fn solve(
+    /// One sequential-impulse pass of the four lanes: the normal impulse of each point with
+    /// accumulated clamping (the total never pulls), then the manifold's friction clamped to the
+    /// cone `|λ_t| ≤ μ Σλ_n` and its twist to `μ Σλ_n r̄`. A point still apart by `s > 0` may
+    /// close by `s` this substep (speculative contact). With `USE_BIAS`, a point deeper than
+    /// [`LINEAR_SLOP`] is pushed out by a soft constraint, and friction also pulls the anchors
+    /// back together; within the slop the contact is rigid, so a resting contact carries its load
+    /// without the sag a soft spring has under load (docs/physics.md compares the variants).
+    /// Without `USE_BIAS` (the relax pass) only velocities are solved, which removes the energy
+    /// the push added.
+    pub fn solve<const USE_BIAS: bool>(
         &mut self,
         states: &mut [BodyState],
         softness: &Softness,
         inverse_h: f32,
-        use_bias: bool,
     ) {
         let mut a = BodyLanes::gather(states, &self.body_a);
         let mut b = BodyLanes::gather(states, &self.body_b);
@@ -357,7 +532,7 @@ impl ContactLanes {
             // Apart: may close by s this substep. Deeper than the slop (biased pass): soft push
             // out at the bias rate, at most MAX_PUSH_SPEED. Otherwise rigid, no bias.
             let apart = separation.greater_than(F32x4::ZERO);
-            let deep = if use_bias {
+            let deep = if USE_BIAS {
                 separation.less_than(-slop)
             } else {
                 Mask4::NONE
@@ -384,7 +559,7 @@ impl ContactLanes {
         for axis in 0..2 {
             let jacobian = &self.tangent[axis];
             let mut velocity = jacobian.velocity(&a, &b, self.tangents[axis]);
-            if use_bias {
+            if USE_BIAS {
                 // The anchor offset now: start offset plus the motion since, along the tangent.
                 let offset = self.anchor_offset[axis]
                     + self.tangents[axis].dot(relative_motion)

@@ -10,7 +10,7 @@
 //! contact of a column in one colour, and measured, the 20-row pyramid of the tests then drifted
 //! 7.5 cm instead of under 5 cm. Solver body 0, which stands for every static or sleeping body,
 //! never changes velocity and does not count. A constraint whose bodies are in every open colour
-//! goes to the overflow, solved one after another after the lane sets.
+//! goes to the overflow: lane sets of one constraint each, solved after the others.
 
 use super::contact_lanes::LANES;
 
@@ -29,7 +29,8 @@ pub(crate) struct GraphColouring {
     members: Vec<usize>,
     /// Where each lane set ends in `members`.
     set_ends: Vec<usize>,
-    /// Constraints that found no open colour, ascending.
+    /// Constraints that found no open colour, ascending: each becomes a lane set of its own,
+    /// after the others.
     overflow: Vec<usize>,
 }
 
@@ -62,6 +63,10 @@ impl GraphColouring {
             if !self.open[colour].is_empty() {
                 self.close(colour);
             }
+        }
+        for &index in &self.overflow {
+            self.members.push(index);
+            self.set_ends.push(self.members.len());
         }
     }
 
@@ -101,11 +106,6 @@ impl GraphColouring {
             .zip(&self.set_ends)
             .map(|(start, &end)| &self.members[start..end])
     }
-
-    /// The constraints left over, to solve one after another.
-    pub fn overflow(&self) -> &[usize] {
-        &self.overflow
-    }
 }
 
 #[cfg(test)]
@@ -126,15 +126,15 @@ mod tests {
             lane_sets(&colouring),
             [vec![0, 2, 4, 6], vec![1, 3, 5, 8], vec![7, 9]]
         );
-        assert!(colouring.overflow().is_empty());
     }
 
     #[test]
-    fn a_body_in_every_open_colour_overflows() {
+    fn a_body_in_every_open_colour_overflows_into_sets_of_one() {
         let pairs: Vec<_> = (0..OPEN_COLOURS + 2).map(|other| (1, other + 2)).collect();
         let mut colouring = GraphColouring::default();
         colouring.colour(&pairs, OPEN_COLOURS + 4);
         assert!(colouring.lane_sets().all(|members| members.len() == 1));
-        assert_eq!(colouring.overflow(), &[OPEN_COLOURS, OPEN_COLOURS + 1]);
+        let last: Vec<_> = colouring.lane_sets().skip(OPEN_COLOURS).collect();
+        assert_eq!(last, [[OPEN_COLOURS], [OPEN_COLOURS + 1]]);
     }
 }

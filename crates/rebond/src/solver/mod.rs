@@ -8,7 +8,8 @@
 //!
 //! The contacts are solved four at a time: `graph_colour.rs` groups them into lane sets of up to
 //! four that share no moving body, and `contact_lanes.rs` solves a lane set in SIMD lanes
-//! (`wide.rs`). What is left over is solved one contact at a time (`contact_solver.rs`).
+//! (`wide.rs`). What is left over goes into lane sets of one. `contact_solver.rs` holds the
+//! contact model's constants.
 
 mod contact_lanes;
 pub mod contact_solver;
@@ -24,10 +25,8 @@ use crate::integration::{
     integrate_pose, integrate_velocities, SpeedLimits, MAX_ROTATION_PER_SUBSTEP,
 };
 use crate::math::{Mat3, Quat, Vec3, Vec3A};
-use contact_lanes::ContactLanes;
-use contact_solver::{
-    ContactConstraint, CONTACT_DAMPING_RATIO, CONTACT_HERTZ, CONTACT_HERTZ_PER_SUBSTEP_RATE,
-};
+use contact_lanes::{ContactLanes, LaneContact};
+use contact_solver::{CONTACT_DAMPING_RATIO, CONTACT_HERTZ, CONTACT_HERTZ_PER_SUBSTEP_RATE};
 use graph_colour::GraphColouring;
 use softness::Softness;
 
@@ -63,6 +62,9 @@ pub(crate) struct BodyMotion {
     /// `R I⁻¹ Rᵀ` at the start of the step; the contact solver uses it for the whole step.
     pub world_inverse_inertia: Mat3,
     pub local_inertia: Mat3,
+    /// Whether `local_inertia` is `s·1` (spheres, cubes): then `ω × Iω = 0` and the gyroscopic
+    /// step changes nothing.
+    pub has_isotropic_inertia: bool,
     /// User forces plus the constant force, N; and torques, N·m.
     pub force: Vec3,
     pub torque: Vec3,
@@ -79,6 +81,7 @@ impl BodyMotion {
         rotation: Quat::IDENTITY,
         world_inverse_inertia: Mat3::ZERO,
         local_inertia: Mat3::ZERO,
+        has_isotropic_inertia: true,
         force: Vec3::ZERO,
         torque: Vec3::ZERO,
         linear_damping: 0.0,
@@ -92,6 +95,8 @@ impl BodyMotion {
             rotation: body.rotation,
             world_inverse_inertia: body.world_inverse_inertia,
             local_inertia: body.local_inertia,
+            has_isotropic_inertia: body.local_inertia
+                == Mat3::from_diagonal(Vec3::splat(body.local_inertia.x_axis.x)),
             force: body.force + body.constant_force,
             torque: body.torque + body.constant_torque,
             linear_damping: body.linear_damping,
@@ -126,8 +131,6 @@ pub(crate) struct Solver {
     colouring: GraphColouring,
     /// The contacts in lane sets of up to four, in solving order.
     lanes: Vec<ContactLanes>,
-    /// The contacts left over by the colouring, one constraint each.
-    constraints: Vec<ContactConstraint>,
 }
 
 impl Solver {
@@ -158,24 +161,18 @@ impl Solver {
             }
             self.warm_start();
             for _ in 0..BIASED_ITERATIONS {
-                self.solve_contacts(&softness, inverse_h, true);
+                self.solve_contacts::<true>(&softness, inverse_h);
             }
             for (state, motion) in self.states.iter_mut().zip(&mut self.motions).skip(1) {
                 integrate_pose(state, motion, h);
             }
-            self.solve_contacts(&softness, inverse_h, false);
+            self.solve_contacts::<false>(&softness, inverse_h);
         }
         for lanes in &mut self.lanes {
             lanes.apply_restitution(&mut self.states);
         }
-        for constraint in &mut self.constraints {
-            constraint.apply_restitution(&mut self.states);
-        }
         for lanes in &self.lanes {
             lanes.store_impulses(contacts.contacts_mut());
-        }
-        for constraint in &self.constraints {
-            constraint.store_impulses(contacts.contacts_mut());
         }
         self.scatter_bodies(bodies);
     }
@@ -241,67 +238,41 @@ impl Solver {
         Some((solver_a, solver_b, (body_a, body_b)))
     }
 
-    /// Builds the lane sets straight from the contacts, each constraint put into its lane in place,
-    /// and one constraint for each contact of the overflow.
+    /// Builds the lane sets straight from the contacts, lane by lane.
     fn prepare_contacts(&mut self, bodies: &Arena<RigidBody>, contacts: &ContactCache) {
-        self.lanes.clear();
+        let mut lane_sets = std::mem::take(&mut self.lanes);
+        lane_sets.clear();
         for lane_set in self.colouring.lane_sets() {
-            let index = self.lanes.len();
-            self.lanes.push(ContactLanes::EMPTY);
-            for (lane, &pair) in lane_set.iter().enumerate() {
-                if let Some(constraint) = &self.build_constraint(bodies, contacts, pair) {
-                    self.lanes[index].set_lane(lane, constraint, &self.states);
-                }
-            }
+            let lane_contacts = lane_set.iter().filter_map(|&pair| {
+                let index = self.pair_contacts[pair];
+                let contact = &contacts.contacts()[index];
+                let (body_a, body_b, materials) = self.constraint_bodies(bodies, contact)?;
+                Some(LaneContact {
+                    contact,
+                    index,
+                    body_a,
+                    body_b,
+                    materials,
+                })
+            });
+            let index = lane_sets.len();
+            lane_sets.push(ContactLanes::EMPTY);
+            lane_sets[index].fill(lane_contacts, &self.states, &self.motions);
         }
-        self.constraints.clear();
-        for &pair in self.colouring.overflow() {
-            if let Some(constraint) = self.build_constraint(bodies, contacts, pair) {
-                self.constraints.push(constraint);
-            }
-        }
+        self.lanes = lane_sets;
     }
 
-    /// The constraint of pair `pair` of the colouring, or `None` when its contact has no moving
-    /// body.
-    fn build_constraint(
-        &self,
-        bodies: &Arena<RigidBody>,
-        contacts: &ContactCache,
-        pair: usize,
-    ) -> Option<ContactConstraint> {
-        let contact_index = self.pair_contacts[pair];
-        let contact = &contacts.contacts()[contact_index];
-        let (body_a, body_b, materials) = self.constraint_bodies(bodies, contact)?;
-        let states = (&self.states[..], &self.motions[..]);
-        Some(ContactConstraint::new(
-            contact,
-            contact_index,
-            states,
-            body_a,
-            body_b,
-            materials,
-        ))
-    }
-
-    /// Applies last step's impulses again: the lane sets, then the overflow.
+    /// Applies last step's impulses again.
     fn warm_start(&mut self) {
         for lanes in &self.lanes {
             lanes.warm_start(&mut self.states);
         }
-        for constraint in &self.constraints {
-            constraint.warm_start(&mut self.states);
-        }
     }
 
-    /// One pass over every contact (biased or relax): the lane sets in order, then the overflow
-    /// one after another.
-    fn solve_contacts(&mut self, softness: &Softness, inverse_h: f32, use_bias: bool) {
+    /// One pass over every contact (biased with `USE_BIAS`, else relax): the lane sets in order.
+    fn solve_contacts<const USE_BIAS: bool>(&mut self, softness: &Softness, inverse_h: f32) {
         for lanes in &mut self.lanes {
-            lanes.solve(&mut self.states, softness, inverse_h, use_bias);
-        }
-        for constraint in &mut self.constraints {
-            constraint.solve(&mut self.states, softness, inverse_h, use_bias);
+            lanes.solve::<USE_BIAS>(&mut self.states, softness, inverse_h);
         }
     }
 

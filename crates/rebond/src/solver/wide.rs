@@ -9,7 +9,7 @@ use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
 use glam::{BVec4A, Mat4, Vec4};
 
-use crate::math::Vec3A;
+use crate::math::{Mat3, Vec3, Vec3A};
 
 /// Four f32 lanes.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -170,6 +170,11 @@ impl Vec3x4 {
         self.z.set_lane(lane, vector.z);
     }
 
+    /// The vector of lane `lane`.
+    pub fn lane(&self, lane: usize) -> Vec3A {
+        Vec3A::new(self.x.lane(lane), self.y.lane(lane), self.z.lane(lane))
+    }
+
     /// Lane `i` holds `vectors[i]`: a 4×4 transpose (glam's, a few shuffles).
     pub fn from_lanes(vectors: [Vec3A; 4]) -> Self {
         let [a, b, c, d] = vectors;
@@ -193,6 +198,15 @@ impl Vec3x4 {
         ]
     }
 
+    /// `self × other` per lane.
+    pub fn cross(self, other: Self) -> Self {
+        Self {
+            x: self.y * other.z - self.z * other.y,
+            y: self.z * other.x - self.x * other.z,
+            z: self.x * other.y - self.y * other.x,
+        }
+    }
+
     /// `x·x' + y·y' + z·z'` per lane.
     pub fn dot(self, other: Self) -> F32x4 {
         self.x * other.x + self.y * other.y + self.z * other.z
@@ -205,6 +219,33 @@ impl Vec3x4 {
             y: self.y * factor,
             z: self.z * factor,
         }
+    }
+}
+
+/// Four 3×3 matrices, one per lane, by columns.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Mat3x4 {
+    x_axis: Vec3x4,
+    y_axis: Vec3x4,
+    z_axis: Vec3x4,
+}
+
+impl Mat3x4 {
+    /// Lane `i` holds `matrices[i]`.
+    pub fn from_lanes(matrices: [&Mat3; 4]) -> Self {
+        let column = |axis: fn(&Mat3) -> Vec3| {
+            Vec3x4::from_lanes(matrices.map(|matrix| Vec3A::from(axis(matrix))))
+        };
+        Self {
+            x_axis: column(|matrix| matrix.x_axis),
+            y_axis: column(|matrix| matrix.y_axis),
+            z_axis: column(|matrix| matrix.z_axis),
+        }
+    }
+
+    /// `M v` per lane, `x_axis·v.x + y_axis·v.y + z_axis·v.z` (glam's order).
+    pub fn mul_vec3(&self, vector: Vec3x4) -> Vec3x4 {
+        self.x_axis.scale(vector.x) + self.y_axis.scale(vector.y) + self.z_axis.scale(vector.z)
     }
 }
 
