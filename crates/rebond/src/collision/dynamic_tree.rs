@@ -206,9 +206,9 @@ impl DynamicTree {
 
     /// Tells the tree the proxy's tight box is now `tight_aabb`. While it stays inside the fat box
     /// nothing changes and this returns false; once it leaves, the proxy gets a new fat box around
-    /// `tight_aabb` and this returns true. The leaf keeps its place if an ancestor of at most
-    /// [`IN_PLACE_AREA_RATIO`] times the new fat box's area holds that box (only the boxes above
-    /// it are refit), and is reinserted otherwise.
+    /// `tight_aabb` and this returns true. The leaf keeps its place if an ancestor of at most 16
+    /// times the new fat box's half area holds that box (only the boxes above it are refit), and
+    /// is reinserted otherwise.
     ///
     /// # Panics
     /// If `id` does not name a live proxy of this tree.
