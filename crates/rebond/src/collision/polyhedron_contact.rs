@@ -9,6 +9,10 @@
 //! the reference face, see [`crate::collision::clipping`]) or an edge contact (one point between
 //! the two edges). Shapes apart whose closest points no axis measures (a vertex near a vertex or
 //! an edge) get one point between their closest points, found by GJK.
+//!
+//! Two boxes take shortcuts with the same results up to rounding: bounding spheres apart beyond
+//! the margin end the test first, and a face contact is clipped in the reference box's frame
+//! (`box_face_contact`).
 
 use crate::collision::clipping::{
     clip_by_sides, clip_polygon_within, reduce_contacts_on_face, ClipFeature, ClipPolygon,
