@@ -353,12 +353,11 @@ fn polygon_face_contact(
     let deepest_vertex = incident.support_index(-toward_incident);
     let mut incident_face = 0;
     let mut most_opposed = f32::INFINITY;
+    // The alignment is measured first: a face's loop is searched for the vertex only when the
+    // face would be kept.
     for face in 0..incident.face_count() {
-        if !incident.face_has_vertex(face, deepest_vertex) {
-            continue;
-        }
         let alignment = incident.face_plane(face).normal.dot(toward_incident);
-        if alignment < most_opposed {
+        if alignment < most_opposed && incident.face_has_vertex(face, deepest_vertex) {
             most_opposed = alignment;
             incident_face = face;
         }
