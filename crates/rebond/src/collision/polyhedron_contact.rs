@@ -9,6 +9,10 @@
 //! the reference face, see [`crate::collision::clipping`]) or an edge contact (one point between
 //! the two edges). Shapes apart whose closest points no axis measures (a vertex near a vertex or
 //! an edge) get one point between their closest points, found by GJK.
+//!
+//! Two boxes take shortcuts with the same results up to rounding: bounding spheres apart beyond
+//! the margin end the test first, and a face contact is clipped in the reference box's frame
+//! (`box_face_contact`).
 
 use crate::collision::clipping::{
     clip_by_sides, clip_polygon_within, reduce_contacts_on_face, ClipFeature, ClipPolygon,
@@ -349,12 +353,11 @@ fn polygon_face_contact(
     let deepest_vertex = incident.support_index(-toward_incident);
     let mut incident_face = 0;
     let mut most_opposed = f32::INFINITY;
+    // The alignment is measured first: a face's loop is searched for the vertex only when the
+    // face would be kept.
     for face in 0..incident.face_count() {
-        if !incident.face_has_vertex(face, deepest_vertex) {
-            continue;
-        }
         let alignment = incident.face_plane(face).normal.dot(toward_incident);
-        if alignment < most_opposed {
+        if alignment < most_opposed && incident.face_has_vertex(face, deepest_vertex) {
             most_opposed = alignment;
             incident_face = face;
         }
