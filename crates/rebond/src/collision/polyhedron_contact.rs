@@ -152,14 +152,6 @@ pub fn collide_polyhedra(
     if a.face_count() == 0 || b.face_count() == 0 {
         return None;
     }
-    if let (Topology::Cuboid(half_a), Topology::Cuboid(half_b)) = (a.topology, b.topology) {
-        // Boxes whose bounding spheres (radius |h| about the centre) are apart by more than the
-        // margin are apart by more than the margin.
-        let reach = half_a.length() + half_b.length() + margin;
-        if pose_a.position.distance_squared(pose_b.position) > reach * reach {
-            return None;
-        }
-    }
     let b_in_a = Frame::relative(pose_a, pose_b);
     let face_a = best_face_axis(a, b, &b_in_a);
     if face_a.separation > margin {
