@@ -502,7 +502,11 @@ impl RigidBody {
     /// The bounding box grown to hold the body wherever its current velocities carry it within
     /// `dt` seconds: shifted along `v dt`, and grown by `|ω| r_max dt` for the turning.
     pub fn swept_aabb(&self, dt: f32) -> Aabb {
-        let bounds = self.aabb();
+        self.sweep_aabb(self.aabb(), dt)
+    }
+
+    /// [`swept_aabb`](Self::swept_aabb) from the body's bounding box `bounds`, already computed.
+    pub(crate) fn sweep_aabb(&self, bounds: Aabb, dt: f32) -> Aabb {
         let travel = self.linear_velocity * dt;
         let turn = Vec3::splat(self.angular_velocity.length() * self.max_extent * dt);
         Aabb::new(

@@ -10,7 +10,7 @@ use crate::error::{check_finite_vector, check_positive, Error, ErrorKind, Result
 use crate::events::{ContactEvent, ContactForceEvent, EventTracker, SensorEvent};
 use crate::filter::{ordered, IgnoredPairs, InteractionGroups};
 use crate::island::Islands;
-use crate::math::Vec3;
+use crate::math::{Aabb, Vec3};
 use crate::solver::{Solver, StepSettings};
 
 /// Default gravity, m/s²: Earth's, along −Y.
@@ -92,6 +92,8 @@ pub struct World {
     events: EventTracker,
     /// Pairs the narrow phase ran on in the last step (recycled and sleeping pairs excepted).
     narrow_phase_pair_tests: usize,
+    /// Each body's bounding box at the start of this step, by arena slot (scratch, reused).
+    bounds_of_slot: Vec<Aabb>,
 }
 
 impl World {
@@ -109,6 +111,7 @@ impl World {
             ignored_pairs: IgnoredPairs::default(),
             events: EventTracker::default(),
             narrow_phase_pair_tests: 0,
+            bounds_of_slot: Vec::new(),
         })
     }
 
@@ -367,11 +370,18 @@ impl World {
             ignored_pairs,
             events,
             narrow_phase_pair_tests,
+            bounds_of_slot,
             ..
         } = self;
-        for (_, body) in bodies.iter() {
+        for (index, body) in bodies.iter() {
+            let bounds = body.aabb();
+            let slot = index.slot();
+            if bounds_of_slot.len() <= slot {
+                bounds_of_slot.resize(slot + 1, bounds);
+            }
+            bounds_of_slot[slot] = bounds;
             if let Some(proxy) = body.proxy {
-                broad_phase.update(proxy, body.swept_aabb(dt));
+                broad_phase.update(proxy, body.sweep_aabb(bounds, dt));
             }
         }
         broad_phase.update_pairs_filtered(|key_a, key_b| {
@@ -417,13 +427,21 @@ impl World {
             if contacts.recycle(body_a_handle, body_b_handle, &pose_a, &pose_b) {
                 continue;
             }
+            let margin = SPECULATIVE_DISTANCE + dt * closing_speed_bound(body_a, body_b);
+            if !bounds_within(
+                &bounds_of_slot[key_a as usize],
+                &bounds_of_slot[key_b as usize],
+                margin,
+            ) {
+                continue;
+            }
             *narrow_phase_pair_tests += 1;
             narrow_phase.collide(
                 &body_a.shape,
                 &pose_a,
                 &body_b.shape,
                 &pose_b,
-                SPECULATIVE_DISTANCE + dt * closing_speed_bound(body_a, body_b),
+                margin,
                 |child_a, child_b, manifold| {
                     let key = ContactKey {
                         body_a: body_a_handle,
@@ -478,6 +496,13 @@ impl World {
 }
 
 /// `|v_A − v_B| + |ω_A| r_A + |ω_B| r_B`: no two points of the bodies close in faster, m/s.
+/// Whether two bounding boxes come within `margin` of each other on every axis: a necessary
+/// condition for their shapes to come within `margin`, so a pair that fails it has no contact.
+fn bounds_within(a: &Aabb, b: &Aabb, margin: f32) -> bool {
+    let gap = (a.min - b.max).max(b.min - a.max);
+    gap.cmple(Vec3::splat(margin)).all()
+}
+
 fn closing_speed_bound(a: &RigidBody, b: &RigidBody) -> f32 {
     (a.linear_velocity - b.linear_velocity).length()
         + a.max_extent * a.angular_velocity.length()

@@ -157,11 +157,13 @@ impl ContactCache {
     ) -> bool {
         let previous = self.previous_of_pair(body_a, body_b);
         let previous = &self.previous[previous];
+        if previous.is_empty() {
+            return false;
+        }
         let relative_pose = pose_a.inverse().mul_pose(pose_b);
-        if previous.is_empty()
-            || !previous
-                .iter()
-                .all(|contact| contact.frame.still_fits(&relative_pose))
+        if !previous
+            .iter()
+            .all(|contact| contact.frame.still_fits(&relative_pose))
         {
             return false;
         }
