@@ -3,7 +3,9 @@
 
 use std::ops::Range;
 
+use super::gjk::SimplexCache;
 use super::manifold::{Manifold, MAX_MANIFOLD_POINTS};
+use super::narrow_phase::PartContacts;
 use crate::body::BodyHandle;
 use crate::math::{Pose, Vec3};
 
@@ -109,6 +111,10 @@ pub struct Contact {
     /// They live as long as the manifold is recycled; `None` for a fresh manifold and after the
     /// contact slid.
     pub(crate) friction_anchors: Option<[Vec3; 2]>,
+    /// The simplex GJK ended with when the manifold was computed, to start from at the next
+    /// query (empty when the pair's routine runs no GJK). Its points are in the shapes' own
+    /// frames, which a body's shape never leaves: a shape never changes under its handle.
+    pub(crate) simplex: SimplexCache,
 }
 
 /// This step's contacts, sorted by key, and last step's, kept to warm-start from.
@@ -119,6 +125,9 @@ pub struct ContactCache {
     /// Where in `previous` the last pair asked for ended: the world asks for pairs in key order
     /// (the broad phase's pairs are sorted), so the next one is found by walking on from there.
     previous_cursor: usize,
+    /// The pair last asked for and where its contacts lie in `previous`: the narrow phase asks
+    /// again for the pair whose recycling just failed.
+    last_pair: Option<(BodyHandle, BodyHandle, Range<usize>)>,
 }
 
 impl ContactCache {
@@ -128,11 +137,20 @@ impl ContactCache {
         std::mem::swap(&mut self.current, &mut self.previous);
         self.current.clear();
         self.previous_cursor = 0;
+        self.last_pair = None;
     }
 
     /// Adds a contact found this step by the narrow phase with the bodies at `pose_a` and
-    /// `pose_b`, with zero impulses until [`ContactCache::finish_step`].
-    pub fn push(&mut self, key: ContactKey, manifold: Manifold, pose_a: &Pose, pose_b: &Pose) {
+    /// `pose_b`, GJK having ended with `simplex`, with zero impulses until
+    /// [`ContactCache::finish_step`].
+    pub fn push(
+        &mut self,
+        key: ContactKey,
+        manifold: Manifold,
+        pose_a: &Pose,
+        pose_b: &Pose,
+        simplex: SimplexCache,
+    ) {
         self.current.push(Contact {
             key,
             manifold,
@@ -141,7 +159,26 @@ impl ContactCache {
             twist_impulse: 0.0,
             frame: ManifoldFrame::new(&manifold, pose_a, pose_b),
             friction_anchors: None,
+            simplex,
         });
+    }
+
+    /// The contacts between `body_a` (at `pose_a`) and `body_b` (at `pose_b`) the narrow phase
+    /// is about to find, with last step's contacts of the pair to start GJK from.
+    pub fn pair<'a>(
+        &'a mut self,
+        body_a: BodyHandle,
+        body_b: BodyHandle,
+        pose_a: &'a Pose,
+        pose_b: &'a Pose,
+    ) -> PairContacts<'a> {
+        let previous = self.previous_of_pair(body_a, body_b);
+        PairContacts {
+            cache: self,
+            bodies: (body_a, body_b),
+            poses: (pose_a, pose_b),
+            previous,
+        }
     }
 
     /// Rebuilds last step's contacts between `body_a` (now at `pose_a`) and `body_b` (at
@@ -185,8 +222,14 @@ impl ContactCache {
 
     /// Where last step's contacts between `body_a` and `body_b` lie in `previous`, which is
     /// sorted by key. Walks on from the pair asked for before, which costs a few comparisons when
-    /// pairs are asked for in key order; a pair asked for out of order is found by binary search.
+    /// pairs are asked for in key order; a pair asked for again is remembered, and one asked for
+    /// out of order is found by binary search.
     fn previous_of_pair(&mut self, body_a: BodyHandle, body_b: BodyHandle) -> Range<usize> {
+        if let Some((last_a, last_b, range)) = &self.last_pair {
+            if (*last_a, *last_b) == (body_a, body_b) {
+                return range.clone();
+            }
+        }
         let pair = |contact: &Contact| (contact.key.body_a, contact.key.body_b);
         let wanted = (body_a, body_b);
         let previous = &self.previous;
@@ -209,6 +252,7 @@ impl ContactCache {
             end += 1;
         }
         self.previous_cursor = end;
+        self.last_pair = Some((body_a, body_b, start..end));
         start..end
     }
 
@@ -260,6 +304,44 @@ impl ContactCache {
     }
 }
 
+/// The contacts of one pair of bodies as the narrow phase finds them (see [`ContactCache::pair`]).
+pub struct PairContacts<'a> {
+    cache: &'a mut ContactCache,
+    bodies: (BodyHandle, BodyHandle),
+    poses: (&'a Pose, &'a Pose),
+    /// The pair's contacts of last step not yet passed, sorted by children.
+    previous: Range<usize>,
+}
+
+impl PartContacts for PairContacts<'_> {
+    /// The parts are asked for in key order, so the search walks on from the last one asked.
+    fn previous_simplex(&mut self, child_a: u32, child_b: u32) -> SimplexCache {
+        let previous = &self.cache.previous[self.previous.clone()];
+        let children = |contact: &Contact| (contact.key.child_a, contact.key.child_b);
+        let passed = previous
+            .iter()
+            .take_while(|contact| children(contact) < (child_a, child_b))
+            .count();
+        let simplex = previous
+            .get(passed)
+            .filter(|contact| children(contact) == (child_a, child_b))
+            .map_or(SimplexCache::default(), |contact| contact.simplex);
+        self.previous.start += passed;
+        simplex
+    }
+
+    fn add(&mut self, child_a: u32, child_b: u32, manifold: Manifold, simplex: SimplexCache) {
+        let key = ContactKey {
+            body_a: self.bodies.0,
+            body_b: self.bodies.1,
+            child_a,
+            child_b,
+        };
+        let (pose_a, pose_b) = self.poses;
+        self.cache.push(key, manifold, pose_a, pose_b, simplex);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -306,12 +388,14 @@ mod tests {
             manifold(&[5]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
+            SimplexCache::default(),
         );
         cache.push(
             key(ground, box_one),
             manifold(&[1, 2, 3, 4]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
+            SimplexCache::default(),
         );
         cache.finish_step();
         assert_eq!(cache.contacts()[0].key, key(ground, box_one));
@@ -331,12 +415,14 @@ mod tests {
             manifold(&[4, 2, 7]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
+            SimplexCache::default(),
         );
         cache.push(
             key(box_one, box_two),
             manifold(&[5]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
+            SimplexCache::default(),
         );
         cache.finish_step();
         let contacts = cache.contacts();
@@ -347,8 +433,8 @@ mod tests {
         assert_eq!(contacts[1].normal_impulses[0], 0.0);
     }
 
-    /// Pairs asked for in key order are found by walking on; out of order, by binary search:
-    /// either way each gets exactly its own contacts.
+    /// Pairs asked for in key order are found by walking on, a pair asked for again from memory,
+    /// and out of order by binary search: either way each gets exactly its own contacts.
     #[test]
     fn previous_contacts_are_found_in_and_out_of_order() {
         let (ground, box_one, box_two) = handles();
@@ -359,7 +445,13 @@ mod tests {
             (ground, box_two, &[3]),
             (box_one, box_two, &[4, 5, 6]),
         ] {
-            cache.push(key(a, b), manifold(ids), &Pose::IDENTITY, &Pose::IDENTITY);
+            cache.push(
+                key(a, b),
+                manifold(ids),
+                &Pose::IDENTITY,
+                &Pose::IDENTITY,
+                SimplexCache::default(),
+            );
         }
         cache.finish_step();
         let kept_in_order = |cache: &mut ContactCache, pairs: &[(BodyHandle, BodyHandle)]| {
@@ -382,11 +474,13 @@ mod tests {
         assert_eq!(kept_in_order(&mut cache, &all), [2, 1, 3]);
         let shuffled = [
             (box_one, box_two),
+            (box_one, box_two),
             (ground, box_two),
             (box_two, ground),
             (ground, box_one),
+            (ground, box_one),
         ];
-        assert_eq!(kept_in_order(&mut cache, &shuffled), [3, 1, 0, 2]);
+        assert_eq!(kept_in_order(&mut cache, &shuffled), [3, 3, 1, 0, 2, 2]);
     }
 
     #[test]
@@ -399,12 +493,14 @@ mod tests {
             manifold(&[1]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
+            SimplexCache::default(),
         );
         cache.push(
             key(ground, box_two),
             manifold(&[1]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
+            SimplexCache::default(),
         );
         cache.finish_step();
         cache.remove_body(box_one);
@@ -428,7 +524,13 @@ mod tests {
         let start = Pose::from_position(Vec3::new(0.0, 0.495, 0.0));
         let mut cache = ContactCache::default();
         cache.begin_step();
-        cache.push(key(ground, box_one), collide(&start), &ground_pose, &start);
+        cache.push(
+            key(ground, box_one),
+            collide(&start),
+            &ground_pose,
+            &start,
+            SimplexCache::default(),
+        );
         cache.finish_step();
 
         // Moved by 0.6 mm and turned by 0.5°: within the tolerances, rebuilt.
