@@ -111,10 +111,10 @@ pub struct Contact {
     /// They live as long as the manifold is recycled; `None` for a fresh manifold and after the
     /// contact slid.
     pub(crate) friction_anchors: Option<[Vec3; 2]>,
-    /// The simplex GJK ended with when the manifold was computed, to start from at the next
-    /// query (empty when the pair's routine runs no GJK). Its points are in the shapes' own
-    /// frames, which a body's shape never leaves: a shape never changes under its handle.
-    pub(crate) simplex: SimplexCache,
+    /// Where the cache keeps the simplex GJK ended with when the manifold was computed, to start
+    /// from at the next query; `None` when the pair's routine runs no GJK. Kept aside, so that
+    /// contacts without one stay small to copy and sort.
+    simplex: Option<u32>,
 }
 
 /// This step's contacts, sorted by key, and last step's, kept to warm-start from.
@@ -125,9 +125,13 @@ pub struct ContactCache {
     /// Where in `previous` the last pair asked for ended: the world asks for pairs in key order
     /// (the broad phase's pairs are sorted), so the next one is found by walking on from there.
     previous_cursor: usize,
-    /// The pair last asked for and where its contacts lie in `previous`: the narrow phase asks
-    /// again for the pair whose recycling just failed.
-    last_pair: Option<(BodyHandle, BodyHandle, Range<usize>)>,
+    /// Where in `previous` the last pair asked for started: the narrow phase asks again for the
+    /// pair whose recycling just failed.
+    previous_pair_start: usize,
+    /// The simplices of this step's contacts, and of last step's. Their points are in the shapes'
+    /// own frames, which a body's shape never leaves: a shape never changes under its handle.
+    simplices: Vec<SimplexCache>,
+    previous_simplices: Vec<SimplexCache>,
 }
 
 impl ContactCache {
@@ -136,8 +140,10 @@ impl ContactCache {
     pub fn begin_step(&mut self) {
         std::mem::swap(&mut self.current, &mut self.previous);
         self.current.clear();
+        std::mem::swap(&mut self.simplices, &mut self.previous_simplices);
+        self.simplices.clear();
         self.previous_cursor = 0;
-        self.last_pair = None;
+        self.previous_pair_start = 0;
     }
 
     /// Adds a contact found this step by the narrow phase with the bodies at `pose_a` and
@@ -151,6 +157,7 @@ impl ContactCache {
         pose_b: &Pose,
         simplex: SimplexCache,
     ) {
+        let simplex = keep_simplex(&mut self.simplices, simplex);
         self.current.push(Contact {
             key,
             manifold,
@@ -208,6 +215,7 @@ impl ContactCache {
         self.current.extend_from_slice(previous);
         for contact in &mut self.current[start..] {
             contact.manifold = contact.frame.rebuild(&contact.manifold, pose_a, pose_b);
+            carry_simplex(contact, &self.previous_simplices, &mut self.simplices);
         }
         true
     }
@@ -217,7 +225,11 @@ impl ContactCache {
     /// must be ready the moment they wake.
     pub fn keep_previous(&mut self, body_a: BodyHandle, body_b: BodyHandle) {
         let previous = self.previous_of_pair(body_a, body_b);
+        let start = self.current.len();
         self.current.extend_from_slice(&self.previous[previous]);
+        for contact in &mut self.current[start..] {
+            carry_simplex(contact, &self.previous_simplices, &mut self.simplices);
+        }
     }
 
     /// Where last step's contacts between `body_a` and `body_b` lie in `previous`, which is
@@ -225,16 +237,15 @@ impl ContactCache {
     /// pairs are asked for in key order; a pair asked for again is remembered, and one asked for
     /// out of order is found by binary search.
     fn previous_of_pair(&mut self, body_a: BodyHandle, body_b: BodyHandle) -> Range<usize> {
-        if let Some((last_a, last_b, range)) = &self.last_pair {
-            if (*last_a, *last_b) == (body_a, body_b) {
-                return range.clone();
-            }
-        }
         let pair = |contact: &Contact| (contact.key.body_a, contact.key.body_b);
         let wanted = (body_a, body_b);
         let previous = &self.previous;
         let mut start = self.previous_cursor.min(previous.len());
         if start > 0 && pair(&previous[start - 1]) >= wanted {
+            // The contact before the cursor ends the range last asked for when it was not empty.
+            if self.previous_pair_start < start && pair(&previous[start - 1]) == wanted {
+                return self.previous_pair_start..start;
+            }
             start = previous.partition_point(|contact| pair(contact) < wanted);
         } else {
             while previous
@@ -252,7 +263,7 @@ impl ContactCache {
             end += 1;
         }
         self.previous_cursor = end;
-        self.last_pair = Some((body_a, body_b, start..end));
+        self.previous_pair_start = start;
         start..end
     }
 
@@ -304,6 +315,28 @@ impl ContactCache {
     }
 }
 
+/// Keeps `simplex` in `simplices` unless it is empty, and returns where.
+fn keep_simplex(simplices: &mut Vec<SimplexCache>, simplex: SimplexCache) -> Option<u32> {
+    if simplex.is_empty() {
+        return None;
+    }
+    let index = u32::try_from(simplices.len()).ok()?;
+    simplices.push(simplex);
+    Some(index)
+}
+
+/// Moves the simplex of `contact`, carried over from last step, from `previous` to `simplices`.
+fn carry_simplex(
+    contact: &mut Contact,
+    previous: &[SimplexCache],
+    simplices: &mut Vec<SimplexCache>,
+) {
+    if let Some(index) = contact.simplex {
+        let simplex = previous.get(index as usize).copied().unwrap_or_default();
+        contact.simplex = keep_simplex(simplices, simplex);
+    }
+}
+
 /// The contacts of one pair of bodies as the narrow phase finds them (see [`ContactCache::pair`]).
 pub struct PairContacts<'a> {
     cache: &'a mut ContactCache,
@@ -325,7 +358,10 @@ impl PartContacts for PairContacts<'_> {
         let simplex = previous
             .get(passed)
             .filter(|contact| children(contact) == (child_a, child_b))
-            .map_or(SimplexCache::default(), |contact| contact.simplex);
+            .and_then(|contact| contact.simplex)
+            .and_then(|index| self.cache.previous_simplices.get(index as usize))
+            .copied()
+            .unwrap_or_default();
         self.previous.start += passed;
         simplex
     }
@@ -481,6 +517,56 @@ mod tests {
             (ground, box_one),
         ];
         assert_eq!(kept_in_order(&mut cache, &shuffled), [3, 3, 1, 0, 2, 2]);
+    }
+
+    /// Each pair of compound parts gets back the simplex it left, through recycling too, and a
+    /// pair of parts with none starts cold.
+    #[test]
+    fn simplices_come_back_to_their_own_parts() {
+        use crate::collision::gjk::{Simplex, SupportPoint};
+        use crate::collision::{PosedCore, RelativeCore};
+        use crate::shape::Shape;
+
+        let (ground, body, _) = handles();
+        let shape = Shape::sphere(1.0).unwrap();
+        let placed = RelativeCore::new(&PosedCore::new(&shape, &Pose::IDENTITY), &Pose::IDENTITY);
+        let simplex_at = |x: f32| {
+            let w = Vec3::new(x, 0.0, 0.0);
+            let (simplex, _) = Simplex::reduced(&[SupportPoint {
+                a: w,
+                b: Vec3::ZERO,
+                w,
+            }]);
+            SimplexCache::new(&simplex, &placed)
+        };
+        let parts = [(0, 1, 1.0), (1, 0, 2.0), (1, 2, 3.0)];
+        let mut cache = ContactCache::default();
+        cache.begin_step();
+        for (child_a, child_b, x) in parts {
+            let key = ContactKey {
+                child_a,
+                child_b,
+                ..key(ground, body)
+            };
+            cache.push(
+                key,
+                manifold(&[1]),
+                &Pose::IDENTITY,
+                &Pose::IDENTITY,
+                simplex_at(x),
+            );
+        }
+        cache.finish_step();
+        let identity = Pose::IDENTITY;
+        cache.begin_step();
+        assert!(cache.recycle(ground, body, &identity, &identity));
+        cache.finish_step();
+        cache.begin_step();
+        let mut pair = cache.pair(ground, body, &identity, &identity);
+        for (child_a, child_b, expected) in [(0, 0, None), (0, 1, Some(1.0)), (1, 2, Some(3.0))] {
+            let found = pair.previous_simplex(child_a, child_b);
+            assert_eq!(found, expected.map_or(SimplexCache::default(), simplex_at));
+        }
     }
 
     #[test]

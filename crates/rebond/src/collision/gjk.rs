@@ -175,6 +175,11 @@ pub struct SimplexCache {
 }
 
 impl SimplexCache {
+    /// Whether no simplex is kept: the query starts cold.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
     /// Keeps `simplex`, found in A's frame with B placed there as `b`.
     pub(crate) fn new(simplex: &Simplex, b: &RelativeCore) -> Self {
         let mut local_points = [[Vec3::ZERO; 2]; 4];
