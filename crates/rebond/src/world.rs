@@ -3,7 +3,7 @@
 use crate::arena::Arena;
 use crate::body::{BodyDesc, BodyHandle, BodyType, RigidBody};
 use crate::collision::broad_phase::BroadPhase;
-use crate::collision::contact_cache::{Contact, ContactCache, ContactKey};
+use crate::collision::contact_cache::{Contact, ContactCache};
 use crate::collision::narrow_phase::NarrowPhase;
 use crate::collision::SPECULATIVE_DISTANCE;
 use crate::error::{check_finite_vector, check_positive, Error, ErrorKind, Result};
@@ -442,15 +442,7 @@ impl World {
                 &body_b.shape,
                 &pose_b,
                 margin,
-                |child_a, child_b, manifold| {
-                    let key = ContactKey {
-                        body_a: body_a_handle,
-                        body_b: body_b_handle,
-                        child_a,
-                        child_b,
-                    };
-                    contacts.push(key, manifold, &pose_a, &pose_b);
-                },
+                &mut contacts.pair(body_a_handle, body_b_handle, &pose_a, &pose_b),
             );
         }
         contacts.finish_step();

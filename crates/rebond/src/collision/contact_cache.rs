@@ -3,7 +3,9 @@
 
 use std::ops::Range;
 
+use super::gjk::SimplexCache;
 use super::manifold::{Manifold, MAX_MANIFOLD_POINTS};
+use super::narrow_phase::PartContacts;
 use crate::body::BodyHandle;
 use crate::math::{Pose, Vec3};
 
@@ -109,6 +111,10 @@ pub struct Contact {
     /// They live as long as the manifold is recycled; `None` for a fresh manifold and after the
     /// contact slid.
     pub(crate) friction_anchors: Option<[Vec3; 2]>,
+    /// Where the cache keeps the simplex GJK ended with when the manifold was computed, to start
+    /// from at the next query; `None` when the pair's routine runs no GJK. Kept aside, so that
+    /// contacts without one stay small to copy and sort.
+    simplex: Option<u32>,
 }
 
 /// This step's contacts, sorted by key, and last step's, kept to warm-start from.
@@ -119,6 +125,13 @@ pub struct ContactCache {
     /// Where in `previous` the last pair asked for ended: the world asks for pairs in key order
     /// (the broad phase's pairs are sorted), so the next one is found by walking on from there.
     previous_cursor: usize,
+    /// Where in `previous` the last pair asked for started: the narrow phase asks again for the
+    /// pair whose recycling just failed.
+    previous_pair_start: usize,
+    /// The simplices of this step's contacts, and of last step's. Their points are in the shapes'
+    /// own frames, which a body's shape never leaves: a shape never changes under its handle.
+    simplices: Vec<SimplexCache>,
+    previous_simplices: Vec<SimplexCache>,
 }
 
 impl ContactCache {
@@ -127,12 +140,24 @@ impl ContactCache {
     pub fn begin_step(&mut self) {
         std::mem::swap(&mut self.current, &mut self.previous);
         self.current.clear();
+        std::mem::swap(&mut self.simplices, &mut self.previous_simplices);
+        self.simplices.clear();
         self.previous_cursor = 0;
+        self.previous_pair_start = 0;
     }
 
     /// Adds a contact found this step by the narrow phase with the bodies at `pose_a` and
-    /// `pose_b`, with zero impulses until [`ContactCache::finish_step`].
-    pub fn push(&mut self, key: ContactKey, manifold: Manifold, pose_a: &Pose, pose_b: &Pose) {
+    /// `pose_b`, GJK having ended with `simplex`, with zero impulses until
+    /// [`ContactCache::finish_step`].
+    pub fn push(
+        &mut self,
+        key: ContactKey,
+        manifold: Manifold,
+        pose_a: &Pose,
+        pose_b: &Pose,
+        simplex: SimplexCache,
+    ) {
+        let simplex = keep_simplex(&mut self.simplices, simplex);
         self.current.push(Contact {
             key,
             manifold,
@@ -141,7 +166,26 @@ impl ContactCache {
             twist_impulse: 0.0,
             frame: ManifoldFrame::new(&manifold, pose_a, pose_b),
             friction_anchors: None,
+            simplex,
         });
+    }
+
+    /// The contacts between `body_a` (at `pose_a`) and `body_b` (at `pose_b`) the narrow phase
+    /// is about to find, with last step's contacts of the pair to start GJK from.
+    pub fn pair<'a>(
+        &'a mut self,
+        body_a: BodyHandle,
+        body_b: BodyHandle,
+        pose_a: &'a Pose,
+        pose_b: &'a Pose,
+    ) -> PairContacts<'a> {
+        let previous = self.previous_of_pair(body_a, body_b);
+        PairContacts {
+            cache: self,
+            bodies: (body_a, body_b),
+            poses: (pose_a, pose_b),
+            previous,
+        }
     }
 
     /// Rebuilds last step's contacts between `body_a` (now at `pose_a`) and `body_b` (at
@@ -171,6 +215,7 @@ impl ContactCache {
         self.current.extend_from_slice(previous);
         for contact in &mut self.current[start..] {
             contact.manifold = contact.frame.rebuild(&contact.manifold, pose_a, pose_b);
+            carry_simplex(contact, &self.previous_simplices, &mut self.simplices);
         }
         true
     }
@@ -180,18 +225,27 @@ impl ContactCache {
     /// must be ready the moment they wake.
     pub fn keep_previous(&mut self, body_a: BodyHandle, body_b: BodyHandle) {
         let previous = self.previous_of_pair(body_a, body_b);
+        let start = self.current.len();
         self.current.extend_from_slice(&self.previous[previous]);
+        for contact in &mut self.current[start..] {
+            carry_simplex(contact, &self.previous_simplices, &mut self.simplices);
+        }
     }
 
     /// Where last step's contacts between `body_a` and `body_b` lie in `previous`, which is
     /// sorted by key. Walks on from the pair asked for before, which costs a few comparisons when
-    /// pairs are asked for in key order; a pair asked for out of order is found by binary search.
+    /// pairs are asked for in key order; a pair asked for again is remembered, and one asked for
+    /// out of order is found by binary search.
     fn previous_of_pair(&mut self, body_a: BodyHandle, body_b: BodyHandle) -> Range<usize> {
         let pair = |contact: &Contact| (contact.key.body_a, contact.key.body_b);
         let wanted = (body_a, body_b);
         let previous = &self.previous;
         let mut start = self.previous_cursor.min(previous.len());
         if start > 0 && pair(&previous[start - 1]) >= wanted {
+            // The contact before the cursor ends the range last asked for when it was not empty.
+            if self.previous_pair_start < start && pair(&previous[start - 1]) == wanted {
+                return self.previous_pair_start..start;
+            }
             start = previous.partition_point(|contact| pair(contact) < wanted);
         } else {
             while previous
@@ -209,6 +263,7 @@ impl ContactCache {
             end += 1;
         }
         self.previous_cursor = end;
+        self.previous_pair_start = start;
         start..end
     }
 
@@ -260,6 +315,69 @@ impl ContactCache {
     }
 }
 
+/// Keeps `simplex` in `simplices` unless it is empty, and returns where.
+fn keep_simplex(simplices: &mut Vec<SimplexCache>, simplex: SimplexCache) -> Option<u32> {
+    if simplex.is_empty() {
+        return None;
+    }
+    let index = u32::try_from(simplices.len()).ok()?;
+    simplices.push(simplex);
+    Some(index)
+}
+
+/// Moves the simplex of `contact`, carried over from last step, from `previous` to `simplices`.
+fn carry_simplex(
+    contact: &mut Contact,
+    previous: &[SimplexCache],
+    simplices: &mut Vec<SimplexCache>,
+) {
+    if let Some(index) = contact.simplex {
+        let simplex = previous.get(index as usize).copied().unwrap_or_default();
+        contact.simplex = keep_simplex(simplices, simplex);
+    }
+}
+
+/// The contacts of one pair of bodies as the narrow phase finds them (see [`ContactCache::pair`]).
+pub struct PairContacts<'a> {
+    cache: &'a mut ContactCache,
+    bodies: (BodyHandle, BodyHandle),
+    poses: (&'a Pose, &'a Pose),
+    /// The pair's contacts of last step not yet passed, sorted by children.
+    previous: Range<usize>,
+}
+
+impl PartContacts for PairContacts<'_> {
+    /// The parts are asked for in key order, so the search walks on from the last one asked.
+    fn previous_simplex(&mut self, child_a: u32, child_b: u32) -> SimplexCache {
+        let previous = &self.cache.previous[self.previous.clone()];
+        let children = |contact: &Contact| (contact.key.child_a, contact.key.child_b);
+        let passed = previous
+            .iter()
+            .take_while(|contact| children(contact) < (child_a, child_b))
+            .count();
+        let simplex = previous
+            .get(passed)
+            .filter(|contact| children(contact) == (child_a, child_b))
+            .and_then(|contact| contact.simplex)
+            .and_then(|index| self.cache.previous_simplices.get(index as usize))
+            .copied()
+            .unwrap_or_default();
+        self.previous.start += passed;
+        simplex
+    }
+
+    fn add(&mut self, child_a: u32, child_b: u32, manifold: Manifold, simplex: SimplexCache) {
+        let key = ContactKey {
+            body_a: self.bodies.0,
+            body_b: self.bodies.1,
+            child_a,
+            child_b,
+        };
+        let (pose_a, pose_b) = self.poses;
+        self.cache.push(key, manifold, pose_a, pose_b, simplex);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -306,12 +424,14 @@ mod tests {
             manifold(&[5]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
+            SimplexCache::default(),
         );
         cache.push(
             key(ground, box_one),
             manifold(&[1, 2, 3, 4]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
+            SimplexCache::default(),
         );
         cache.finish_step();
         assert_eq!(cache.contacts()[0].key, key(ground, box_one));
@@ -331,12 +451,14 @@ mod tests {
             manifold(&[4, 2, 7]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
+            SimplexCache::default(),
         );
         cache.push(
             key(box_one, box_two),
             manifold(&[5]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
+            SimplexCache::default(),
         );
         cache.finish_step();
         let contacts = cache.contacts();
@@ -347,8 +469,8 @@ mod tests {
         assert_eq!(contacts[1].normal_impulses[0], 0.0);
     }
 
-    /// Pairs asked for in key order are found by walking on; out of order, by binary search:
-    /// either way each gets exactly its own contacts.
+    /// Pairs asked for in key order are found by walking on, a pair asked for again from memory,
+    /// and out of order by binary search: either way each gets exactly its own contacts.
     #[test]
     fn previous_contacts_are_found_in_and_out_of_order() {
         let (ground, box_one, box_two) = handles();
@@ -359,7 +481,13 @@ mod tests {
             (ground, box_two, &[3]),
             (box_one, box_two, &[4, 5, 6]),
         ] {
-            cache.push(key(a, b), manifold(ids), &Pose::IDENTITY, &Pose::IDENTITY);
+            cache.push(
+                key(a, b),
+                manifold(ids),
+                &Pose::IDENTITY,
+                &Pose::IDENTITY,
+                SimplexCache::default(),
+            );
         }
         cache.finish_step();
         let kept_in_order = |cache: &mut ContactCache, pairs: &[(BodyHandle, BodyHandle)]| {
@@ -382,11 +510,63 @@ mod tests {
         assert_eq!(kept_in_order(&mut cache, &all), [2, 1, 3]);
         let shuffled = [
             (box_one, box_two),
+            (box_one, box_two),
             (ground, box_two),
             (box_two, ground),
             (ground, box_one),
+            (ground, box_one),
         ];
-        assert_eq!(kept_in_order(&mut cache, &shuffled), [3, 1, 0, 2]);
+        assert_eq!(kept_in_order(&mut cache, &shuffled), [3, 3, 1, 0, 2, 2]);
+    }
+
+    /// Each pair of compound parts gets back the simplex it left, through recycling too, and a
+    /// pair of parts with none starts cold.
+    #[test]
+    fn simplices_come_back_to_their_own_parts() {
+        use crate::collision::gjk::{Simplex, SupportPoint};
+        use crate::collision::{PosedCore, RelativeCore};
+        use crate::shape::Shape;
+
+        let (ground, body, _) = handles();
+        let shape = Shape::sphere(1.0).unwrap();
+        let placed = RelativeCore::new(&PosedCore::new(&shape, &Pose::IDENTITY), &Pose::IDENTITY);
+        let simplex_at = |x: f32| {
+            let w = Vec3::new(x, 0.0, 0.0);
+            let (simplex, _) = Simplex::reduced(&[SupportPoint {
+                a: w,
+                b: Vec3::ZERO,
+                w,
+            }]);
+            SimplexCache::new(&simplex, &placed)
+        };
+        let parts = [(0, 1, 1.0), (1, 0, 2.0), (1, 2, 3.0)];
+        let mut cache = ContactCache::default();
+        cache.begin_step();
+        for (child_a, child_b, x) in parts {
+            let key = ContactKey {
+                child_a,
+                child_b,
+                ..key(ground, body)
+            };
+            cache.push(
+                key,
+                manifold(&[1]),
+                &Pose::IDENTITY,
+                &Pose::IDENTITY,
+                simplex_at(x),
+            );
+        }
+        cache.finish_step();
+        let identity = Pose::IDENTITY;
+        cache.begin_step();
+        assert!(cache.recycle(ground, body, &identity, &identity));
+        cache.finish_step();
+        cache.begin_step();
+        let mut pair = cache.pair(ground, body, &identity, &identity);
+        for (child_a, child_b, expected) in [(0, 0, None), (0, 1, Some(1.0)), (1, 2, Some(3.0))] {
+            let found = pair.previous_simplex(child_a, child_b);
+            assert_eq!(found, expected.map_or(SimplexCache::default(), simplex_at));
+        }
     }
 
     #[test]
@@ -399,12 +579,14 @@ mod tests {
             manifold(&[1]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
+            SimplexCache::default(),
         );
         cache.push(
             key(ground, box_two),
             manifold(&[1]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
+            SimplexCache::default(),
         );
         cache.finish_step();
         cache.remove_body(box_one);
@@ -428,7 +610,13 @@ mod tests {
         let start = Pose::from_position(Vec3::new(0.0, 0.495, 0.0));
         let mut cache = ContactCache::default();
         cache.begin_step();
-        cache.push(key(ground, box_one), collide(&start), &ground_pose, &start);
+        cache.push(
+            key(ground, box_one),
+            collide(&start),
+            &ground_pose,
+            &start,
+            SimplexCache::default(),
+        );
         cache.finish_step();
 
         // Moved by 0.6 mm and turned by 0.5°: within the tolerances, rebuilt.

@@ -14,7 +14,7 @@
 
 use std::cmp::Ordering;
 
-use crate::collision::gjk::{self, Simplex, SupportPoint};
+use crate::collision::gjk::{self, Simplex, SimplexCache, SupportPoint};
 use crate::collision::{LocalCore, PosedCore, RelativeCore, SupportMap};
 use crate::math::Vec3;
 
@@ -165,11 +165,27 @@ impl Polytope {
     /// over when the cores overlap, growing this polytope, and the rounding radii are then
     /// subtracted. Both run in A's frame.
     pub fn contact(&mut self, a: &PosedCore, b: &PosedCore, margin: f32) -> Option<ContactInfo> {
+        self.contact_from(a, b, margin, &mut SimplexCache::default())
+    }
+
+    /// [`Polytope::contact`] with GJK starting from `simplex`, the simplex of the last query
+    /// between the same two shapes (or an empty one), and leaving there the simplex it ends
+    /// with.
+    pub fn contact_from(
+        &mut self,
+        a: &PosedCore,
+        b: &PosedCore,
+        margin: f32,
+        simplex: &mut SimplexCache,
+    ) -> Option<ContactInfo> {
         let radius_a = a.shape.core_radius();
         let radius_b = b.shape.core_radius();
         let limit = margin + radius_a + radius_b;
         let (local_a, local_b) = (LocalCore(a.shape), RelativeCore::new(b, a.pose));
-        let cores = gjk::distance_within(&local_a, &local_b, local_b.position, limit)?;
+        let (start, len) = simplex.placed(&local_b);
+        let cores =
+            gjk::distance_within(&local_a, &local_b, &start[..len], local_b.position, limit)?;
+        *simplex = SimplexCache::new(&cores.simplex, &local_b);
         // Overlapping cores are as far apart as EPA's depth says, checked below.
         if !cores.overlapping && cores.distance - radius_a - radius_b >= margin {
             return None;

@@ -11,6 +11,7 @@ use std::f32::consts::TAU;
 
 use super::clipping::{clip_polygon, clip_segment, reduce_contacts, ClipVertex};
 use super::epa::{ContactInfo, Polytope};
+use super::gjk::SimplexCache;
 use super::manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
 use super::polyhedron::Polyhedron;
 use super::PosedCore;
@@ -237,7 +238,8 @@ fn polyhedron_face(polyhedron: &Polyhedron, pose: &Pose, direction: Vec3) -> Fea
 /// octagon of rim points as the reference face and a square of every other one as the incident
 /// face, its corner nearest the deepest rim point moved there when the cap is tilted (see
 /// [`CORNER_SNAP_DISTANCE`]): a cylinder standing or wobbling on a face keeps the same four ids.
-/// EPA grows `polytope`, scratch space reused from call to call.
+/// EPA grows `polytope`, scratch space reused from call to call; GJK starts from `simplex`, last
+/// query's between the same shapes (or an empty one), and leaves its own there.
 pub fn collide_features(
     polytope: &mut Polytope,
     shape_a: &Shape,
@@ -245,10 +247,11 @@ pub fn collide_features(
     shape_b: &Shape,
     pose_b: &Pose,
     margin: f32,
+    simplex: &mut SimplexCache,
 ) -> Option<Manifold> {
     let core_a = PosedCore::new(shape_a, pose_a);
     let core_b = PosedCore::new(shape_b, pose_b);
-    let deepest = polytope.contact(&core_a, &core_b, margin)?;
+    let deepest = polytope.contact_from(&core_a, &core_b, margin, simplex)?;
     let feature_a = supporting_feature(shape_a, pose_a, deepest.normal);
     let feature_b = supporting_feature(shape_b, pose_b, -deepest.normal);
     let alignment_a = feature_a.face_normal.dot(deepest.normal);

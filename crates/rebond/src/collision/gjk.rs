@@ -11,7 +11,7 @@
 //! points, because every support point carries an f32 rounding of about `6e-8` of its magnitude:
 //! no answer can be better than a few of those.
 
-use crate::collision::SupportMap;
+use crate::collision::{RelativeCore, SupportMap};
 use crate::math::Vec3;
 
 /// Most support points one query asks for. Polytopes need a handful; smooth surfaces (a
@@ -158,6 +158,51 @@ impl Simplex {
         self.len = found.len;
         self.closest = found.point * scale;
         found.len == 4
+    }
+}
+
+/// A query's final simplex kept to start the next query between the same two shapes (warm
+/// starting, as Box2D's simplex cache does). Each vertex is kept as its point of A in A's frame,
+/// the frame the query runs in, and its point of B in B's frame: points of the shapes, which stay
+/// on them however the shapes move, so that placed at the new poses they are again points of
+/// `A − B`, a simplex from which GJK goes on. When the shapes have barely moved, it is within
+/// tolerance of the answer, and the first support point confirms it. Empty: start cold.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SimplexCache {
+    /// Each vertex's point of A (A's frame) and of B (B's frame).
+    local_points: [[Vec3; 2]; 4],
+    len: u8,
+}
+
+impl SimplexCache {
+    /// Whether no simplex is kept: the query starts cold.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Keeps `simplex`, found in A's frame with B placed there as `b`.
+    pub(crate) fn new(simplex: &Simplex, b: &RelativeCore) -> Self {
+        let mut local_points = [[Vec3::ZERO; 2]; 4];
+        for (local, point) in local_points.iter_mut().zip(simplex.points()) {
+            *local = [point.a, b.local_point(point.b)];
+        }
+        Self {
+            local_points,
+            len: simplex.len as u8,
+        }
+    }
+
+    /// The kept vertices with B placed as `b` now (A's frame): the first `len` of the array.
+    pub(crate) fn placed(&self, b: &RelativeCore) -> ([SupportPoint; 4], usize) {
+        let points = self.local_points.map(|[on_a, on_b]| {
+            let on_b = b.place(on_b);
+            SupportPoint {
+                a: on_a,
+                b: on_b,
+                w: on_a - on_b,
+            }
+        });
+        (points, usize::from(self.len))
     }
 }
 
@@ -368,7 +413,7 @@ where
     A: SupportMap + ?Sized,
     B: SupportMap + ?Sized,
 {
-    match search(a, b, direction, f32::INFINITY) {
+    match search(a, b, &[], direction, f32::INFINITY) {
         Search::Done(found) | Search::Beyond(found) => found,
     }
 }
@@ -377,12 +422,21 @@ where
 /// `limit` metres apart: a support point whose reach along the search direction leaves a lower
 /// bound on the distance above `limit` ends the search (contact queries, where most pairs of
 /// overlapping boxes are farther apart than the margin, stop there after a few iterations).
-pub fn distance_within<A, B>(a: &A, b: &B, direction: Vec3, limit: f32) -> Option<Distance>
+/// The search starts from the simplex of the points `start` (up to four points of `A − B`, such
+/// as last query's simplex placed anew, see [`SimplexCache`]), or when it is empty from the
+/// support point along `direction`.
+pub fn distance_within<A, B>(
+    a: &A,
+    b: &B,
+    start: &[SupportPoint],
+    direction: Vec3,
+    limit: f32,
+) -> Option<Distance>
 where
     A: SupportMap + ?Sized,
     B: SupportMap + ?Sized,
 {
-    match search(a, b, direction, limit) {
+    match search(a, b, start, direction, limit) {
         Search::Done(found) => Some(found),
         Search::Beyond(_) => None,
     }
@@ -396,19 +450,27 @@ enum Search {
     Beyond(Distance),
 }
 
-/// The GJK iteration, stopping early once the solids are known to be more than `limit` apart.
-fn search<A, B>(a: &A, b: &B, direction: Vec3, limit: f32) -> Search
+/// The GJK iteration from the simplex of `start`, or when it is empty from the support point
+/// along `direction`, stopping early once the solids are known to be more than `limit` apart.
+fn search<A, B>(a: &A, b: &B, start: &[SupportPoint], direction: Vec3, limit: f32) -> Search
 where
     A: SupportMap + ?Sized,
     B: SupportMap + ?Sized,
 {
-    let start = if direction.length_squared() > 0.0 && direction.is_finite() {
-        direction
+    let (mut simplex, enclosed) = if start.is_empty() {
+        let direction = if direction.length_squared() > 0.0 && direction.is_finite() {
+            direction
+        } else {
+            Vec3::X
+        };
+        // Along A→B the support point of A − B pairs the facing sides of A and B.
+        Simplex::reduced(&[SupportPoint::new(a, b, direction)])
     } else {
-        Vec3::X
+        Simplex::reduced(start)
     };
-    // Along A→B the support point of A − B pairs the facing sides of A and B.
-    let (mut simplex, _) = Simplex::reduced(&[SupportPoint::new(a, b, start)]);
+    if enclosed {
+        return Search::Done(Distance::from_simplex(simplex, true));
+    }
     let mut best = (f32::INFINITY, simplex);
     let mut stalls = 0;
     for _ in 0..MAX_ITERATIONS {

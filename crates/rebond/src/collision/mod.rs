@@ -89,16 +89,30 @@ impl<'a> RelativeCore<'a> {
             position: inverse * (core.pose.position - frame.position),
         }
     }
-}
 
-impl SupportMap for RelativeCore<'_> {
-    fn support(&self, direction: Vec3) -> Vec3 {
+    /// A point given in the shape's own frame, placed in the frame: `rotation · p + position`.
+    pub fn place(&self, local: Vec3) -> Vec3 {
+        self.rotation * local + self.position
+    }
+
+    /// A point of the frame in the shape's own frame: the inverse of [`RelativeCore::place`].
+    pub fn local_point(&self, point: Vec3) -> Vec3 {
+        self.local_vector(point - self.position)
+    }
+
+    /// A vector of the frame in the shape's axes, `rotationᵀ · v`: one dot product per axis.
+    fn local_vector(&self, vector: Vec3) -> Vec3 {
         let columns = [
             self.rotation.x_axis,
             self.rotation.y_axis,
             self.rotation.z_axis,
         ];
-        let local = Vec3::from_array(columns.map(|column| column.dot(direction)));
-        self.rotation * self.shape.core_support(local) + self.position
+        Vec3::from_array(columns.map(|column| column.dot(vector)))
+    }
+}
+
+impl SupportMap for RelativeCore<'_> {
+    fn support(&self, direction: Vec3) -> Vec3 {
+        self.place(self.shape.core_support(self.local_vector(direction)))
     }
 }

@@ -11,7 +11,7 @@
 use super::closed_form::{capsule_capsule, sphere_box, sphere_capsule, sphere_sphere};
 use super::epa::Polytope;
 use super::feature_contact::collide_features;
-use super::gjk;
+use super::gjk::{self, SimplexCache};
 use super::halfspace::collide_halfspace;
 use super::manifold::Manifold;
 use super::polyhedron::Polyhedron;
@@ -33,6 +33,31 @@ fn kind_rank(shape: &Shape) -> u8 {
     }
 }
 
+/// Where [`NarrowPhase::collide`] finds, for each pair of convex parts, the GJK simplex it ended
+/// with last time, and leaves the manifolds it finds.
+pub trait PartContacts {
+    /// The simplex kept for parts `child_a` and `child_b` (0 for a shape that is not a compound),
+    /// or an empty one when there is none: the pair is new.
+    fn previous_simplex(&mut self, child_a: u32, child_b: u32) -> SimplexCache;
+
+    /// A manifold between parts `child_a` and `child_b`, with the simplex GJK ended with (empty
+    /// when the pair's routine runs no GJK).
+    fn add(&mut self, child_a: u32, child_b: u32, manifold: Manifold, simplex: SimplexCache);
+}
+
+/// Parts found with no simplex from before, handed to a closure.
+struct ColdStart<F>(F);
+
+impl<F: FnMut(u32, u32, Manifold)> PartContacts for ColdStart<F> {
+    fn previous_simplex(&mut self, _: u32, _: u32) -> SimplexCache {
+        SimplexCache::default()
+    }
+
+    fn add(&mut self, child_a: u32, child_b: u32, manifold: Manifold, _: SimplexCache) {
+        (self.0)(child_a, child_b, manifold);
+    }
+}
+
 /// The narrow phase's scratch space, kept from pair to pair and from step to step so that a
 /// steady step allocates nothing: the polytope EPA grows.
 #[derive(Debug, Clone, Default)]
@@ -51,9 +76,26 @@ impl NarrowPhase {
         pose_b: &Pose,
         margin: f32,
     ) -> Option<Manifold> {
+        let mut simplex = SimplexCache::default();
+        self.collide_convex_from(shape_a, pose_a, shape_b, pose_b, margin, &mut simplex)
+    }
+
+    /// [`NarrowPhase::collide_convex`] with GJK, where the pair's routine runs it, starting from
+    /// `simplex`, the simplex of the last query between the same two shapes (or an empty one),
+    /// and leaving its own there. The shapes are put in the same order at every query, so the
+    /// simplex always belongs to the same one of the two.
+    pub fn collide_convex_from(
+        &mut self,
+        shape_a: &Shape,
+        pose_a: &Pose,
+        shape_b: &Shape,
+        pose_b: &Pose,
+        margin: f32,
+        simplex: &mut SimplexCache,
+    ) -> Option<Manifold> {
         if kind_rank(shape_a) > kind_rank(shape_b) {
             return self
-                .collide_convex(shape_b, pose_b, shape_a, pose_a, margin)
+                .collide_convex_from(shape_b, pose_b, shape_a, pose_a, margin, simplex)
                 .map(Manifold::flipped);
         }
         match (shape_a, shape_b) {
@@ -69,21 +111,29 @@ impl NarrowPhase {
             (Shape::Cuboid(_) | Shape::ConvexHull(_), Shape::Cuboid(_) | Shape::ConvexHull(_)) => {
                 let has_hull = matches!(shape_a, Shape::ConvexHull(_))
                     || matches!(shape_b, Shape::ConvexHull(_));
-                if has_hull && apart_beyond(shape_a, pose_a, shape_b, pose_b, margin) {
+                if has_hull && apart_beyond(shape_a, pose_a, shape_b, pose_b, margin, simplex) {
                     return None;
                 }
                 let a = Polyhedron::from_shape(shape_a)?;
                 let b = Polyhedron::from_shape(shape_b)?;
                 collide_polyhedra(&a, pose_a, &b, pose_b, margin)
             }
-            _ => collide_features(&mut self.polytope, shape_a, pose_a, shape_b, pose_b, margin),
+            _ => collide_features(
+                &mut self.polytope,
+                shape_a,
+                pose_a,
+                shape_b,
+                pose_b,
+                margin,
+                simplex,
+            ),
         }
     }
 
-    /// Every manifold between two shapes, compounds included: `on_manifold(child_a, child_b,
-    /// manifold)` is called for each pair of convex parts in contact (child indices are 0 for a shape
-    /// that is not a compound), in a deterministic order. Parts whose bounding boxes, grown by
-    /// `margin`, do not overlap are skipped.
+    /// Every manifold between two shapes, compounds included, added to `contacts` for each pair
+    /// of convex parts in contact (child indices are 0 for a shape that is not a compound), in a
+    /// deterministic order, GJK starting from the simplex `contacts` kept for the parts. Parts
+    /// whose bounding boxes, grown by `margin`, do not overlap are skipped.
     pub fn collide(
         &mut self,
         shape_a: &Shape,
@@ -91,8 +141,26 @@ impl NarrowPhase {
         shape_b: &Shape,
         pose_b: &Pose,
         margin: f32,
-        mut on_manifold: impl FnMut(u32, u32, Manifold),
+        contacts: &mut impl PartContacts,
     ) {
+        let mut collide_parts = |child_a: u32,
+                                 part_a: &Shape,
+                                 part_pose_a: &Pose,
+                                 child_b: u32,
+                                 part_b: &Shape,
+                                 part_pose_b: &Pose| {
+            let mut simplex = contacts.previous_simplex(child_a, child_b);
+            if let Some(manifold) = self.collide_convex_from(
+                part_a,
+                part_pose_a,
+                part_b,
+                part_pose_b,
+                margin,
+                &mut simplex,
+            ) {
+                contacts.add(child_a, child_b, manifold, simplex);
+            }
+        };
         let grow = |aabb: Aabb| {
             Aabb::new(
                 aabb.min - Vec3::splat(margin),
@@ -101,21 +169,14 @@ impl NarrowPhase {
         };
         let compound = |shape: &Shape| matches!(shape, Shape::Compound(_));
         if !compound(shape_a) && !compound(shape_b) {
-            if let Some(manifold) = self.collide_convex(shape_a, pose_a, shape_b, pose_b, margin) {
-                on_manifold(0, 0, manifold);
-            }
+            collide_parts(0, shape_a, pose_a, 0, shape_b, pose_b);
             return;
         }
         for_each_part(shape_a, pose_a, |child_a, part_a, part_pose_a| {
             let bounds_a = grow(part_a.aabb(&part_pose_a));
             for_each_part(shape_b, pose_b, |child_b, part_b, part_pose_b| {
-                if !bounds_a.overlaps(&part_b.aabb(&part_pose_b)) {
-                    return;
-                }
-                if let Some(manifold) =
-                    self.collide_convex(part_a, &part_pose_a, part_b, &part_pose_b, margin)
-                {
-                    on_manifold(child_a, child_b, manifold);
+                if bounds_a.overlaps(&part_b.aabb(&part_pose_b)) {
+                    collide_parts(child_a, part_a, &part_pose_a, child_b, part_b, &part_pose_b);
                 }
             });
         });
@@ -133,7 +194,9 @@ pub fn collide_convex(
     NarrowPhase::default().collide_convex(shape_a, pose_a, shape_b, pose_b, margin)
 }
 
-/// [`NarrowPhase::collide`] with scratch space of its own, which allocates when EPA runs.
+/// [`NarrowPhase::collide`] with scratch space of its own, which allocates when EPA runs, and no
+/// simplex from before: `on_manifold(child_a, child_b, manifold)` is called for each pair of
+/// convex parts in contact.
 pub fn collide(
     shape_a: &Shape,
     pose_a: &Pose,
@@ -142,7 +205,14 @@ pub fn collide(
     margin: f32,
     on_manifold: impl FnMut(u32, u32, Manifold),
 ) {
-    NarrowPhase::default().collide(shape_a, pose_a, shape_b, pose_b, margin, on_manifold);
+    NarrowPhase::default().collide(
+        shape_a,
+        pose_a,
+        shape_b,
+        pose_b,
+        margin,
+        &mut ColdStart(on_manifold),
+    );
 }
 
 /// The convex parts of a shape with their world poses: the shape itself, or each child of a
@@ -169,16 +239,28 @@ fn balls_apart(shape_a: &Shape, shape_b: &Shape, offset: Vec3, margin: f32) -> b
 
 /// Whether GJK finds two convex shapes more than `margin` apart. For pairs with a hull it rejects
 /// most pairs whose boxes merely overlap for a fraction of what the separating-axis test's edge
-/// search costs (about 5,000 instructions against 36,000 in the `mixed` benchmark scene).
+/// search costs (about 5,000 instructions against 36,000 in the `mixed` benchmark scene). GJK
+/// starts from `simplex` and leaves its own there, as in [`Polytope::contact_from`].
 fn apart_beyond(
     shape_a: &Shape,
     pose_a: &Pose,
     shape_b: &Shape,
     pose_b: &Pose,
     margin: f32,
+    simplex: &mut SimplexCache,
 ) -> bool {
     let radii = shape_a.core_radius() + shape_b.core_radius();
     let b = RelativeCore::new(&PosedCore::new(shape_b, pose_b), pose_a);
-    gjk::distance_within(&LocalCore(shape_a), &b, b.position, margin + radii)
-        .is_none_or(|cores| cores.distance - radii >= margin)
+    let (start, len) = simplex.placed(&b);
+    let found = gjk::distance_within(
+        &LocalCore(shape_a),
+        &b,
+        &start[..len],
+        b.position,
+        margin + radii,
+    );
+    found.is_none_or(|cores| {
+        *simplex = SimplexCache::new(&cores.simplex, &b);
+        cores.distance - radii >= margin
+    })
 }
