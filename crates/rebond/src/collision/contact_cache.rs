@@ -115,6 +115,9 @@ pub struct Contact {
     /// from at the next query; `None` when the pair's routine runs no GJK. Kept aside, so that
     /// contacts without one stay small to copy and sort.
     simplex: Option<u32>,
+    /// Whether the narrow phase found the manifold this step, so that its impulses are still to
+    /// be carried over by feature id; recycled and kept contacts bring theirs along.
+    fresh: bool,
 }
 
 /// This step's contacts, sorted by key, and last step's, kept to warm-start from.
@@ -167,6 +170,7 @@ impl ContactCache {
             frame: ManifoldFrame::new(&manifold, pose_a, pose_b),
             friction_anchors: None,
             simplex,
+            fresh: true,
         });
     }
 
@@ -267,13 +271,15 @@ impl ContactCache {
         start..end
     }
 
-    /// Sorts this step's contacts by key and gives each point the normal impulse of the previous
-    /// step's point with the same key and feature id (unmatched points start from zero), and
-    /// each contact the friction and twist impulses of the previous contact with its key.
+    /// Sorts this step's contacts by key and gives each point the narrow phase found the normal
+    /// impulse of the previous step's point with the same key and feature id (unmatched points
+    /// start from zero), and each such contact the friction and twist impulses of the previous
+    /// contact with its key.
     pub fn finish_step(&mut self) {
         self.current.sort_unstable_by_key(|contact| contact.key);
         let mut previous = self.previous.iter().peekable();
-        for contact in &mut self.current {
+        for contact in self.current.iter_mut().filter(|contact| contact.fresh) {
+            contact.fresh = false;
             while previous.next_if(|old| old.key < contact.key).is_some() {}
             let Some(old) = previous.next_if(|old| old.key == contact.key) else {
                 continue;
