@@ -7,7 +7,8 @@ use super::gjk::SimplexCache;
 use super::manifold::{Manifold, MAX_MANIFOLD_POINTS};
 use super::narrow_phase::PartContacts;
 use crate::body::BodyHandle;
-use crate::math::{Pose, Vec3};
+use crate::math::{Pose, Vec3, Vec3A};
+use glam::Mat3A;
 
 /// A manifold is rebuilt from its stored points instead of running the narrow phase again while
 /// B has moved less than this relative to A since the manifold was computed, metres.
@@ -62,17 +63,37 @@ impl ManifoldFrame {
 
     /// The manifold with its points carried along with the bodies now at `pose_a` and `pose_b`:
     /// same ids, separations measured again along the carried normal.
-    fn rebuild(&self, manifold: &Manifold, pose_a: &Pose, pose_b: &Pose) -> Manifold {
+    fn rebuild(&self, manifold: &Manifold, a: &PlacedBody, b: &PlacedBody) -> Manifold {
         let mut rebuilt = *manifold;
-        let normal = pose_a.transform_vector(self.local_normal);
-        rebuilt.normal = normal;
+        let normal = a.rotation * Vec3A::from(self.local_normal);
+        rebuilt.normal = normal.into();
         for (point, [on_a, on_b]) in rebuilt.points_mut().iter_mut().zip(&self.local_points) {
-            let surface_a = pose_a.transform_point(*on_a);
-            let surface_b = pose_b.transform_point(*on_b);
+            let surface_a = a.place(*on_a);
+            let surface_b = b.place(*on_b);
             point.separation = normal.dot(surface_b - surface_a);
-            point.position = 0.5 * (surface_a + surface_b);
+            point.position = (0.5 * (surface_a + surface_b)).into();
         }
         rebuilt
+    }
+}
+
+/// A body's pose with its rotation as a SIMD matrix, to place several body points cheaply.
+struct PlacedBody {
+    position: Vec3A,
+    rotation: Mat3A,
+}
+
+impl PlacedBody {
+    fn new(pose: &Pose) -> Self {
+        Self {
+            position: pose.position.into(),
+            rotation: Mat3A::from_quat(pose.rotation),
+        }
+    }
+
+    /// Body point to world point.
+    fn place(&self, point: Vec3) -> Vec3A {
+        self.position + self.rotation * Vec3A::from(point)
     }
 }
 
@@ -215,10 +236,13 @@ impl ContactCache {
         {
             return false;
         }
+        let (placed_a, placed_b) = (PlacedBody::new(pose_a), PlacedBody::new(pose_b));
         let start = self.current.len();
         self.current.extend_from_slice(previous);
         for contact in &mut self.current[start..] {
-            contact.manifold = contact.frame.rebuild(&contact.manifold, pose_a, pose_b);
+            contact.manifold = contact
+                .frame
+                .rebuild(&contact.manifold, &placed_a, &placed_b);
             carry_simplex(contact, &self.previous_simplices, &mut self.simplices);
         }
         true
