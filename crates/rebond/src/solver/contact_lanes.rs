@@ -139,8 +139,18 @@ impl JacobianLanes {
 
     /// `d·(v_B − v_A) + ω_B·(r_B × d) − ω_A·(r_A × d)` per lane.
     fn velocity(&self, a: &BodyLanes, b: &BodyLanes, direction: Vec3x4) -> F32x4 {
-        direction.dot(b.linear_velocity - a.linear_velocity) + b.angular_velocity.dot(self.arm_b)
-            - a.angular_velocity.dot(self.arm_a)
+        direction.dot(b.linear_velocity - a.linear_velocity) + self.spin_velocity(a, b)
+    }
+
+    /// The part of [`Self::velocity`] the spins give, `ω_B·(r_B × d) − ω_A·(r_A × d)`.
+    fn spin_velocity(&self, a: &BodyLanes, b: &BodyLanes) -> F32x4 {
+        b.angular_velocity.dot(self.arm_b) - a.angular_velocity.dot(self.arm_a)
+    }
+
+    /// The spin part of [`Self::apply`]: `Δω_A = −λ I_A⁻¹ (r_A × d)`, `Δω_B = +λ I_B⁻¹ (r_B × d)`.
+    fn apply_spin(&self, a: &mut BodyLanes, b: &mut BodyLanes, impulse: F32x4) {
+        a.angular_velocity -= self.spin_a.scale(impulse);
+        b.angular_velocity += self.spin_b.scale(impulse);
     }
 
     /// `Δv = ±λ d / m`, `Δω = ±λ I⁻¹ (r × d)` per lane (A gets the minus sign).
@@ -152,10 +162,18 @@ impl JacobianLanes {
         impulse: F32x4,
     ) {
         a.linear_velocity -= direction.scale(inverse_mass_a * impulse);
-        a.angular_velocity -= self.spin_a.scale(impulse);
         b.linear_velocity += direction.scale(inverse_mass_b * impulse);
-        b.angular_velocity += self.spin_b.scale(impulse);
+        self.apply_spin(a, b, impulse);
     }
+}
+
+/// Pairs of distinct points in a manifold.
+const COUPLINGS: usize = MAX_MANIFOLD_POINTS * (MAX_MANIFOLD_POINTS - 1) / 2;
+
+/// Where the coupling of points `i < j` is kept: the pairs ordered by `j`, then `i`, so the
+/// couplings of point `j` with the points before it start at `j (j − 1) / 2`.
+const fn coupling_index(i: usize, j: usize) -> usize {
+    j * (j - 1) / 2 + i
 }
 
 /// The normal part of one point of four constraints.
@@ -198,6 +216,10 @@ pub(crate) struct ContactLanes {
     point_counts: [usize; LANES],
     point_count: usize,
     points: [PointLanes; MAX_MANIFOLD_POINTS],
+    /// How a unit impulse at point `i` changes the normal velocity at point `j > i`, per lane:
+    /// `K_ij = (m_A⁻¹ + m_B⁻¹)(n·n) + (r_Aj × n)·I_A⁻¹(r_Ai × n) + (r_Bj × n)·I_B⁻¹(r_Bi × n)`,
+    /// the off-diagonal part of the points' effective-mass matrix, at [`coupling_index`]`(i, j)`.
+    coupling: [F32x4; COUPLINGS],
     tangent: [JacobianLanes; 2],
     tangent_impulse: [F32x4; 2],
     friction_anchors: [[Vec3; 2]; LANES],
@@ -227,6 +249,7 @@ impl ContactLanes {
         point_counts: [0; LANES],
         point_count: 0,
         points: [PointLanes::ZERO; MAX_MANIFOLD_POINTS],
+        coupling: [F32x4::ZERO; COUPLINGS],
         tangent: [JacobianLanes::ZERO; 2],
         tangent_impulse: [F32x4::ZERO; 2],
         friction_anchors: [[Vec3::ZERO; 2]; LANES],
@@ -308,6 +331,15 @@ impl ContactLanes {
             let direction = lanes.tangents[axis];
             lanes.tangent[axis] =
                 JacobianLanes::new((&a, &b), masses, (center_a, center_b), direction);
+        }
+        let linear_coupling = (masses.0 + masses.1) * normal.dot(normal);
+        for j in 1..lanes.point_count {
+            for i in 0..j {
+                let (earlier, later) = (&lanes.points[i].normal, &lanes.points[j].normal);
+                lanes.coupling[coupling_index(i, j)] = linear_coupling
+                    + later.arm_a.dot(earlier.spin_a)
+                    + later.arm_b.dot(earlier.spin_b);
+            }
         }
         lanes.twist_spin_a = a.inverse_inertia.mul_vec3(normal);
         lanes.twist_spin_b = b.inverse_inertia.mul_vec3(normal);
@@ -522,8 +554,13 @@ impl ContactLanes {
         // every point.
         let relative_motion = b.delta_position - a.delta_position;
         let normal_motion = normal.dot(relative_motion);
+        // Each point's normal velocity is its velocity at the start of the pass plus what the
+        // points before it applied, through the couplings; the impulses reach the bodies after.
+        let relative_velocity = b.linear_velocity - a.linear_velocity;
+        let linear_speed = normal.dot(relative_velocity);
+        let mut applied = [F32x4::ZERO; MAX_MANIFOLD_POINTS];
         let mut total_normal_impulse = F32x4::ZERO;
-        for point in &mut self.points[..self.point_count] {
+        for (j, point) in self.points[..self.point_count].iter_mut().enumerate() {
             let jacobian = &point.normal;
             // s = s₀ + n·(Δc_B − Δc_A) + Δθ_B·(r_B × n) − Δθ_A·(r_A × n)
             let separation =
@@ -532,33 +569,46 @@ impl ContactLanes {
             // Apart: may close by s this substep. Deeper than the slop (biased pass): soft push
             // out at the bias rate, at most MAX_PUSH_SPEED. Otherwise rigid, no bias.
             let apart = separation.greater_than(F32x4::ZERO);
-            let deep = if USE_BIAS {
-                separation.less_than(-slop)
+            let closing = separation * inverse_h;
+            let mut normal_velocity = linear_speed + jacobian.spin_velocity(&a, &b);
+            let couplings = &self.coupling[coupling_index(0, j.max(1))..];
+            for (&coupling, &earlier) in couplings.iter().zip(&applied[..j]) {
+                normal_velocity += coupling * earlier;
+            }
+            let impulse = if USE_BIAS {
+                let deep = separation.less_than(-slop);
+                let push = (F32x4::splat(softness.bias_rate) * (separation + slop))
+                    .max(F32x4::splat(-MAX_PUSH_SPEED));
+                let bias = apart.select(closing, deep.select(push, F32x4::ZERO));
+                let mass_scale = deep.select(F32x4::splat(softness.mass_scale), F32x4::ONE);
+                let impulse_scale = deep.select(F32x4::splat(softness.impulse_scale), F32x4::ZERO);
+                -jacobian.mass * mass_scale * (normal_velocity + bias)
+                    - impulse_scale * point.normal_impulse
             } else {
-                Mask4::NONE
+                -jacobian.mass * (normal_velocity + apart.select(closing, F32x4::ZERO))
             };
-            let push = (F32x4::splat(softness.bias_rate) * (separation + slop))
-                .max(F32x4::splat(-MAX_PUSH_SPEED));
-            let bias = apart.select(separation * inverse_h, deep.select(push, F32x4::ZERO));
-            let mass_scale = deep.select(F32x4::splat(softness.mass_scale), F32x4::ONE);
-            let impulse_scale = deep.select(F32x4::splat(softness.impulse_scale), F32x4::ZERO);
-            let normal_velocity = jacobian.velocity(&a, &b, normal);
-            let impulse = -jacobian.mass * mass_scale * (normal_velocity + bias)
-                - impulse_scale * point.normal_impulse;
             let total = (point.normal_impulse + impulse).max(F32x4::ZERO);
-            let applied = total - point.normal_impulse;
+            applied[j] = total - point.normal_impulse;
             point.normal_impulse = total;
-            point.max_normal_impulse = point.max_normal_impulse.max(applied);
+            point.max_normal_impulse = point.max_normal_impulse.max(applied[j]);
             total_normal_impulse += total;
-            jacobian.apply((&mut a, &mut b), masses, normal, applied);
         }
+        let mut normal_impulse = F32x4::ZERO;
+        for (point, &impulse) in self.points[..self.point_count].iter().zip(&applied) {
+            normal_impulse += impulse;
+            point.normal.apply_spin(&mut a, &mut b, impulse);
+        }
+        // The normal impulses change the velocities along the tangents through the spins only
+        // (n·t = 0), so the bodies get the linear impulse of the whole pass at its end.
+        let mut linear_impulse = normal.scale(normal_impulse);
 
         let limit = self.friction * total_normal_impulse;
         let old = self.tangent_impulse;
         let mut total = [F32x4::ZERO; 2];
         for axis in 0..2 {
             let jacobian = &self.tangent[axis];
-            let mut velocity = jacobian.velocity(&a, &b, self.tangents[axis]);
+            let mut velocity =
+                self.tangents[axis].dot(relative_velocity) + jacobian.spin_velocity(&a, &b);
             if USE_BIAS {
                 // The anchor offset now: start offset plus the motion since, along the tangent.
                 let offset = self.anchor_offset[axis]
@@ -580,8 +630,9 @@ impl ContactLanes {
         self.slid = self.slid.or(slides);
         self.tangent_impulse = total;
         for axis in 0..2 {
-            let (jacobian, direction) = (&self.tangent[axis], self.tangents[axis]);
-            jacobian.apply((&mut a, &mut b), masses, direction, total[axis] - old[axis]);
+            let applied = total[axis] - old[axis];
+            linear_impulse += self.tangents[axis].scale(applied);
+            self.tangent[axis].apply_spin(&mut a, &mut b, applied);
         }
 
         let twist_limit = limit * self.twist_radius;
@@ -591,6 +642,8 @@ impl ContactLanes {
             .max(-twist_limit)
             .min(twist_limit);
         self.apply_twist(&mut a, &mut b, self.twist_impulse - old_twist);
+        a.linear_velocity -= linear_impulse.scale(masses.0);
+        b.linear_velocity += linear_impulse.scale(masses.1);
         a.scatter(states, &self.body_a);
         b.scatter(states, &self.body_b);
     }
