@@ -234,6 +234,17 @@ const fn coupling_index(i: usize, j: usize) -> usize {
     j * (j - 1) / 2 + i
 }
 
+/// What one point of four constraints asks of its normal impulse in the biased passes of a
+/// substep, from its separation at the substep's poses: `Δλ = mass (v_n + bias) − impulse_scale λ`.
+#[derive(Debug, Clone, Copy)]
+struct PointTarget {
+    /// m/s.
+    bias: F32x4,
+    /// The effective mass, scaled by the softness where the point is deep, and negated, kg.
+    mass: F32x4,
+    impulse_scale: F32x4,
+}
+
 /// The normal part of one point of four constraints.
 #[derive(Debug, Clone, Copy)]
 struct PointLanes {
@@ -242,6 +253,8 @@ struct PointLanes {
     approach_velocity: F32x4,
     normal_impulse: F32x4,
     max_normal_impulse: F32x4,
+    /// Set by the first biased pass of a substep, for the others (the poses stay).
+    target: PointTarget,
 }
 
 impl PointLanes {
@@ -251,6 +264,11 @@ impl PointLanes {
         approach_velocity: F32x4::ZERO,
         normal_impulse: F32x4::ZERO,
         max_normal_impulse: F32x4::ZERO,
+        target: PointTarget {
+            bias: F32x4::ZERO,
+            mass: F32x4::ZERO,
+            impulse_scale: F32x4::ZERO,
+        },
     };
 }
 
@@ -282,6 +300,9 @@ pub(crate) struct ContactLanes {
     tangent_impulse: [F32x4; 2],
     friction_anchors: [[Vec3; 2]; LANES],
     anchor_offset: [F32x4; 2],
+    /// The anchors' offset along each tangent at the substep's poses, set by its first biased
+    /// pass, m.
+    tangent_offset: [F32x4; 2],
     slid: Mask4,
     twist_spin_a: Vec3x4,
     twist_spin_b: Vec3x4,
@@ -312,6 +333,7 @@ impl ContactLanes {
         tangent_impulse: [F32x4::ZERO; 2],
         friction_anchors: [[Vec3::ZERO; 2]; LANES],
         anchor_offset: [F32x4::ZERO; 2],
+        tangent_offset: [F32x4::ZERO; 2],
         slid: Mask4::NONE,
         twist_spin_a: Vec3x4::ZERO,
         twist_spin_b: Vec3x4::ZERO,
@@ -595,8 +617,9 @@ impl ContactLanes {
     /// back together; within the slop the contact is rigid, so a resting contact carries its load
     /// without the sag a soft spring has under load (docs/physics.md compares the variants).
     /// Without `USE_BIAS` (the relax pass) only velocities are solved, which removes the energy
-    /// the push added.
-    pub fn solve<const USE_BIAS: bool>(
+    /// the push added. With `SAME_POSES`, a biased pass after the first of its substep takes what
+    /// the separations ask from the first instead of working it out again.
+    pub fn solve<const USE_BIAS: bool, const SAME_POSES: bool>(
         &mut self,
         states: &mut [BodyState],
         softness: &Softness,
@@ -618,31 +641,42 @@ impl ContactLanes {
         let mut total_normal_impulse = F32x4::ZERO;
         for (j, point) in self.points[..self.point_count].iter_mut().enumerate() {
             let jacobian = &point.normal;
-            // s = s₀ + n·(Δc_B − Δc_A) + Δθ_B·(r_B × n) − Δθ_A·(r_A × n)
-            let separation =
-                point.base_separation + normal_motion + bodies.rotation_b.dot(jacobian.arm_b)
-                    - bodies.rotation_a.dot(jacobian.arm_a);
-            // Apart: may close by s this substep. Deeper than the slop (biased pass): soft push
-            // out at the bias rate, at most MAX_PUSH_SPEED. Otherwise rigid, no bias.
-            let apart = separation.greater_than(F32x4::ZERO);
-            let closing = separation * inverse_h;
             let mut normal_velocity =
                 linear_speed + jacobian.spin_velocity(bodies.angular_a, bodies.angular_b);
             let couplings = &self.coupling[coupling_index(0, j.max(1))..];
             for (&coupling, &earlier) in couplings.iter().zip(&applied[..j]) {
                 normal_velocity += coupling * earlier;
             }
-            let impulse = if USE_BIAS {
-                let deep = separation.less_than(-slop);
-                let push = (F32x4::splat(softness.bias_rate) * (separation + slop))
-                    .max(F32x4::splat(-MAX_PUSH_SPEED));
-                let bias = apart.select(closing, deep.select(push, F32x4::ZERO));
-                let mass_scale = deep.select(F32x4::splat(softness.mass_scale), F32x4::ONE);
-                let impulse_scale = deep.select(F32x4::splat(softness.impulse_scale), F32x4::ZERO);
-                -jacobian.mass * mass_scale * (normal_velocity + bias)
-                    - impulse_scale * point.normal_impulse
+            let impulse = if SAME_POSES {
+                let target = &point.target;
+                target.mass * (normal_velocity + target.bias)
+                    - target.impulse_scale * point.normal_impulse
             } else {
-                -jacobian.mass * (normal_velocity + apart.select(closing, F32x4::ZERO))
+                // s = s₀ + n·(Δc_B − Δc_A) + Δθ_B·(r_B × n) − Δθ_A·(r_A × n)
+                let separation =
+                    point.base_separation + normal_motion + bodies.rotation_b.dot(jacobian.arm_b)
+                        - bodies.rotation_a.dot(jacobian.arm_a);
+                // Apart: may close by s this substep. Deeper than the slop (biased pass): soft
+                // push out at the bias rate, at most MAX_PUSH_SPEED. Otherwise rigid, no bias.
+                let apart = separation.greater_than(F32x4::ZERO);
+                let closing = separation * inverse_h;
+                if USE_BIAS {
+                    let deep = separation.less_than(-slop);
+                    let push = (F32x4::splat(softness.bias_rate) * (separation + slop))
+                        .max(F32x4::splat(-MAX_PUSH_SPEED));
+                    let mass_scale = deep.select(F32x4::splat(softness.mass_scale), F32x4::ONE);
+                    let impulse_scale =
+                        deep.select(F32x4::splat(softness.impulse_scale), F32x4::ZERO);
+                    point.target = PointTarget {
+                        bias: apart.select(closing, deep.select(push, F32x4::ZERO)),
+                        mass: -jacobian.mass * mass_scale,
+                        impulse_scale,
+                    };
+                    point.target.mass * (normal_velocity + point.target.bias)
+                        - impulse_scale * point.normal_impulse
+                } else {
+                    -jacobian.mass * (normal_velocity + apart.select(closing, F32x4::ZERO))
+                }
             };
             let total = (point.normal_impulse + impulse).max(F32x4::ZERO);
             applied[j] = total - point.normal_impulse;
@@ -669,12 +703,15 @@ impl ContactLanes {
             let mut velocity = self.tangents[axis].dot(relative_velocity)
                 + jacobian.spin_velocity(bodies.angular_a, bodies.angular_b);
             if USE_BIAS {
-                // The anchor offset now: start offset plus the motion since, along the tangent.
-                let offset = self.anchor_offset[axis]
-                    + self.tangents[axis].dot(relative_motion)
-                    + bodies.rotation_b.dot(jacobian.arm_b)
-                    - bodies.rotation_a.dot(jacobian.arm_a);
-                velocity += inverse_h * offset;
+                if !SAME_POSES {
+                    // The anchor offset now: start offset plus the motion since, along the
+                    // tangent.
+                    self.tangent_offset[axis] = self.anchor_offset[axis]
+                        + self.tangents[axis].dot(relative_motion)
+                        + bodies.rotation_b.dot(jacobian.arm_b)
+                        - bodies.rotation_a.dot(jacobian.arm_a);
+                }
+                velocity += inverse_h * self.tangent_offset[axis];
             }
             total[axis] = old[axis] - jacobian.mass * velocity;
         }

@@ -160,13 +160,14 @@ impl Solver {
                 integrate_velocities(state, motion, settings.gravity, h, limits);
             }
             self.warm_start();
-            for _ in 0..BIASED_ITERATIONS {
-                self.solve_contacts::<true>(&softness, inverse_h);
+            self.solve_contacts::<true, false>(&softness, inverse_h);
+            for _ in 1..BIASED_ITERATIONS {
+                self.solve_contacts::<true, true>(&softness, inverse_h);
             }
             for (state, motion) in self.states.iter_mut().zip(&mut self.motions).skip(1) {
                 integrate_pose(state, motion, h);
             }
-            self.solve_contacts::<false>(&softness, inverse_h);
+            self.solve_contacts::<false, false>(&softness, inverse_h);
         }
         for lanes in &mut self.lanes {
             lanes.apply_restitution(&mut self.states);
@@ -269,10 +270,15 @@ impl Solver {
         }
     }
 
-    /// One pass over every contact (biased with `USE_BIAS`, else relax): the lane sets in order.
-    fn solve_contacts<const USE_BIAS: bool>(&mut self, softness: &Softness, inverse_h: f32) {
+    /// One pass over every contact (biased with `USE_BIAS`, else relax; `SAME_POSES` for the
+    /// biased passes after the first of a substep): the lane sets in order.
+    fn solve_contacts<const USE_BIAS: bool, const SAME_POSES: bool>(
+        &mut self,
+        softness: &Softness,
+        inverse_h: f32,
+    ) {
         for lanes in &mut self.lanes {
-            lanes.solve::<USE_BIAS>(&mut self.states, softness, inverse_h);
+            lanes.solve::<USE_BIAS, SAME_POSES>(&mut self.states, softness, inverse_h);
         }
     }
 
