@@ -250,6 +250,8 @@ struct PointTarget {
 struct PointLanes {
     normal: JacobianLanes,
     base_separation: F32x4,
+    /// The normal velocity at the start of the step, m/s, for restitution: set only in lane
+    /// sets that bounce.
     approach_velocity: F32x4,
     normal_impulse: F32x4,
     max_normal_impulse: F32x4,
@@ -389,8 +391,10 @@ impl ContactLanes {
                 mass: in_manifold.select(jacobian.mass, F32x4::ZERO),
                 ..jacobian
             };
-            point.approach_velocity =
-                (b.velocity_at(anchor_b) - a.velocity_at(anchor_a)).dot(normal);
+            if lanes.bounces {
+                point.approach_velocity =
+                    (b.velocity_at(anchor_b) - a.velocity_at(anchor_a)).dot(normal);
+            }
             center += position;
         }
         let counts = point_counts.max(F32x4::ONE);
