@@ -255,11 +255,18 @@ struct PointLanes {
     approach_velocity: F32x4,
     normal_impulse: F32x4,
     max_normal_impulse: F32x4,
-    /// Set by the first biased pass of a substep, for the others (the poses stay).
+    /// Set before the biased passes of each substep ([`ContactLanes::prepare_biased_passes`]).
     target: PointTarget,
 }
 
 impl PointLanes {
+    /// The separation at the pass's poses, `s = s₀ + n·(Δc_B − Δc_A) + Δθ_B·(r_B × n) −
+    /// Δθ_A·(r_A × n)`, m, given `n·(Δc_B − Δc_A)`.
+    fn separation(&self, bodies: &PassLanes, normal_motion: F32x4) -> F32x4 {
+        self.base_separation + normal_motion + bodies.rotation_b.dot(self.normal.arm_b)
+            - bodies.rotation_a.dot(self.normal.arm_a)
+    }
+
     const ZERO: Self = Self {
         normal: JacobianLanes::ZERO,
         base_separation: F32x4::ZERO,
@@ -302,8 +309,8 @@ pub(crate) struct ContactLanes {
     tangent_impulse: [F32x4; 2],
     friction_anchors: [[Vec3; 2]; LANES],
     anchor_offset: [F32x4; 2],
-    /// The anchors' offset along each tangent at the substep's poses, set by its first biased
-    /// pass, m.
+    /// The anchors' offset along each tangent at the substep's poses, set with the points'
+    /// targets, m.
     tangent_offset: [F32x4; 2],
     slid: Mask4,
     twist_spin_a: Vec3x4,
@@ -613,30 +620,58 @@ impl ContactLanes {
         }
     }
 
-    /// One sequential-impulse pass of the four lanes: the normal impulse of each point with
-    /// accumulated clamping (the total never pulls), then the manifold's friction clamped to the
-    /// cone `|λ_t| ≤ μ Σλ_n` and its twist to `μ Σλ_n r̄`. A point still apart by `s > 0` may
-    /// close by `s` this substep (speculative contact). With `USE_BIAS`, a point deeper than
-    /// [`LINEAR_SLOP`] is pushed out by a soft constraint, and friction also pulls the anchors
-    /// back together; within the slop the contact is rigid, so a resting contact carries its load
-    /// without the sag a soft spring has under load (docs/physics.md compares the variants).
-    /// Without `USE_BIAS` (the relax pass) only velocities are solved, which removes the energy
-    /// the push added. With `SAME_POSES`, a biased pass after the first of its substep takes what
-    /// the separations ask from the first instead of working it out again.
-    pub fn solve<const USE_BIAS: bool, const SAME_POSES: bool>(
+    /// Before the biased passes of a substep, whose poses they share: what each point's
+    /// separation at those poses, `s = s₀ + n·(Δc_B − Δc_A) + Δθ_B·(r_B × n) − Δθ_A·(r_A × n)`,
+    /// asks of its normal impulse, and the friction anchors' offsets along the tangents. Apart,
+    /// a point may close by `s` this substep (speculative contact); deeper than [`LINEAR_SLOP`],
+    /// a soft constraint pushes it out at the bias rate, at most [`MAX_PUSH_SPEED`]; within the
+    /// slop the contact is rigid, so a resting contact carries its load without the sag a soft
+    /// spring has under load (docs/physics.md compares the variants).
+    pub fn prepare_biased_passes(
         &mut self,
-        states: &mut [BodyState],
+        states: &[BodyState],
         softness: &Softness,
         inverse_h: f32,
     ) {
+        let bodies = PassLanes::gather(states, &self.body_a, &self.body_b);
+        let normal_motion = self.normal.dot(bodies.relative_motion);
+        let inverse_h = F32x4::splat(inverse_h);
+        let slop = F32x4::splat(LINEAR_SLOP);
+        for point in &mut self.points[..self.point_count] {
+            let separation = point.separation(&bodies, normal_motion);
+            let apart = separation.greater_than(F32x4::ZERO);
+            let deep = separation.less_than(-slop);
+            let push = (F32x4::splat(softness.bias_rate) * (separation + slop))
+                .max(F32x4::splat(-MAX_PUSH_SPEED));
+            let mass_scale = deep.select(F32x4::splat(softness.mass_scale), F32x4::ONE);
+            point.target = PointTarget {
+                bias: apart.select(separation * inverse_h, deep.select(push, F32x4::ZERO)),
+                mass: -point.normal.mass * mass_scale,
+                impulse_scale: deep.select(F32x4::splat(softness.impulse_scale), F32x4::ZERO),
+            };
+        }
+        for axis in 0..2 {
+            // The anchor offset now: start offset plus the motion since, along the tangent.
+            let jacobian = &self.tangent[axis];
+            self.tangent_offset[axis] = self.anchor_offset[axis]
+                + self.tangents[axis].dot(bodies.relative_motion)
+                + bodies.rotation_b.dot(jacobian.arm_b)
+                - bodies.rotation_a.dot(jacobian.arm_a);
+        }
+    }
+
+    /// One sequential-impulse pass of the four lanes: the normal impulse of each point with
+    /// accumulated clamping (the total never pulls), then the manifold's friction clamped to the
+    /// cone `|λ_t| ≤ μ Σλ_n` and its twist to `μ Σλ_n r̄`. With `USE_BIAS`, each point's impulse
+    /// aims at its target from [`Self::prepare_biased_passes`], and friction also pulls the
+    /// anchors back together. Without `USE_BIAS` (the relax pass, after the poses moved) only
+    /// velocities are solved, which removes the energy the push added; a point still apart by
+    /// `s > 0` may close by `s` this substep.
+    pub fn solve<const USE_BIAS: bool>(&mut self, states: &mut [BodyState], inverse_h: f32) {
         let mut bodies = PassLanes::gather(states, &self.body_a, &self.body_b);
         let normal = self.normal;
         let inverse_h = F32x4::splat(inverse_h);
-        let slop = F32x4::splat(LINEAR_SLOP);
-        // The bodies' centres move only between passes: Δc_B − Δc_A and n·(Δc_B − Δc_A) hold for
-        // every point.
-        let relative_motion = bodies.relative_motion;
-        let normal_motion = normal.dot(relative_motion);
+        let normal_motion = normal.dot(bodies.relative_motion);
         // Each point's normal velocity is its velocity at the start of the pass plus what the
         // points before it applied, through the couplings; the impulses reach the bodies after.
         let relative_velocity = bodies.relative_velocity;
@@ -651,36 +686,16 @@ impl ContactLanes {
             for (&coupling, &earlier) in couplings.iter().zip(&applied[..j]) {
                 normal_velocity += coupling * earlier;
             }
-            let impulse = if SAME_POSES {
+            let impulse = if USE_BIAS {
                 let target = &point.target;
                 target.mass * (normal_velocity + target.bias)
                     - target.impulse_scale * point.normal_impulse
             } else {
-                // s = s₀ + n·(Δc_B − Δc_A) + Δθ_B·(r_B × n) − Δθ_A·(r_A × n)
-                let separation =
-                    point.base_separation + normal_motion + bodies.rotation_b.dot(jacobian.arm_b)
-                        - bodies.rotation_a.dot(jacobian.arm_a);
-                // Apart: may close by s this substep. Deeper than the slop (biased pass): soft
-                // push out at the bias rate, at most MAX_PUSH_SPEED. Otherwise rigid, no bias.
-                let apart = separation.greater_than(F32x4::ZERO);
-                let closing = separation * inverse_h;
-                if USE_BIAS {
-                    let deep = separation.less_than(-slop);
-                    let push = (F32x4::splat(softness.bias_rate) * (separation + slop))
-                        .max(F32x4::splat(-MAX_PUSH_SPEED));
-                    let mass_scale = deep.select(F32x4::splat(softness.mass_scale), F32x4::ONE);
-                    let impulse_scale =
-                        deep.select(F32x4::splat(softness.impulse_scale), F32x4::ZERO);
-                    point.target = PointTarget {
-                        bias: apart.select(closing, deep.select(push, F32x4::ZERO)),
-                        mass: -jacobian.mass * mass_scale,
-                        impulse_scale,
-                    };
-                    point.target.mass * (normal_velocity + point.target.bias)
-                        - impulse_scale * point.normal_impulse
-                } else {
-                    -jacobian.mass * (normal_velocity + apart.select(closing, F32x4::ZERO))
-                }
+                let separation = point.separation(&bodies, normal_motion);
+                let closing = separation
+                    .greater_than(F32x4::ZERO)
+                    .select(separation * inverse_h, F32x4::ZERO);
+                -jacobian.mass * (normal_velocity + closing)
             };
             let total = (point.normal_impulse + impulse).max(F32x4::ZERO);
             applied[j] = total - point.normal_impulse;
@@ -707,14 +722,6 @@ impl ContactLanes {
             let mut velocity = self.tangents[axis].dot(relative_velocity)
                 + jacobian.spin_velocity(bodies.angular_a, bodies.angular_b);
             if USE_BIAS {
-                if !SAME_POSES {
-                    // The anchor offset now: start offset plus the motion since, along the
-                    // tangent.
-                    self.tangent_offset[axis] = self.anchor_offset[axis]
-                        + self.tangents[axis].dot(relative_motion)
-                        + bodies.rotation_b.dot(jacobian.arm_b)
-                        - bodies.rotation_a.dot(jacobian.arm_a);
-                }
                 velocity += inverse_h * self.tangent_offset[axis];
             }
             total[axis] = old[axis] - jacobian.mass * velocity;
