@@ -24,12 +24,10 @@ use crate::math::{Vec3, Vec3A};
 /// Lanes per set.
 pub const LANES: usize = 4;
 
-/// What a lane set reads of its bodies, gathered from the body states.
+/// The velocities of a lane set's bodies on one side, gathered from the body states.
 struct BodyLanes {
     linear_velocity: Vec3x4,
     angular_velocity: Vec3x4,
-    delta_position: Vec3x4,
-    delta_rotation: Vec3x4,
 }
 
 impl BodyLanes {
@@ -40,8 +38,6 @@ impl BodyLanes {
         Self {
             linear_velocity: field(|s| s.linear_velocity),
             angular_velocity: field(|s| s.angular_velocity),
-            delta_position: field(|s| s.delta_position),
-            delta_rotation: field(|s| s.delta_rotation),
         }
     }
 
@@ -54,6 +50,67 @@ impl BodyLanes {
                 let state = &mut states[body];
                 state.linear_velocity = linear[lane];
                 state.angular_velocity = angular[lane];
+            }
+        }
+    }
+}
+
+/// What a solver pass reads of its bodies: both sides' spins and rotations, but of the linear
+/// velocities and moves only B's minus A's, since the impulses act on both along one direction
+/// and the bodies get the linear impulse of the pass at its end ([`Self::finish`]).
+struct PassLanes {
+    /// `v_B − v_A`, m/s, at the start of the pass.
+    relative_velocity: Vec3x4,
+    /// `Δc_B − Δc_A`, m.
+    relative_motion: Vec3x4,
+    angular_a: Vec3x4,
+    angular_b: Vec3x4,
+    rotation_a: Vec3x4,
+    rotation_b: Vec3x4,
+}
+
+impl PassLanes {
+    /// Inlined, as is [`Self::finish`]: as calls they pass their lanes through memory, about
+    /// 100 instructions more a pass (callgrind, `pyramid`).
+    #[inline(always)]
+    fn gather(states: &[BodyState], bodies_a: &[usize; LANES], bodies_b: &[usize; LANES]) -> Self {
+        let a = bodies_a.map(|body| &states[body]);
+        let b = bodies_b.map(|body| &states[body]);
+        let field = |side: &[&BodyState; LANES], f: fn(&BodyState) -> Vec3A| {
+            Vec3x4::from_lanes(side.map(f))
+        };
+        let difference = |f: fn(&BodyState) -> Vec3A| {
+            Vec3x4::from_lanes(std::array::from_fn(|lane| f(b[lane]) - f(a[lane])))
+        };
+        Self {
+            relative_velocity: difference(|s| s.linear_velocity),
+            relative_motion: difference(|s| s.delta_position),
+            angular_a: field(&a, |s| s.angular_velocity),
+            angular_b: field(&b, |s| s.angular_velocity),
+            rotation_a: field(&a, |s| s.delta_rotation),
+            rotation_b: field(&b, |s| s.delta_rotation),
+        }
+    }
+
+    /// Writes the spins back, and the linear velocity changes `Δv_A = −P / m_A`,
+    /// `Δv_B = +P / m_B` for the linear impulse `P` of the pass; body 0 (fixed, and the empty
+    /// lanes) never changes.
+    #[inline(always)]
+    fn finish(&self, states: &mut [BodyState], lanes: &ContactLanes, linear_impulse: Vec3x4) {
+        let linear_a = linear_impulse.scale(lanes.inverse_mass_a).lanes();
+        let linear_b = linear_impulse.scale(lanes.inverse_mass_b).lanes();
+        let (angular_a, angular_b) = (self.angular_a.lanes(), self.angular_b.lanes());
+        for lane in 0..LANES {
+            let (body_a, body_b) = (lanes.body_a[lane], lanes.body_b[lane]);
+            if body_a != 0 {
+                let state = &mut states[body_a];
+                state.linear_velocity -= linear_a[lane];
+                state.angular_velocity = angular_a[lane];
+            }
+            if body_b != 0 {
+                let state = &mut states[body_b];
+                state.linear_velocity += linear_b[lane];
+                state.angular_velocity = angular_b[lane];
             }
         }
     }
@@ -139,8 +196,19 @@ impl JacobianLanes {
 
     /// `d·(v_B − v_A) + ω_B·(r_B × d) − ω_A·(r_A × d)` per lane.
     fn velocity(&self, a: &BodyLanes, b: &BodyLanes, direction: Vec3x4) -> F32x4 {
-        direction.dot(b.linear_velocity - a.linear_velocity) + b.angular_velocity.dot(self.arm_b)
-            - a.angular_velocity.dot(self.arm_a)
+        direction.dot(b.linear_velocity - a.linear_velocity)
+            + self.spin_velocity(a.angular_velocity, b.angular_velocity)
+    }
+
+    /// The part of [`Self::velocity`] the spins `ω_A`, `ω_B` give, `ω_B·(r_B × d) − ω_A·(r_A × d)`.
+    fn spin_velocity(&self, angular_a: Vec3x4, angular_b: Vec3x4) -> F32x4 {
+        angular_b.dot(self.arm_b) - angular_a.dot(self.arm_a)
+    }
+
+    /// The spin part of [`Self::apply`]: `Δω_A = −λ I_A⁻¹ (r_A × d)`, `Δω_B = +λ I_B⁻¹ (r_B × d)`.
+    fn apply_spin(&self, angular_a: &mut Vec3x4, angular_b: &mut Vec3x4, impulse: F32x4) {
+        *angular_a -= self.spin_a.scale(impulse);
+        *angular_b += self.spin_b.scale(impulse);
     }
 
     /// `Δv = ±λ d / m`, `Δω = ±λ I⁻¹ (r × d)` per lane (A gets the minus sign).
@@ -152,10 +220,29 @@ impl JacobianLanes {
         impulse: F32x4,
     ) {
         a.linear_velocity -= direction.scale(inverse_mass_a * impulse);
-        a.angular_velocity -= self.spin_a.scale(impulse);
         b.linear_velocity += direction.scale(inverse_mass_b * impulse);
-        b.angular_velocity += self.spin_b.scale(impulse);
+        self.apply_spin(&mut a.angular_velocity, &mut b.angular_velocity, impulse);
     }
+}
+
+/// Pairs of distinct points in a manifold.
+const COUPLINGS: usize = MAX_MANIFOLD_POINTS * (MAX_MANIFOLD_POINTS - 1) / 2;
+
+/// Where the coupling of points `i < j` is kept: the pairs ordered by `j`, then `i`, so the
+/// couplings of point `j` with the points before it start at `j (j − 1) / 2`.
+const fn coupling_index(i: usize, j: usize) -> usize {
+    j * (j - 1) / 2 + i
+}
+
+/// What one point of four constraints asks of its normal impulse in the biased passes of a
+/// substep, from its separation at the substep's poses: `Δλ = mass (v_n + bias) − impulse_scale λ`.
+#[derive(Debug, Clone, Copy)]
+struct PointTarget {
+    /// m/s.
+    bias: F32x4,
+    /// The effective mass, scaled by the softness where the point is deep, and negated, kg.
+    mass: F32x4,
+    impulse_scale: F32x4,
 }
 
 /// The normal part of one point of four constraints.
@@ -163,18 +250,34 @@ impl JacobianLanes {
 struct PointLanes {
     normal: JacobianLanes,
     base_separation: F32x4,
+    /// The normal velocity at the start of the step, m/s, for restitution: set only in lane
+    /// sets that bounce.
     approach_velocity: F32x4,
     normal_impulse: F32x4,
     max_normal_impulse: F32x4,
+    /// Set before the biased passes of each substep ([`ContactLanes::prepare_biased_passes`]).
+    target: PointTarget,
 }
 
 impl PointLanes {
+    /// The separation at the pass's poses, `s = s₀ + n·(Δc_B − Δc_A) + Δθ_B·(r_B × n) −
+    /// Δθ_A·(r_A × n)`, m, given `n·(Δc_B − Δc_A)`.
+    fn separation(&self, bodies: &PassLanes, normal_motion: F32x4) -> F32x4 {
+        self.base_separation + normal_motion + bodies.rotation_b.dot(self.normal.arm_b)
+            - bodies.rotation_a.dot(self.normal.arm_a)
+    }
+
     const ZERO: Self = Self {
         normal: JacobianLanes::ZERO,
         base_separation: F32x4::ZERO,
         approach_velocity: F32x4::ZERO,
         normal_impulse: F32x4::ZERO,
         max_normal_impulse: F32x4::ZERO,
+        target: PointTarget {
+            bias: F32x4::ZERO,
+            mass: F32x4::ZERO,
+            impulse_scale: F32x4::ZERO,
+        },
     };
 }
 
@@ -198,10 +301,17 @@ pub(crate) struct ContactLanes {
     point_counts: [usize; LANES],
     point_count: usize,
     points: [PointLanes; MAX_MANIFOLD_POINTS],
+    /// How a unit impulse at point `i` changes the normal velocity at point `j > i`, per lane:
+    /// `K_ij = (m_A⁻¹ + m_B⁻¹)(n·n) + (r_Aj × n)·I_A⁻¹(r_Ai × n) + (r_Bj × n)·I_B⁻¹(r_Bi × n)`,
+    /// the off-diagonal part of the points' effective-mass matrix, at [`coupling_index`]`(i, j)`.
+    coupling: [F32x4; COUPLINGS],
     tangent: [JacobianLanes; 2],
     tangent_impulse: [F32x4; 2],
     friction_anchors: [[Vec3; 2]; LANES],
     anchor_offset: [F32x4; 2],
+    /// The anchors' offset along each tangent at the substep's poses, set with the points'
+    /// targets, m.
+    tangent_offset: [F32x4; 2],
     slid: Mask4,
     twist_spin_a: Vec3x4,
     twist_spin_b: Vec3x4,
@@ -227,10 +337,12 @@ impl ContactLanes {
         point_counts: [0; LANES],
         point_count: 0,
         points: [PointLanes::ZERO; MAX_MANIFOLD_POINTS],
+        coupling: [F32x4::ZERO; COUPLINGS],
         tangent: [JacobianLanes::ZERO; 2],
         tangent_impulse: [F32x4::ZERO; 2],
         friction_anchors: [[Vec3::ZERO; 2]; LANES],
         anchor_offset: [F32x4::ZERO; 2],
+        tangent_offset: [F32x4::ZERO; 2],
         slid: Mask4::NONE,
         twist_spin_a: Vec3x4::ZERO,
         twist_spin_b: Vec3x4::ZERO,
@@ -286,8 +398,10 @@ impl ContactLanes {
                 mass: in_manifold.select(jacobian.mass, F32x4::ZERO),
                 ..jacobian
             };
-            point.approach_velocity =
-                (b.velocity_at(anchor_b) - a.velocity_at(anchor_a)).dot(normal);
+            if lanes.bounces {
+                point.approach_velocity =
+                    (b.velocity_at(anchor_b) - a.velocity_at(anchor_a)).dot(normal);
+            }
             center += position;
         }
         let counts = point_counts.max(F32x4::ONE);
@@ -308,6 +422,15 @@ impl ContactLanes {
             let direction = lanes.tangents[axis];
             lanes.tangent[axis] =
                 JacobianLanes::new((&a, &b), masses, (center_a, center_b), direction);
+        }
+        let linear_coupling = (masses.0 + masses.1) * normal.dot(normal);
+        for j in 1..lanes.point_count {
+            for i in 0..j {
+                let (earlier, later) = (&lanes.points[i].normal, &lanes.points[j].normal);
+                lanes.coupling[coupling_index(i, j)] = linear_coupling
+                    + later.arm_a.dot(earlier.spin_a)
+                    + later.arm_b.dot(earlier.spin_b);
+            }
         }
         lanes.twist_spin_a = a.inverse_inertia.mul_vec3(normal);
         lanes.twist_spin_b = b.inverse_inertia.mul_vec3(normal);
@@ -455,9 +578,9 @@ impl ContactLanes {
     }
 
     /// Twist impulse about the normal: `Δω_A = −λ I_A⁻¹ n`, `Δω_B = +λ I_B⁻¹ n` per lane.
-    fn apply_twist(&self, a: &mut BodyLanes, b: &mut BodyLanes, impulse: F32x4) {
-        a.angular_velocity -= self.twist_spin_a.scale(impulse);
-        b.angular_velocity += self.twist_spin_b.scale(impulse);
+    fn apply_twist(&self, bodies: &mut PassLanes, impulse: F32x4) {
+        bodies.angular_a -= self.twist_spin_a.scale(impulse);
+        bodies.angular_b += self.twist_spin_b.scale(impulse);
     }
 
     /// Applies last step's accumulated impulses again (warm starting). The impulses only add up,
@@ -497,75 +620,109 @@ impl ContactLanes {
         }
     }
 
-    /// One sequential-impulse pass of the four lanes: the normal impulse of each point with
-    /// accumulated clamping (the total never pulls), then the manifold's friction clamped to the
-    /// cone `|λ_t| ≤ μ Σλ_n` and its twist to `μ Σλ_n r̄`. A point still apart by `s > 0` may
-    /// close by `s` this substep (speculative contact). With `USE_BIAS`, a point deeper than
-    /// [`LINEAR_SLOP`] is pushed out by a soft constraint, and friction also pulls the anchors
-    /// back together; within the slop the contact is rigid, so a resting contact carries its load
-    /// without the sag a soft spring has under load (docs/physics.md compares the variants).
-    /// Without `USE_BIAS` (the relax pass) only velocities are solved, which removes the energy
-    /// the push added.
-    pub fn solve<const USE_BIAS: bool>(
+    /// Before the biased passes of a substep, whose poses they share: what each point's
+    /// separation at those poses, `s = s₀ + n·(Δc_B − Δc_A) + Δθ_B·(r_B × n) − Δθ_A·(r_A × n)`,
+    /// asks of its normal impulse, and the friction anchors' offsets along the tangents. Apart,
+    /// a point may close by `s` this substep (speculative contact); deeper than [`LINEAR_SLOP`],
+    /// a soft constraint pushes it out at the bias rate, at most [`MAX_PUSH_SPEED`]; within the
+    /// slop the contact is rigid, so a resting contact carries its load without the sag a soft
+    /// spring has under load (docs/physics.md compares the variants).
+    pub fn prepare_biased_passes(
         &mut self,
-        states: &mut [BodyState],
+        states: &[BodyState],
         softness: &Softness,
         inverse_h: f32,
     ) {
-        let mut a = BodyLanes::gather(states, &self.body_a);
-        let mut b = BodyLanes::gather(states, &self.body_b);
-        let masses = self.inverse_masses();
-        let normal = self.normal;
+        let bodies = PassLanes::gather(states, &self.body_a, &self.body_b);
+        let normal_motion = self.normal.dot(bodies.relative_motion);
         let inverse_h = F32x4::splat(inverse_h);
         let slop = F32x4::splat(LINEAR_SLOP);
-        // The bodies' centres move only between passes: Δc_B − Δc_A and n·(Δc_B − Δc_A) hold for
-        // every point.
-        let relative_motion = b.delta_position - a.delta_position;
-        let normal_motion = normal.dot(relative_motion);
-        let mut total_normal_impulse = F32x4::ZERO;
         for point in &mut self.points[..self.point_count] {
-            let jacobian = &point.normal;
-            // s = s₀ + n·(Δc_B − Δc_A) + Δθ_B·(r_B × n) − Δθ_A·(r_A × n)
-            let separation =
-                point.base_separation + normal_motion + b.delta_rotation.dot(jacobian.arm_b)
-                    - a.delta_rotation.dot(jacobian.arm_a);
-            // Apart: may close by s this substep. Deeper than the slop (biased pass): soft push
-            // out at the bias rate, at most MAX_PUSH_SPEED. Otherwise rigid, no bias.
+            let separation = point.separation(&bodies, normal_motion);
             let apart = separation.greater_than(F32x4::ZERO);
-            let deep = if USE_BIAS {
-                separation.less_than(-slop)
-            } else {
-                Mask4::NONE
-            };
+            let deep = separation.less_than(-slop);
             let push = (F32x4::splat(softness.bias_rate) * (separation + slop))
                 .max(F32x4::splat(-MAX_PUSH_SPEED));
-            let bias = apart.select(separation * inverse_h, deep.select(push, F32x4::ZERO));
             let mass_scale = deep.select(F32x4::splat(softness.mass_scale), F32x4::ONE);
-            let impulse_scale = deep.select(F32x4::splat(softness.impulse_scale), F32x4::ZERO);
-            let normal_velocity = jacobian.velocity(&a, &b, normal);
-            let impulse = -jacobian.mass * mass_scale * (normal_velocity + bias)
-                - impulse_scale * point.normal_impulse;
-            let total = (point.normal_impulse + impulse).max(F32x4::ZERO);
-            let applied = total - point.normal_impulse;
-            point.normal_impulse = total;
-            point.max_normal_impulse = point.max_normal_impulse.max(applied);
-            total_normal_impulse += total;
-            jacobian.apply((&mut a, &mut b), masses, normal, applied);
+            point.target = PointTarget {
+                bias: apart.select(separation * inverse_h, deep.select(push, F32x4::ZERO)),
+                mass: -point.normal.mass * mass_scale,
+                impulse_scale: deep.select(F32x4::splat(softness.impulse_scale), F32x4::ZERO),
+            };
         }
+        for axis in 0..2 {
+            // The anchor offset now: start offset plus the motion since, along the tangent.
+            let jacobian = &self.tangent[axis];
+            self.tangent_offset[axis] = self.anchor_offset[axis]
+                + self.tangents[axis].dot(bodies.relative_motion)
+                + bodies.rotation_b.dot(jacobian.arm_b)
+                - bodies.rotation_a.dot(jacobian.arm_a);
+        }
+    }
+
+    /// One sequential-impulse pass of the four lanes: the normal impulse of each point with
+    /// accumulated clamping (the total never pulls), then the manifold's friction clamped to the
+    /// cone `|λ_t| ≤ μ Σλ_n` and its twist to `μ Σλ_n r̄`. With `USE_BIAS`, each point's impulse
+    /// aims at its target from [`Self::prepare_biased_passes`], and friction also pulls the
+    /// anchors back together. Without `USE_BIAS` (the relax pass, after the poses moved) only
+    /// velocities are solved, which removes the energy the push added; a point still apart by
+    /// `s > 0` may close by `s` this substep.
+    pub fn solve<const USE_BIAS: bool>(&mut self, states: &mut [BodyState], inverse_h: f32) {
+        let mut bodies = PassLanes::gather(states, &self.body_a, &self.body_b);
+        let normal = self.normal;
+        let inverse_h = F32x4::splat(inverse_h);
+        let normal_motion = normal.dot(bodies.relative_motion);
+        // Each point's normal velocity is its velocity at the start of the pass plus what the
+        // points before it applied, through the couplings; the impulses reach the bodies after.
+        let relative_velocity = bodies.relative_velocity;
+        let linear_speed = normal.dot(relative_velocity);
+        let mut applied = [F32x4::ZERO; MAX_MANIFOLD_POINTS];
+        let mut total_normal_impulse = F32x4::ZERO;
+        for (j, point) in self.points[..self.point_count].iter_mut().enumerate() {
+            let jacobian = &point.normal;
+            let mut normal_velocity =
+                linear_speed + jacobian.spin_velocity(bodies.angular_a, bodies.angular_b);
+            let couplings = &self.coupling[coupling_index(0, j.max(1))..];
+            for (&coupling, &earlier) in couplings.iter().zip(&applied[..j]) {
+                normal_velocity += coupling * earlier;
+            }
+            let impulse = if USE_BIAS {
+                let target = &point.target;
+                target.mass * (normal_velocity + target.bias)
+                    - target.impulse_scale * point.normal_impulse
+            } else {
+                let separation = point.separation(&bodies, normal_motion);
+                let closing = separation
+                    .greater_than(F32x4::ZERO)
+                    .select(separation * inverse_h, F32x4::ZERO);
+                -jacobian.mass * (normal_velocity + closing)
+            };
+            let total = (point.normal_impulse + impulse).max(F32x4::ZERO);
+            applied[j] = total - point.normal_impulse;
+            point.normal_impulse = total;
+            point.max_normal_impulse = point.max_normal_impulse.max(applied[j]);
+            total_normal_impulse += total;
+        }
+        let mut normal_impulse = F32x4::ZERO;
+        for (point, &impulse) in self.points[..self.point_count].iter().zip(&applied) {
+            normal_impulse += impulse;
+            point
+                .normal
+                .apply_spin(&mut bodies.angular_a, &mut bodies.angular_b, impulse);
+        }
+        // The normal impulses change the velocities along the tangents through the spins only
+        // (n·t = 0), so the bodies get the linear impulse of the whole pass at its end.
+        let mut linear_impulse = normal.scale(normal_impulse);
 
         let limit = self.friction * total_normal_impulse;
         let old = self.tangent_impulse;
         let mut total = [F32x4::ZERO; 2];
         for axis in 0..2 {
             let jacobian = &self.tangent[axis];
-            let mut velocity = jacobian.velocity(&a, &b, self.tangents[axis]);
+            let mut velocity = self.tangents[axis].dot(relative_velocity)
+                + jacobian.spin_velocity(bodies.angular_a, bodies.angular_b);
             if USE_BIAS {
-                // The anchor offset now: start offset plus the motion since, along the tangent.
-                let offset = self.anchor_offset[axis]
-                    + self.tangents[axis].dot(relative_motion)
-                    + b.delta_rotation.dot(jacobian.arm_b)
-                    - a.delta_rotation.dot(jacobian.arm_a);
-                velocity += inverse_h * offset;
+                velocity += inverse_h * self.tangent_offset[axis];
             }
             total[axis] = old[axis] - jacobian.mass * velocity;
         }
@@ -580,18 +737,18 @@ impl ContactLanes {
         self.slid = self.slid.or(slides);
         self.tangent_impulse = total;
         for axis in 0..2 {
-            let (jacobian, direction) = (&self.tangent[axis], self.tangents[axis]);
-            jacobian.apply((&mut a, &mut b), masses, direction, total[axis] - old[axis]);
+            let applied = total[axis] - old[axis];
+            linear_impulse += self.tangents[axis].scale(applied);
+            self.tangent[axis].apply_spin(&mut bodies.angular_a, &mut bodies.angular_b, applied);
         }
 
         let twist_limit = limit * self.twist_radius;
-        let spin = (b.angular_velocity - a.angular_velocity).dot(normal);
+        let spin = (bodies.angular_b - bodies.angular_a).dot(normal);
         let old_twist = self.twist_impulse;
         self.twist_impulse = (old_twist - self.twist_mass * spin)
             .max(-twist_limit)
             .min(twist_limit);
-        self.apply_twist(&mut a, &mut b, self.twist_impulse - old_twist);
-        a.scatter(states, &self.body_a);
-        b.scatter(states, &self.body_b);
+        self.apply_twist(&mut bodies, self.twist_impulse - old_twist);
+        bodies.finish(states, self, linear_impulse);
     }
 }

@@ -159,14 +159,14 @@ impl Solver {
             for (state, motion) in self.states.iter_mut().zip(&self.motions).skip(1) {
                 integrate_velocities(state, motion, settings.gravity, h, limits);
             }
-            self.warm_start();
+            self.warm_start(&softness, inverse_h);
             for _ in 0..BIASED_ITERATIONS {
-                self.solve_contacts::<true>(&softness, inverse_h);
+                self.solve_contacts::<true>(inverse_h);
             }
             for (state, motion) in self.states.iter_mut().zip(&mut self.motions).skip(1) {
                 integrate_pose(state, motion, h);
             }
-            self.solve_contacts::<false>(&softness, inverse_h);
+            self.solve_contacts::<false>(inverse_h);
         }
         for lanes in &mut self.lanes {
             lanes.apply_restitution(&mut self.states);
@@ -262,17 +262,19 @@ impl Solver {
         self.lanes = lane_sets;
     }
 
-    /// Applies last step's impulses again.
-    fn warm_start(&mut self) {
-        for lanes in &self.lanes {
+    /// Applies last step's impulses again, and sets what the biased passes of the substep aim
+    /// at (its poses).
+    fn warm_start(&mut self, softness: &Softness, inverse_h: f32) {
+        for lanes in &mut self.lanes {
             lanes.warm_start(&mut self.states);
+            lanes.prepare_biased_passes(&self.states, softness, inverse_h);
         }
     }
 
     /// One pass over every contact (biased with `USE_BIAS`, else relax): the lane sets in order.
-    fn solve_contacts<const USE_BIAS: bool>(&mut self, softness: &Softness, inverse_h: f32) {
+    fn solve_contacts<const USE_BIAS: bool>(&mut self, inverse_h: f32) {
         for lanes in &mut self.lanes {
-            lanes.solve::<USE_BIAS>(&mut self.states, softness, inverse_h);
+            lanes.solve::<USE_BIAS>(&mut self.states, inverse_h);
         }
     }
 
