@@ -255,6 +255,15 @@ impl<'a> Polyhedron<'a> {
         }
     }
 
+    /// Radius of a ball about [`Polyhedron::interior_point`] that the polyhedron holds, metres: a
+    /// box's smallest half extent, [`ConvexHull::inner_radius`] for a hull.
+    pub(super) fn inner_radius(&self) -> f32 {
+        match self.topology {
+            Topology::Cuboid(half_extents) => half_extents.min_element(),
+            Topology::Hull(hull) => hull.inner_radius(),
+        }
+    }
+
     /// Whether vertex `vertex` is a corner of face `face`.
     pub(super) fn face_has_vertex(&self, face: usize, vertex: usize) -> bool {
         match self.topology {

@@ -230,16 +230,24 @@ pub(super) fn edge_query(
 }
 
 /// A bit per lane of `lanes`, set for the edges whose pairs may separate the shapes by at least
-/// `threshold` (less [`ABSOLUTE_TOLERANCE`], against rounding): whose reach from `inside`, a point
-/// inside the other shape in this shape's frame, is not below it (lanes from `count` edges on
-/// are clear). An edge's reach bounds the separation of any pair with it from above: the largest
-/// `n · (p − s)` over the unit normals `n` on the edge's arc between its face normals `n₁, n₂`,
-/// for `s` the edge's first end and `p = inside`. The pair's separation along its axis `n` is the
-/// other shape's extent along `∓n` less this shape's, which is reached at the edge, so it is at
-/// most `n · (p − s)`. The largest is `|v|` for `v` the part of `p − s` in the arc's plane when
-/// `v` lies between `n₁` and `n₂` (`v = α n₁ + β n₂`, `α, β ≥ 0`), else at an end; infinite for
-/// a degenerate arc (`1 − (n₁ · n₂)² ≤ 10⁻⁶`, or NaN).
-fn within_reach(lanes: &EdgeLanes, count: usize, inside: Vec3, threshold: f32) -> u32 {
+/// `threshold` (less [`ABSOLUTE_TOLERANCE`], against rounding): whose reach from the other shape,
+/// which holds the ball of radius `inner_radius` about `inside` (in this shape's frame), is not
+/// below it (lanes from `count` edges on are clear). An edge's reach bounds the separation of any
+/// pair with it from above: the largest `n · (p − s) − r` over the unit normals `n` on the edge's
+/// arc between its face normals `n₁, n₂`, for `s` the edge's first end, `p = inside` and
+/// `r = inner_radius`. The pair's separation along its axis `n` is the other shape's extent along
+/// `−n` less this shape's, which is reached at the edge; the other shape reaches at least to the
+/// ball's far side, `n · p − r`, so the separation is at most `n · (p − s) − r`. The largest
+/// `n · (p − s)` is `|v|` for `v` the part of `p − s` in the arc's plane when `v` lies between
+/// `n₁` and `n₂` (`v = α n₁ + β n₂`, `α, β ≥ 0`), else at an end; infinite for a degenerate arc
+/// (`1 − (n₁ · n₂)² ≤ 10⁻⁶`, or NaN).
+fn within_reach(
+    lanes: &EdgeLanes,
+    count: usize,
+    inside: Vec3,
+    inner_radius: f32,
+    threshold: f32,
+) -> u32 {
     let toward: [Vec4; 3] =
         std::array::from_fn(|axis| Vec4::splat(inside[axis]) - lanes.start[axis]);
     let dot =
@@ -256,7 +264,8 @@ fn within_reach(lanes: &EdgeLanes, count: usize, inside: Vec3, threshold: f32) -
         .max(Vec4::ZERO)
         .sqrt();
     let reach = Vec4::select(between, on_arc, along_first.max(along_second));
-    let out_of_reach = reach.cmplt(Vec4::splat(threshold - ABSOLUTE_TOLERANCE)) & proper_arc;
+    let least = Vec4::splat(threshold + inner_radius - ABSOLUTE_TOLERANCE);
+    let out_of_reach = reach.cmplt(least) & proper_arc;
     let present = (1u32 << count.min(4)) - 1;
     !out_of_reach.bitmask() & present
 }
@@ -388,6 +397,7 @@ fn best_box_edge_axis(
             lanes,
             b_count - 4 * group,
             box_centre,
+            half_extents.min_element(),
             threshold,
         )) {
             let edge_b = 4 * group + lane;
@@ -460,14 +470,20 @@ fn best_edge_axis(
         let mut any_a = 0;
         for (group, (lanes, reach)) in a_chunk.iter().zip(&mut reach_a).enumerate() {
             let count = a_count - 4 * (first_group + group);
-            *reach = within_reach(lanes, count, inside_b, threshold);
+            *reach = within_reach(lanes, count, inside_b, b.inner_radius(), threshold);
             any_a |= *reach;
         }
         if any_a == 0 {
             continue;
         }
         for (group_b, lanes_b) in b_lanes.iter().enumerate() {
-            let reach_b = within_reach(lanes_b, b_count - 4 * group_b, inside_a, threshold);
+            let reach_b = within_reach(
+                lanes_b,
+                b_count - 4 * group_b,
+                inside_a,
+                a.inner_radius(),
+                threshold,
+            );
             for lane_b in lanes_of(reach_b) {
                 let edge_b = 4 * group_b + lane_b;
                 let moved = PlacedEdge::of_b(lanes_b, lane_b, b_in_a);

@@ -92,6 +92,10 @@ pub struct ConvexHull {
     edge_lanes: Vec<EdgeLanes>,
     /// The mean of the vertices, metres: a point inside the hull.
     mean_vertex: Vec3,
+    /// Radius of a ball about the mean vertex inside the hull, metres: its distance to the
+    /// nearest face plane less twice the hull tolerance (how far a face's plane may lie off its
+    /// points), at least 0.
+    inner_radius: f32,
 }
 
 /// Four edges of a polyhedron laid out by coordinate, a lane each (zero in lanes past the last
@@ -135,22 +139,26 @@ impl EdgeLanes {
     }
 
     /// Lane `lane`'s first end.
+    #[inline]
     pub(crate) fn start(&self, lane: usize) -> Vec3 {
         lane_vector(&self.start, lane)
     }
 
     /// Lane `lane`'s direction.
+    #[inline]
     pub(crate) fn direction(&self, lane: usize) -> Vec3 {
         lane_vector(&self.direction, lane)
     }
 
     /// Lane `lane`'s face normals.
+    #[inline]
     pub(crate) fn normals(&self, lane: usize) -> [Vec3; 2] {
         self.normals.map(|normal| lane_vector(&normal, lane))
     }
 }
 
 /// The vector in lane `lane` of x, y and z lanes.
+#[inline]
 fn lane_vector(coordinates: &[Vec4; 3], lane: usize) -> Vec3 {
     let [x, y, z] = coordinates.each_ref().map(|column| column.as_ref()[lane]);
     Vec3::new(x, y, z)
@@ -209,6 +217,11 @@ impl ConvexHull {
     /// The mean of the vertices, metres: a point inside the hull.
     pub(crate) fn mean_vertex(&self) -> Vec3 {
         self.mean_vertex
+    }
+
+    /// Radius of a ball about [`ConvexHull::mean_vertex`] that the hull holds, metres.
+    pub(crate) fn inner_radius(&self) -> f32 {
+        self.inner_radius
     }
 
     /// Radius of the ball about the body origin that holds the hull (its farthest vertex), metres.
@@ -1057,9 +1070,15 @@ fn assemble(
             [start, end, first, second]
         })
         .collect();
+    let mean_vertex = vertices.iter().copied().sum::<Vec3>() / vertices.len().max(1) as f32;
+    let nearest_face = faces
+        .iter()
+        .map(|face| face.offset - face.normal.dot(mean_vertex))
+        .fold(f32::INFINITY, f32::min);
     Ok(ConvexHull {
         edge_lanes: edge_ends.chunks(4).map(EdgeLanes::new).collect(),
-        mean_vertex: vertices.iter().copied().sum::<Vec3>() / vertices.len().max(1) as f32,
+        mean_vertex,
+        inner_radius: (nearest_face - 2.0 * tolerance as f32).max(0.0),
         faces,
         edges,
         unit,
