@@ -161,9 +161,15 @@ fn best_face_axis_by_support(
     best
 }
 
-/// Replaces `best` by `candidate` when there is none yet or the candidate's separation is larger.
+/// Replaces `best` by `candidate` when there is none yet or the candidate's separation is larger,
+/// or equal with a lower edge of A, then of B.
 fn keep_larger(best: &mut Option<EdgeAxis>, candidate: EdgeAxis) {
-    if best.is_none_or(|best| candidate.separation > best.separation) {
+    let features = |axis: &EdgeAxis| (axis.edge_a, axis.edge_b);
+    let kept = best.is_none_or(|best| {
+        candidate.separation > best.separation
+            || (candidate.separation == best.separation && features(&candidate) < features(&best))
+    });
+    if kept {
         *best = Some(candidate);
     }
 }
@@ -444,8 +450,7 @@ fn best_box_edge_axis(
 
 /// Over the edge pairs that build a face of the Minkowski difference A − B, the largest
 /// separation along their cross product, computed in A's frame (`b_in_a` places B there) by
-/// trying every pair of edges within reach ([`within_reach`]); of equal separations, the pair
-/// with the lowest edge of A, then of B. A's edges are reach-tested four at a time in groups of
+/// trying every pair of edges within reach ([`within_reach`]) ([`keep_larger`] on ties). A's edges are reach-tested four at a time in groups of
 /// [`A_GROUP_CHUNK`], B's each moved into A's frame only when within reach and tested against
 /// A's four at a time ([`arcs_cross`]).
 fn best_edge_axis(
@@ -497,19 +502,15 @@ fn best_edge_axis(
                             continue;
                         };
                         let edge_a = 4 * (first_group + group) + lane;
-                        let kept = best.is_none_or(|best| {
-                            separation > best.separation
-                                || (separation == best.separation
-                                    && (edge_a, edge_b) < (best.edge_a, best.edge_b))
-                        });
-                        if kept {
-                            best = Some(EdgeAxis {
+                        keep_larger(
+                            &mut best,
+                            EdgeAxis {
                                 edge_a,
                                 edge_b,
                                 axis,
                                 separation,
-                            });
-                        }
+                            },
+                        );
                     }
                 }
             }
