@@ -3,9 +3,8 @@
 
 use std::ops::Range;
 
-use super::gjk::SimplexCache;
 use super::manifold::{Manifold, MAX_MANIFOLD_POINTS};
-use super::narrow_phase::PartContacts;
+use super::narrow_phase::{PartCache, PartContacts};
 use crate::body::BodyHandle;
 use crate::math::{Pose, Vec3, Vec3A};
 use glam::Mat3A;
@@ -132,10 +131,10 @@ pub struct Contact {
     /// They live as long as the manifold is recycled; `None` for a fresh manifold and after the
     /// contact slid.
     pub(crate) friction_anchors: Option<[Vec3; 2]>,
-    /// Where the cache keeps the simplex GJK ended with when the manifold was computed, to start
-    /// from at the next query; `None` when the pair's routine runs no GJK. Kept aside, so that
-    /// contacts without one stay small to copy and sort.
-    simplex: Option<u32>,
+    /// Where the cache keeps what the query that computed the manifold left for the next one
+    /// ([`PartCache`]); `None` when it left nothing. Kept aside, so that contacts without one stay
+    /// small to copy and sort.
+    part_cache: Option<u32>,
     /// Whether the narrow phase found the manifold this step, so that its impulses are still to
     /// be carried over by feature id; recycled and kept contacts bring theirs along.
     fresh: bool,
@@ -152,10 +151,11 @@ pub struct ContactCache {
     /// Where in `previous` the last pair asked for started: the narrow phase asks again for the
     /// pair whose recycling just failed.
     previous_pair_start: usize,
-    /// The simplices of this step's contacts, and of last step's. Their points are in the shapes'
-    /// own frames, which a body's shape never leaves: a shape never changes under its handle.
-    simplices: Vec<SimplexCache>,
-    previous_simplices: Vec<SimplexCache>,
+    /// What the queries of this step's contacts left, and of last step's. Simplices' points and
+    /// axes are in the shapes' own frames, which a body's shape never leaves: a shape never
+    /// changes under its handle.
+    part_caches: Vec<PartCache>,
+    previous_part_caches: Vec<PartCache>,
 }
 
 impl ContactCache {
@@ -164,14 +164,14 @@ impl ContactCache {
     pub fn begin_step(&mut self) {
         std::mem::swap(&mut self.current, &mut self.previous);
         self.current.clear();
-        std::mem::swap(&mut self.simplices, &mut self.previous_simplices);
-        self.simplices.clear();
+        std::mem::swap(&mut self.part_caches, &mut self.previous_part_caches);
+        self.part_caches.clear();
         self.previous_cursor = 0;
         self.previous_pair_start = 0;
     }
 
     /// Adds a contact found this step by the narrow phase with the bodies at `pose_a` and
-    /// `pose_b`, GJK having ended with `simplex`, with zero impulses until
+    /// `pose_b`, the query having left `part_cache`, with zero impulses until
     /// [`ContactCache::finish_step`].
     pub fn push(
         &mut self,
@@ -179,9 +179,9 @@ impl ContactCache {
         manifold: Manifold,
         pose_a: &Pose,
         pose_b: &Pose,
-        simplex: SimplexCache,
+        part_cache: PartCache,
     ) {
-        let simplex = keep_simplex(&mut self.simplices, simplex);
+        let part_cache = keep_part_cache(&mut self.part_caches, part_cache);
         self.current.push(Contact {
             key,
             manifold,
@@ -190,7 +190,7 @@ impl ContactCache {
             twist_impulse: 0.0,
             frame: ManifoldFrame::new(&manifold, pose_a, pose_b),
             friction_anchors: None,
-            simplex,
+            part_cache,
             fresh: true,
         });
     }
@@ -243,7 +243,7 @@ impl ContactCache {
             contact.manifold = contact
                 .frame
                 .rebuild(&contact.manifold, &placed_a, &placed_b);
-            carry_simplex(contact, &self.previous_simplices, &mut self.simplices);
+            carry_part_cache(contact, &self.previous_part_caches, &mut self.part_caches);
         }
         true
     }
@@ -256,7 +256,7 @@ impl ContactCache {
         let start = self.current.len();
         self.current.extend_from_slice(&self.previous[previous]);
         for contact in &mut self.current[start..] {
-            carry_simplex(contact, &self.previous_simplices, &mut self.simplices);
+            carry_part_cache(contact, &self.previous_part_caches, &mut self.part_caches);
         }
     }
 
@@ -345,25 +345,26 @@ impl ContactCache {
     }
 }
 
-/// Keeps `simplex` in `simplices` unless it is empty, and returns where.
-fn keep_simplex(simplices: &mut Vec<SimplexCache>, simplex: SimplexCache) -> Option<u32> {
-    if simplex.is_empty() {
+/// Keeps `part_cache` in `part_caches` unless it is cold, and returns where.
+fn keep_part_cache(part_caches: &mut Vec<PartCache>, part_cache: PartCache) -> Option<u32> {
+    if part_cache == PartCache::Cold {
         return None;
     }
-    let index = u32::try_from(simplices.len()).ok()?;
-    simplices.push(simplex);
+    let index = u32::try_from(part_caches.len()).ok()?;
+    part_caches.push(part_cache);
     Some(index)
 }
 
-/// Moves the simplex of `contact`, carried over from last step, from `previous` to `simplices`.
-fn carry_simplex(
+/// Moves the part cache of `contact`, carried over from last step, from `previous` to
+/// `part_caches`.
+fn carry_part_cache(
     contact: &mut Contact,
-    previous: &[SimplexCache],
-    simplices: &mut Vec<SimplexCache>,
+    previous: &[PartCache],
+    part_caches: &mut Vec<PartCache>,
 ) {
-    if let Some(index) = contact.simplex {
-        let simplex = previous.get(index as usize).copied().unwrap_or_default();
-        contact.simplex = keep_simplex(simplices, simplex);
+    if let Some(index) = contact.part_cache {
+        let kept = previous.get(index as usize).copied().unwrap_or_default();
+        contact.part_cache = keep_part_cache(part_caches, kept);
     }
 }
 
@@ -378,25 +379,25 @@ pub struct PairContacts<'a> {
 
 impl PartContacts for PairContacts<'_> {
     /// The parts are asked for in key order, so the search walks on from the last one asked.
-    fn previous_simplex(&mut self, child_a: u32, child_b: u32) -> SimplexCache {
+    fn previous_cache(&mut self, child_a: u32, child_b: u32) -> PartCache {
         let previous = &self.cache.previous[self.previous.clone()];
         let children = |contact: &Contact| (contact.key.child_a, contact.key.child_b);
         let passed = previous
             .iter()
             .take_while(|contact| children(contact) < (child_a, child_b))
             .count();
-        let simplex = previous
+        let kept = previous
             .get(passed)
             .filter(|contact| children(contact) == (child_a, child_b))
-            .and_then(|contact| contact.simplex)
-            .and_then(|index| self.cache.previous_simplices.get(index as usize))
+            .and_then(|contact| contact.part_cache)
+            .and_then(|index| self.cache.previous_part_caches.get(index as usize))
             .copied()
             .unwrap_or_default();
         self.previous.start += passed;
-        simplex
+        kept
     }
 
-    fn add(&mut self, child_a: u32, child_b: u32, manifold: Manifold, simplex: SimplexCache) {
+    fn add(&mut self, child_a: u32, child_b: u32, manifold: Manifold, part_cache: PartCache) {
         let key = ContactKey {
             body_a: self.bodies.0,
             body_b: self.bodies.1,
@@ -404,7 +405,7 @@ impl PartContacts for PairContacts<'_> {
             child_b,
         };
         let (pose_a, pose_b) = self.poses;
-        self.cache.push(key, manifold, pose_a, pose_b, simplex);
+        self.cache.push(key, manifold, pose_a, pose_b, part_cache);
     }
 }
 
@@ -454,14 +455,14 @@ mod tests {
             manifold(&[5]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
-            SimplexCache::default(),
+            PartCache::Cold,
         );
         cache.push(
             key(ground, box_one),
             manifold(&[1, 2, 3, 4]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
-            SimplexCache::default(),
+            PartCache::Cold,
         );
         cache.finish_step();
         assert_eq!(cache.contacts()[0].key, key(ground, box_one));
@@ -481,14 +482,14 @@ mod tests {
             manifold(&[4, 2, 7]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
-            SimplexCache::default(),
+            PartCache::Cold,
         );
         cache.push(
             key(box_one, box_two),
             manifold(&[5]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
-            SimplexCache::default(),
+            PartCache::Cold,
         );
         cache.finish_step();
         let contacts = cache.contacts();
@@ -516,7 +517,7 @@ mod tests {
                 manifold(ids),
                 &Pose::IDENTITY,
                 &Pose::IDENTITY,
-                SimplexCache::default(),
+                PartCache::Cold,
             );
         }
         cache.finish_step();
@@ -553,7 +554,7 @@ mod tests {
     /// pair of parts with none starts cold.
     #[test]
     fn simplices_come_back_to_their_own_parts() {
-        use crate::collision::gjk::{Simplex, SupportPoint};
+        use crate::collision::gjk::{Simplex, SimplexCache, SupportPoint};
         use crate::collision::{PosedCore, RelativeCore};
         use crate::shape::Shape;
 
@@ -567,7 +568,7 @@ mod tests {
                 b: Vec3::ZERO,
                 w,
             }]);
-            SimplexCache::new(&simplex, &placed)
+            PartCache::Simplex(SimplexCache::new(&simplex, &placed))
         };
         let parts = [(0, 1, 1.0), (1, 0, 2.0), (1, 2, 3.0)];
         let mut cache = ContactCache::default();
@@ -594,8 +595,8 @@ mod tests {
         cache.begin_step();
         let mut pair = cache.pair(ground, body, &identity, &identity);
         for (child_a, child_b, expected) in [(0, 0, None), (0, 1, Some(1.0)), (1, 2, Some(3.0))] {
-            let found = pair.previous_simplex(child_a, child_b);
-            assert_eq!(found, expected.map_or(SimplexCache::default(), simplex_at));
+            let found = pair.previous_cache(child_a, child_b);
+            assert_eq!(found, expected.map_or(PartCache::Cold, simplex_at));
         }
     }
 
@@ -609,14 +610,14 @@ mod tests {
             manifold(&[1]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
-            SimplexCache::default(),
+            PartCache::Cold,
         );
         cache.push(
             key(ground, box_two),
             manifold(&[1]),
             &Pose::IDENTITY,
             &Pose::IDENTITY,
-            SimplexCache::default(),
+            PartCache::Cold,
         );
         cache.finish_step();
         cache.remove_body(box_one);
@@ -645,7 +646,7 @@ mod tests {
             collide(&start),
             &ground_pose,
             &start,
-            SimplexCache::default(),
+            PartCache::Cold,
         );
         cache.finish_step();
 

@@ -6,7 +6,7 @@
 
 use crate::collision::clipping::MAX_POLYGON_VERTICES;
 use crate::math::{Mat3, Pose, Vec3};
-use crate::shape::{ConvexHull, Cuboid, HullEdge, HullFace, Shape};
+use crate::shape::{ConvexHull, Cuboid, EdgeLanes, HullEdge, HullFace, Shape};
 
 /// Box vertex `i` is `(±hx, ±hy, ±hz)` with the sign of x from bit 0 of `i`, y from bit 1 and z
 /// from bit 2 (set = positive).
@@ -197,21 +197,23 @@ impl<'a> Polyhedron<'a> {
         }
     }
 
-    /// Every edge in index order, as [`Polyhedron::edge`] gives them; a hull's are read straight
-    /// from its slices.
-    pub(super) fn edges(&self) -> impl Iterator<Item = PolyhedronEdge> + '_ {
-        let (box_edges, hull) = match self.topology {
-            Topology::Cuboid(_) => (BOX_EDGES.len(), None),
-            Topology::Hull(hull) => (0, Some(hull)),
-        };
-        let hull_edges = hull.map_or(&[][..], ConvexHull::edges);
-        let (vertices, faces) =
-            hull.map_or((&[][..], &[][..]), |hull| (hull.vertices(), hull.faces()));
-        (0..box_edges).map(|index| self.edge(index)).chain(
-            hull_edges
-                .iter()
-                .map(move |edge| hull_edge(vertices, faces, edge)),
-        )
+    /// The edges four to a group in index order, as [`Polyhedron::edge`] gives them: a hull's as
+    /// it stores them, a box's built in `box_lanes`.
+    pub(super) fn edge_lanes<'s>(&'s self, box_lanes: &'s mut [EdgeLanes; 3]) -> &'s [EdgeLanes] {
+        match self.topology {
+            Topology::Cuboid(_) => {
+                for (group, lanes) in box_lanes.iter_mut().enumerate() {
+                    let edges: [[Vec3; 4]; 4] = std::array::from_fn(|lane| {
+                        let edge = self.edge(4 * group + lane);
+                        let [first, second] = edge.face_normals;
+                        [edge.start, edge.end, first, second]
+                    });
+                    *lanes = EdgeLanes::new(&edges);
+                }
+                box_lanes
+            }
+            Topology::Hull(hull) => hull.edge_lanes(),
+        }
     }
 
     /// The vertex farthest along `direction` (a box picks the positive side on a zero
@@ -249,10 +251,16 @@ impl<'a> Polyhedron<'a> {
     pub(super) fn interior_point(&self) -> Vec3 {
         match self.topology {
             Topology::Cuboid(_) => Vec3::ZERO,
-            Topology::Hull(hull) => {
-                let vertices = hull.vertices();
-                vertices.iter().copied().sum::<Vec3>() / vertices.len().max(1) as f32
-            }
+            Topology::Hull(hull) => hull.mean_vertex(),
+        }
+    }
+
+    /// Radius of a ball about [`Polyhedron::interior_point`] that the polyhedron holds, metres: a
+    /// box's smallest half extent, [`ConvexHull::inner_radius`] for a hull.
+    pub(super) fn inner_radius(&self) -> f32 {
+        match self.topology {
+            Topology::Cuboid(half_extents) => half_extents.min_element(),
+            Topology::Hull(hull) => hull.inner_radius(),
         }
     }
 

@@ -5,10 +5,9 @@
 //! box and a hull one candidate per hull edge and box axis, two hulls every pair; edges whose reach
 //! on the Gauss map cannot beat a threshold are skipped.
 
-use crate::collision::polyhedron::{
-    box_vertex, Frame, Polyhedron, PolyhedronEdge, Topology, BOX_EDGES,
-};
+use crate::collision::polyhedron::{box_vertex, Frame, Polyhedron, Topology, BOX_EDGES};
 use crate::math::Vec3;
+use crate::shape::EdgeLanes;
 use glam::Vec4;
 
 /// Absolute part of the axis-choice tolerances, metres.
@@ -19,8 +18,8 @@ pub(super) const ABSOLUTE_TOLERANCE: f32 = 5.0e-4;
 /// edges already cover those directions.
 const PARALLEL_SINE: f32 = 1.0e-3;
 
-/// How many of B's edges the edge query moves into A's frame at a time (a stack buffer).
-const EDGE_CHUNK: usize = 32;
+/// How many groups of four of A's edges the edge query reach-tests at a time (a stack buffer).
+const A_GROUP_CHUNK: usize = 64;
 
 /// A face of one polyhedron and how far the other lies beyond its plane (negative: how deep it
 /// reaches in), measured at the other's vertex deepest along the face's inward normal.
@@ -162,21 +161,46 @@ fn best_face_axis_by_support(
     best
 }
 
-/// Replaces `best` by `candidate` when there is none yet or the candidate's separation is larger.
+/// Replaces `best` by `candidate` when there is none yet or the candidate's separation is larger,
+/// or equal with a lower edge of A, then of B.
 fn keep_larger(best: &mut Option<EdgeAxis>, candidate: EdgeAxis) {
-    if best.is_none_or(|best| candidate.separation > best.separation) {
+    let features = |axis: &EdgeAxis| (axis.edge_a, axis.edge_b);
+    let kept = best.is_none_or(|best| {
+        candidate.separation > best.separation
+            || (candidate.separation == best.separation && features(&candidate) < features(&best))
+    });
+    if kept {
         *best = Some(candidate);
     }
 }
 
-/// An edge of B placed in A's frame, with its face normals negated: its arc on the Gauss map of
-/// the Minkowski difference A − B.
-#[derive(Debug, Clone, Copy, Default)]
-struct MovedEdge {
-    index: usize,
+/// An edge placed in A's frame: its first end, its direction and its face normals, negated for
+/// an edge of B (its arc on the Gauss map of the Minkowski difference A − B).
+#[derive(Debug, Clone, Copy)]
+struct PlacedEdge {
     start: Vec3,
     direction: Vec3,
-    negated_normals: [Vec3; 2],
+    normals: [Vec3; 2],
+}
+
+impl PlacedEdge {
+    /// Lane `lane` of A's `lanes`, already in A's frame.
+    fn of_a(lanes: &EdgeLanes, lane: usize) -> Self {
+        Self {
+            start: lanes.start(lane),
+            direction: lanes.direction(lane),
+            normals: lanes.normals(lane),
+        }
+    }
+
+    /// Lane `lane` of B's `lanes`, moved into A's frame by `b_in_a`.
+    fn of_b(lanes: &EdgeLanes, lane: usize, b_in_a: &Frame) -> Self {
+        Self {
+            start: b_in_a.point(lanes.start(lane)),
+            direction: b_in_a.vector(lanes.direction(lane)),
+            normals: lanes.normals(lane).map(|normal| -b_in_a.vector(normal)),
+        }
+    }
 }
 
 /// Over the edge pairs that build a face of the Minkowski difference A − B, the largest
@@ -211,38 +235,56 @@ pub(super) fn edge_query(
     }
 }
 
-/// An upper bound on the separation of any edge pair with this edge: the largest `n · (p − s)`
-/// over the unit normals `n` on the edge's arc between its face normals `n₁, n₂`, for `s` a point
-/// of the edge and `p` a point inside the other shape (`toward = p − s`). The pair's separation
-/// along its axis `n` is the other shape's extent along `∓n` less this shape's, which is reached
-/// at the edge, so it is at most `n · (p − s)`. The largest is `|v|` for `v` the part of `toward`
-/// in the arc's plane when `v` lies between `n₁` and `n₂` (`v = α n₁ + β n₂`, `α, β ≥ 0`), else
-/// at an end; infinite for a degenerate arc.
-fn edge_reach(face_normals: [Vec3; 2], toward: Vec3) -> f32 {
-    let [first, second] = face_normals;
-    let (along_first, along_second) = (first.dot(toward), second.dot(toward));
-    let cosine = first.dot(second);
-    let sine_squared = 1.0 - cosine * cosine;
-    // Written so that a NaN also counts as degenerate.
-    let proper_arc = sine_squared > 1.0e-6;
-    if !proper_arc {
-        return f32::INFINITY;
-    }
+/// A bit per lane of `lanes`, set for the edges whose pairs may separate the shapes by at least
+/// `threshold` (less [`ABSOLUTE_TOLERANCE`], against rounding): whose reach from the other shape,
+/// which holds the ball of radius `inner_radius` about `inside` (in this shape's frame), is not
+/// below it (lanes from `count` edges on are clear). An edge's reach bounds the separation of any
+/// pair with it from above: the largest `n · (p − s) − r` over the unit normals `n` on the edge's
+/// arc between its face normals `n₁, n₂`, for `s` the edge's first end, `p = inside` and
+/// `r = inner_radius`. The pair's separation along its axis `n` is the other shape's extent along
+/// `−n` less this shape's, which is reached at the edge; the other shape reaches at least to the
+/// ball's far side, `n · p − r`, so the separation is at most `n · (p − s) − r`. The largest
+/// `n · (p − s)` is `|v|` for `v` the part of `p − s` in the arc's plane when `v` lies between
+/// `n₁` and `n₂` (`v = α n₁ + β n₂`, `α, β ≥ 0`), else at an end; infinite for a degenerate arc
+/// (`1 − (n₁ · n₂)² ≤ 10⁻⁶`, or NaN).
+fn within_reach(
+    lanes: &EdgeLanes,
+    count: usize,
+    inside: Vec3,
+    inner_radius: f32,
+    threshold: f32,
+) -> u32 {
+    let toward: [Vec4; 3] =
+        std::array::from_fn(|axis| Vec4::splat(inside[axis]) - lanes.start[axis]);
+    let dot =
+        |normal: &[Vec4; 3]| normal[0] * toward[0] + normal[1] * toward[1] + normal[2] * toward[2];
+    let [first, second] = &lanes.normals;
+    let (along_first, along_second) = (dot(first), dot(second));
+    let cosine = lanes.cosine;
+    let sine_squared = Vec4::ONE - cosine * cosine;
+    let proper_arc = sine_squared.cmpgt(Vec4::splat(1.0e-6));
     let alpha = along_first - along_second * cosine;
     let beta = along_second - along_first * cosine;
-    if alpha >= 0.0 && beta >= 0.0 {
-        ((alpha * along_first + beta * along_second) / sine_squared)
-            .max(0.0)
-            .sqrt()
-    } else {
-        along_first.max(along_second)
-    }
+    let between = alpha.cmpge(Vec4::ZERO) & beta.cmpge(Vec4::ZERO);
+    let on_arc = ((alpha * along_first + beta * along_second) / sine_squared)
+        .max(Vec4::ZERO)
+        .sqrt();
+    let reach = Vec4::select(between, on_arc, along_first.max(along_second));
+    let least = Vec4::splat(threshold + inner_radius - ABSOLUTE_TOLERANCE);
+    let out_of_reach = reach.cmplt(least) & proper_arc;
+    let present = (1u32 << count.min(4)) - 1;
+    !out_of_reach.bitmask() & present
 }
 
-/// Whether an edge whose [`edge_reach`] is `reach` can be skipped: its pairs cannot beat
-/// `threshold` (less [`ABSOLUTE_TOLERANCE`], against the rounding of the two computations).
-fn out_of_reach(reach: f32, threshold: f32) -> bool {
-    reach < threshold - ABSOLUTE_TOLERANCE
+/// The lanes set in `mask`, lowest first.
+fn lanes_of(mut mask: u32) -> impl Iterator<Item = usize> {
+    std::iter::from_fn(move || {
+        (mask != 0).then(|| {
+            let lane = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            lane
+        })
+    })
 }
 
 /// [`best_edge_axis`] for two boxes (half extents `half_a`, `half_b`): one candidate per pair of
@@ -353,48 +395,54 @@ fn best_box_edge_axis(
     let box_axes = [rotation.x_axis, rotation.y_axis, rotation.z_axis];
     let box_centre = b_in_a.inverse_vector(-b_in_a.translation);
     let mut best: Option<EdgeAxis> = None;
-    for edge_b in 0..b.edge_count() {
-        let local = b.edge(edge_b);
-        if out_of_reach(
-            edge_reach(local.face_normals, box_centre - local.start),
+    let mut box_lanes = [EdgeLanes::default(); 3];
+    let b_lanes = b.edge_lanes(&mut box_lanes);
+    let b_count = b.edge_count();
+    for (group, lanes) in b_lanes.iter().enumerate() {
+        for lane in lanes_of(within_reach(
+            lanes,
+            b_count - 4 * group,
+            box_centre,
+            half_extents.min_element(),
             threshold,
-        ) {
-            continue;
-        }
-        let direction = local.direction();
-        let [m1, m2] = [-local.face_normals[0], -local.face_normals[1]];
-        let parallel_limit = PARALLEL_SINE * PARALLEL_SINE * direction.length_squared();
-        for (axis_index, &box_axis) in box_axes.iter().enumerate() {
-            if m1.dot(box_axis) * m2.dot(box_axis) >= 0.0 {
-                continue;
+        )) {
+            let edge_b = 4 * group + lane;
+            let local = PlacedEdge::of_a(lanes, lane);
+            let direction = local.direction;
+            let [m1, m2] = [-local.normals[0], -local.normals[1]];
+            let parallel_limit = PARALLEL_SINE * PARALLEL_SINE * direction.length_squared();
+            for (axis_index, &box_axis) in box_axes.iter().enumerate() {
+                if m1.dot(box_axis) * m2.dot(box_axis) >= 0.0 {
+                    continue;
+                }
+                let mut axis = box_axis.cross(direction);
+                let length_squared = axis.length_squared();
+                // Written so that a NaN (from overflow on absurdly large shapes) also rejects it.
+                let crosses = length_squared > parallel_limit;
+                let toward_b_arc = axis.dot(m1 + m2);
+                if !crosses || toward_b_arc == 0.0 {
+                    continue;
+                }
+                if toward_b_arc < 0.0 {
+                    axis = -axis;
+                }
+                let axis_in_a = b_in_a.vector(axis);
+                let Some(edge_a) = box_edge_along(axis_index, axis_in_a) else {
+                    continue;
+                };
+                let on_edge_a = box_vertex(half_extents, usize::from(BOX_EDGES[edge_a].0[0]));
+                let axis = axis_in_a / length_squared.sqrt();
+                let separation = axis.dot(b_in_a.point(local.start) - on_edge_a);
+                keep_larger(
+                    &mut best,
+                    EdgeAxis {
+                        edge_a,
+                        edge_b,
+                        axis,
+                        separation,
+                    },
+                );
             }
-            let mut axis = box_axis.cross(direction);
-            let length_squared = axis.length_squared();
-            // Written so that a NaN (from overflow on absurdly large shapes) also rejects it.
-            let crosses = length_squared > parallel_limit;
-            let toward_b_arc = axis.dot(m1 + m2);
-            if !crosses || toward_b_arc == 0.0 {
-                continue;
-            }
-            if toward_b_arc < 0.0 {
-                axis = -axis;
-            }
-            let axis_in_a = b_in_a.vector(axis);
-            let Some(edge_a) = box_edge_along(axis_index, axis_in_a) else {
-                continue;
-            };
-            let on_edge_a = box_vertex(half_extents, usize::from(BOX_EDGES[edge_a].0[0]));
-            let axis = axis_in_a / length_squared.sqrt();
-            let separation = axis.dot(b_in_a.point(local.start) - on_edge_a);
-            keep_larger(
-                &mut best,
-                EdgeAxis {
-                    edge_a,
-                    edge_b,
-                    axis,
-                    separation,
-                },
-            );
         }
     }
     best
@@ -402,8 +450,9 @@ fn best_box_edge_axis(
 
 /// Over the edge pairs that build a face of the Minkowski difference A − B, the largest
 /// separation along their cross product, computed in A's frame (`b_in_a` places B there) by
-/// trying every pair. B's edges within reach are moved into A's frame [`EDGE_CHUNK`] at a time,
-/// on the stack; with none within reach, A's edges are not read.
+/// trying every pair of edges within reach ([`within_reach`]) ([`keep_larger`] on ties). A's edges are reach-tested four at a time in groups of
+/// [`A_GROUP_CHUNK`], B's each moved into A's frame only when within reach and tested against
+/// A's four at a time ([`arcs_cross`]).
 fn best_edge_axis(
     a: &Polyhedron,
     b: &Polyhedron,
@@ -413,116 +462,81 @@ fn best_edge_axis(
     // A's inside point in B's frame, where B's edges are tested before being moved.
     let inside_a = b_in_a.inverse_vector(a.interior_point() - b_in_a.translation);
     let inside_b = b_in_a.point(b.interior_point());
+    let (mut box_lanes_a, mut box_lanes_b) = ([EdgeLanes::default(); 3], [EdgeLanes::default(); 3]);
+    let (a_lanes, b_lanes) = (
+        a.edge_lanes(&mut box_lanes_a),
+        b.edge_lanes(&mut box_lanes_b),
+    );
+    let (a_count, b_count) = (a.edge_count(), b.edge_count());
     let mut best: Option<EdgeAxis> = None;
-    let mut chunk = [MovedEdge::default(); EDGE_CHUNK];
-    let mut groups = [EdgeLanes::default(); EDGE_CHUNK / 4];
-    let mut within_reach_b = b.edges().enumerate().filter(|(_, local)| {
-        !out_of_reach(
-            edge_reach(local.face_normals, inside_a - local.start),
-            threshold,
-        )
-    });
-    loop {
-        let mut chunk_len = 0;
-        for (index, local) in within_reach_b.by_ref().take(EDGE_CHUNK) {
-            chunk[chunk_len] = MovedEdge {
-                index,
-                start: b_in_a.point(local.start),
-                direction: b_in_a.vector(local.direction()),
-                negated_normals: [
-                    -b_in_a.vector(local.face_normals[0]),
-                    -b_in_a.vector(local.face_normals[1]),
-                ],
-            };
-            chunk_len += 1;
+    let mut reach_a = [0u32; A_GROUP_CHUNK];
+    for (chunk, a_chunk) in a_lanes.chunks(A_GROUP_CHUNK).enumerate() {
+        let first_group = chunk * A_GROUP_CHUNK;
+        let mut any_a = 0;
+        for (group, (lanes, reach)) in a_chunk.iter().zip(&mut reach_a).enumerate() {
+            let count = a_count - 4 * (first_group + group);
+            *reach = within_reach(lanes, count, inside_b, b.inner_radius(), threshold);
+            any_a |= *reach;
         }
-        if chunk_len == 0 {
-            return best;
+        if any_a == 0 {
+            continue;
         }
-        let moved = &chunk[..chunk_len];
-        let group_count = chunk_len.div_ceil(4);
-        for (group, lanes) in groups.iter_mut().enumerate().take(group_count) {
-            *lanes = EdgeLanes::of(moved, group);
-        }
-        for (edge_a, edge) in a.edges().enumerate() {
-            if out_of_reach(
-                edge_reach(edge.face_normals, inside_b - edge.start),
+        for (group_b, lanes_b) in b_lanes.iter().enumerate() {
+            let reach_b = within_reach(
+                lanes_b,
+                b_count - 4 * group_b,
+                inside_a,
+                a.inner_radius(),
                 threshold,
-            ) {
-                continue;
-            }
-            for (group, lanes) in groups[..group_count].iter().enumerate() {
-                let mut crossing = lanes.arcs_cross(&edge);
-                while crossing != 0 {
-                    let moved = &moved[4 * group + crossing.trailing_zeros() as usize];
-                    crossing &= crossing - 1;
-                    let Some((axis, separation)) = crossing_axis(&edge, moved) else {
+            );
+            for lane_b in lanes_of(reach_b) {
+                let edge_b = 4 * group_b + lane_b;
+                let moved = PlacedEdge::of_b(lanes_b, lane_b, b_in_a);
+                for (group, (lanes, &reach)) in a_chunk.iter().zip(&reach_a).enumerate() {
+                    if reach == 0 {
                         continue;
-                    };
-                    keep_larger(
-                        &mut best,
-                        EdgeAxis {
-                            edge_a,
-                            edge_b: moved.index,
-                            axis,
-                            separation,
-                        },
-                    );
+                    }
+                    for lane in lanes_of(arcs_cross(lanes, &moved) & reach) {
+                        let edge = PlacedEdge::of_a(lanes, lane);
+                        let Some((axis, separation)) = crossing_axis(&edge, &moved) else {
+                            continue;
+                        };
+                        let edge_a = 4 * (first_group + group) + lane;
+                        keep_larger(
+                            &mut best,
+                            EdgeAxis {
+                                edge_a,
+                                edge_b,
+                                axis,
+                                separation,
+                            },
+                        );
+                    }
                 }
             }
         }
     }
+    best
 }
 
-/// Four of B's moved edges laid out by coordinate (a lane each, zero in lanes past the last), so
-/// that [`EdgeLanes::arcs_cross`] tests an edge of A against four at a step.
-#[derive(Debug, Clone, Copy, Default)]
-struct EdgeLanes {
-    direction: [Vec4; 3],
-    negated_normals: [[Vec4; 3]; 2],
-}
-
-impl EdgeLanes {
-    /// Edges `4 · group` to `4 · group + 3` of `moved`.
-    fn of(moved: &[MovedEdge], group: usize) -> Self {
-        let by_coordinate = |value: &dyn Fn(&MovedEdge) -> Vec3| {
-            let [p, q, r, s] =
-                std::array::from_fn(|lane| moved.get(4 * group + lane).map_or(Vec3::ZERO, value));
-            [
-                Vec4::new(p.x, q.x, r.x, s.x),
-                Vec4::new(p.y, q.y, r.y, s.y),
-                Vec4::new(p.z, q.z, r.z, s.z),
-            ]
-        };
-        Self {
-            direction: by_coordinate(&|moved| moved.direction),
-            negated_normals: [
-                by_coordinate(&|moved| moved.negated_normals[0]),
-                by_coordinate(&|moved| moved.negated_normals[1]),
-            ],
-        }
-    }
-
-    /// A bit per lane, set where the arc of `edge` (of A) and the lane's negated arc cross on the
-    /// Gauss map: each one's ends lie on opposite sides of the other's great circle, whose plane
-    /// normal is the edge direction (`(m₁ · eA)(m₂ · eA) < 0` and `(n₁ · eB)(n₂ · eB) < 0`). The
-    /// products are those of the scalar dot products, bit for bit; empty lanes give zero.
-    fn arcs_cross(&self, edge: &PolyhedronEdge) -> u32 {
-        let dot = |lanes: &[Vec4; 3], vector: Vec3| {
-            lanes[0] * vector.x + lanes[1] * vector.y + lanes[2] * vector.z
-        };
-        let a_direction = edge.direction();
-        let [first, second] = self.negated_normals;
-        let [n1, n2] = edge.face_normals;
-        let across_a = dot(&first, a_direction) * dot(&second, a_direction);
-        let across_b = dot(&self.direction, n1) * dot(&self.direction, n2);
-        (across_a.cmplt(Vec4::ZERO) & across_b.cmplt(Vec4::ZERO)).bitmask()
-    }
+/// A bit per lane of A's `lanes`, set where the lane's arc and the negated arc of B's `moved`
+/// edge cross on the Gauss map: each one's ends lie on opposite sides of the other's great
+/// circle, whose plane normal is the edge direction (`(m₁ · eA)(m₂ · eA) < 0` and
+/// `(n₁ · eB)(n₂ · eB) < 0`). Empty lanes give zero.
+fn arcs_cross(lanes: &EdgeLanes, moved: &PlacedEdge) -> u32 {
+    let dot = |lanes: &[Vec4; 3], vector: Vec3| {
+        lanes[0] * vector.x + lanes[1] * vector.y + lanes[2] * vector.z
+    };
+    let [m1, m2] = moved.normals;
+    let [n1, n2] = &lanes.normals;
+    let across_a = dot(&lanes.direction, m1) * dot(&lanes.direction, m2);
+    let across_b = dot(n1, moved.direction) * dot(n2, moved.direction);
+    (across_a.cmplt(Vec4::ZERO) & across_b.cmplt(Vec4::ZERO)).bitmask()
 }
 
 /// The axis of an edge of A and an edge of B (both in A's frame) whose arcs cross
-/// ([`EdgeLanes::arcs_cross`]), pointing from A to B, with the separation along it; `None` unless
-/// the pair builds a face of the Minkowski difference.
+/// ([`arcs_cross`]), pointing from A to B, with the separation along it; `None` unless the pair
+/// builds a face of the Minkowski difference.
 ///
 /// Edge A's arc on the Gauss map runs between its face normals `n₁, n₂`; edge B's, negated for
 /// the difference, between `−m₁, −m₂`. With the ends of each on opposite sides of the other's
@@ -530,10 +544,10 @@ impl EdgeLanes {
 /// `±(eA × eB)` that lies on A's arc (positive on `n₁ + n₂`) must also lie on B's (positive on
 /// `−m₁ − m₂`). Then A's edge is A's support along the axis and B's edge is B's support against
 /// it.
-fn crossing_axis(edge: &PolyhedronEdge, moved: &MovedEdge) -> Option<(Vec3, f32)> {
-    let a_direction = edge.direction();
-    let [n1, n2] = edge.face_normals;
-    let [m1, m2] = moved.negated_normals;
+fn crossing_axis(edge: &PlacedEdge, moved: &PlacedEdge) -> Option<(Vec3, f32)> {
+    let a_direction = edge.direction;
+    let [n1, n2] = edge.normals;
+    let [m1, m2] = moved.normals;
     let mut axis = a_direction.cross(moved.direction);
     let length_squared = axis.length_squared();
     let parallel_limit = PARALLEL_SINE

@@ -87,6 +87,81 @@ pub struct ConvexHull {
     /// The vertices four at a time as x, y and z lanes, the last group padded with vertex 0:
     /// [`ConvexHull::support`] takes four dot products per SIMD step.
     vertex_lanes: Vec<[Vec4; 3]>,
+    /// The edges four at a time, in the order of [`ConvexHull::edges`], for the separating-axis
+    /// edge query.
+    edge_lanes: Vec<EdgeLanes>,
+    /// The mean of the vertices, metres: a point inside the hull.
+    mean_vertex: Vec3,
+    /// Radius of a ball about the mean vertex inside the hull, metres: its distance to the
+    /// nearest face plane less twice the hull tolerance (how far a face's plane may lie off its
+    /// points), at least 0.
+    inner_radius: f32,
+}
+
+/// Four edges of a polyhedron laid out by coordinate, a lane each (zero in lanes past the last
+/// edge), as the separating-axis edge query reads them: each edge's first end, its direction
+/// (second end less first), the unit outward normals `n₁, n₂` of its two faces (the ends of its
+/// arc on the Gauss map) and their dot product `n₁ · n₂`.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct EdgeLanes {
+    pub(crate) start: [Vec4; 3],
+    pub(crate) direction: [Vec4; 3],
+    pub(crate) normals: [[Vec4; 3]; 2],
+    pub(crate) cosine: Vec4,
+}
+
+impl EdgeLanes {
+    /// At most four edges, each as `[first end, second end, n₁, n₂]`.
+    pub(crate) fn new(edges: &[[Vec3; 4]]) -> Self {
+        let by_coordinate = |value: &dyn Fn(&[Vec3; 4]) -> Vec3| {
+            let [p, q, r, s] =
+                std::array::from_fn(|lane| edges.get(lane).map_or(Vec3::ZERO, value));
+            [
+                Vec4::new(p.x, q.x, r.x, s.x),
+                Vec4::new(p.y, q.y, r.y, s.y),
+                Vec4::new(p.z, q.z, r.z, s.z),
+            ]
+        };
+        let cosines: [f32; 4] = std::array::from_fn(|lane| {
+            edges
+                .get(lane)
+                .map_or(0.0, |&[_, _, first, second]| first.dot(second))
+        });
+        Self {
+            start: by_coordinate(&|&[start, ..]| start),
+            direction: by_coordinate(&|&[start, end, ..]| end - start),
+            normals: [
+                by_coordinate(&|&[_, _, first, _]| first),
+                by_coordinate(&|&[.., second]| second),
+            ],
+            cosine: Vec4::from_array(cosines),
+        }
+    }
+
+    /// Lane `lane`'s first end.
+    #[inline]
+    pub(crate) fn start(&self, lane: usize) -> Vec3 {
+        lane_vector(&self.start, lane)
+    }
+
+    /// Lane `lane`'s direction.
+    #[inline]
+    pub(crate) fn direction(&self, lane: usize) -> Vec3 {
+        lane_vector(&self.direction, lane)
+    }
+
+    /// Lane `lane`'s face normals.
+    #[inline]
+    pub(crate) fn normals(&self, lane: usize) -> [Vec3; 2] {
+        self.normals.map(|normal| lane_vector(&normal, lane))
+    }
+}
+
+/// The vector in lane `lane` of x, y and z lanes.
+#[inline]
+fn lane_vector(coordinates: &[Vec4; 3], lane: usize) -> Vec3 {
+    let [x, y, z] = coordinates.each_ref().map(|column| column.as_ref()[lane]);
+    Vec3::new(x, y, z)
 }
 
 impl ConvexHull {
@@ -132,6 +207,21 @@ impl ConvexHull {
     /// Hull edges, each once, sorted by their vertex indices.
     pub fn edges(&self) -> &[HullEdge] {
         &self.edges
+    }
+
+    /// The edges four to a group, in the order of [`ConvexHull::edges`].
+    pub(crate) fn edge_lanes(&self) -> &[EdgeLanes] {
+        &self.edge_lanes
+    }
+
+    /// The mean of the vertices, metres: a point inside the hull.
+    pub(crate) fn mean_vertex(&self) -> Vec3 {
+        self.mean_vertex
+    }
+
+    /// Radius of a ball about [`ConvexHull::mean_vertex`] that the hull holds, metres.
+    pub(crate) fn inner_radius(&self) -> f32 {
+        self.inner_radius
     }
 
     /// Radius of the ball about the body origin that holds the hull (its farthest vertex), metres.
@@ -972,7 +1062,23 @@ fn assemble(
     let bounding_radius = vertices
         .iter()
         .fold(0.0, |largest: f32, vertex| largest.max(vertex.length()));
+    let edge_ends: Vec<[Vec3; 4]> = edges
+        .iter()
+        .map(|edge| {
+            let [start, end] = edge.vertices.map(|vertex| vertices[vertex as usize]);
+            let [first, second] = edge.faces.map(|face| faces[face as usize].normal);
+            [start, end, first, second]
+        })
+        .collect();
+    let mean_vertex = vertices.iter().copied().sum::<Vec3>() / vertices.len().max(1) as f32;
+    let nearest_face = faces
+        .iter()
+        .map(|face| face.offset - face.normal.dot(mean_vertex))
+        .fold(f32::INFINITY, f32::min);
     Ok(ConvexHull {
+        edge_lanes: edge_ends.chunks(4).map(EdgeLanes::new).collect(),
+        mean_vertex,
+        inner_radius: (nearest_face - 2.0 * tolerance as f32).max(0.0),
         faces,
         edges,
         unit,

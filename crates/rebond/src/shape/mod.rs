@@ -13,6 +13,7 @@ mod sphere;
 
 pub use capsule::Capsule;
 pub use compound::{Compound, CompoundChild};
+pub(crate) use convex_hull::EdgeLanes;
 pub use convex_hull::{ConvexHull, HullEdge, HullFace};
 pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
