@@ -7,9 +7,12 @@
 //! the support point farthest against that closest point, until the new point brings the
 //! distance's lower bound to within tolerance of its upper bound.
 //!
-//! Tolerances are relative to the size of the problem, the largest `|a − b|` among the simplex
-//! points, because every support point carries an f32 rounding of about `6e-8` of its magnitude:
-//! no answer can be better than a few of those.
+//! Tolerances are relative to the size of the problem, the largest of `|a|`, `|b|` and `|a − b|`
+//! among the support points, because every support point carries an f32 rounding of about `6e-8`
+//! of the coordinates it is computed from: no answer can be better than a few of those. (Two
+//! solids nearly touching have a small `|a − b|` but not small coordinates: measured by `|a − b|`
+//! alone, the tolerance would shrink to the rounding's own size and the search would refine a
+//! curved contact, which converges linearly, for ten more iterations.)
 
 use crate::collision::{RelativeCore, SupportMap};
 use crate::math::Vec3;
@@ -20,7 +23,7 @@ pub const MAX_ITERATIONS: usize = 64;
 
 /// Relative precision of the distance: GJK stops once its lower and upper bounds on the distance
 /// are within `TOLERANCE · scale`, and reports an overlap once the distance is below that,
-/// `scale` being the largest `|a − b|` among the simplex points. About 150 f32 rounding steps: far
+/// `scale` being the problem's size (see the module comment). About 150 f32 rounding steps: far
 /// above the noise of the support points, far below what the solver or a contact cares about.
 pub const TOLERANCE: f32 = 1e-5;
 
@@ -54,6 +57,12 @@ impl SupportPoint {
         let a = a.support(direction);
         let b = b.support(-direction);
         Self { a, b, w: a - b }
+    }
+
+    /// The larger of `|a|` and `|b|`, metres: the size of the coordinates the point was computed
+    /// from, to which its rounding is relative.
+    fn coordinate_size(&self) -> f32 {
+        self.a.length_squared().max(self.b.length_squared()).sqrt()
     }
 }
 
@@ -473,10 +482,15 @@ where
     }
     let mut best = (f32::INFINITY, simplex);
     let mut stalls = 0;
+    let mut size = simplex
+        .points()
+        .iter()
+        .map(SupportPoint::coordinate_size)
+        .fold(0.0, f32::max);
     for _ in 0..MAX_ITERATIONS {
         let closest = simplex.closest_point();
         let upper = closest.length();
-        let scale = simplex.scale();
+        let scale = simplex.scale().max(size);
         if upper <= TOLERANCE * scale {
             return Search::Done(Distance::from_simplex(simplex, true));
         }
@@ -495,7 +509,8 @@ where
         if gap < best.0 {
             best = (gap, simplex);
         }
-        if gap <= TOLERANCE * scale.max(point.w.length()) {
+        size = size.max(point.coordinate_size());
+        if gap <= TOLERANCE * scale.max(size) {
             break;
         }
         // Grown in place (`best` holds the simplex to fall back on). A simplex of four points
