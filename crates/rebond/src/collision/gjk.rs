@@ -27,6 +27,17 @@ pub const MAX_ITERATIONS: usize = 64;
 /// above the noise of the support points, far below what the solver or a contact cares about.
 pub const TOLERANCE: f32 = 1e-5;
 
+/// How precisely a contact query ([`distance_within`]) measures the distance, metres, when the
+/// relative [`TOLERANCE`] asks for more: a tenth of the solver's slop
+/// ([`crate::solver::contact_solver::LINEAR_SLOP`], 1 mm), and the slack of the narrow phase's tests (0.1 mm).
+/// The distance is never underestimated, only overstated by up to this. Near a curved contact
+/// (radius `R`), where the search converges linearly (about one halving of the gap an iteration,
+/// on a cylinder's rim), the normal is then within `√(2·1e-4/R)` (1.3° for `R` = 0.4 m), and the
+/// separation along it within 0.1 mm; the feature clipping takes a face contact's normal and
+/// depths from the faces themselves. `mixed` runs about a quarter fewer GJK iterations than at
+/// the relative tolerance alone.
+pub const CONTACT_PRECISION: f32 = 1e-4;
+
 /// Iterations in a row without progress after which GJK settles for the best simplex so far:
 /// near the answer rounding can hide progress for an iteration or two, never for long.
 const MAX_STALLS: usize = 3;
@@ -422,13 +433,13 @@ where
     A: SupportMap + ?Sized,
     B: SupportMap + ?Sized,
 {
-    match search(a, b, &[], direction, f32::INFINITY) {
+    match search(a, b, &[], direction, f32::INFINITY, 0.0) {
         Search::Done(found) | Search::Beyond(found) => found,
     }
 }
 
-/// [`distance_from_direction`], or `None` as soon as the solids are known to be more than
-/// `limit` metres apart: a support point whose reach along the search direction leaves a lower
+/// [`distance_from_direction`] to the precision of a contact, [`CONTACT_PRECISION`], or `None` as
+/// soon as the solids are known to be more than `limit` metres apart: a support point whose reach along the search direction leaves a lower
 /// bound on the distance above `limit` ends the search (contact queries, where most pairs of
 /// overlapping boxes are farther apart than the margin, stop there after a few iterations).
 /// The search starts from the simplex of the points `start` (up to four points of `A − B`, such
@@ -445,7 +456,7 @@ where
     A: SupportMap + ?Sized,
     B: SupportMap + ?Sized,
 {
-    match search(a, b, start, direction, limit) {
+    match search(a, b, start, direction, limit, CONTACT_PRECISION) {
         Search::Done(found) => Some(found),
         Search::Beyond(_) => None,
     }
@@ -460,8 +471,17 @@ enum Search {
 }
 
 /// The GJK iteration from the simplex of `start`, or when it is empty from the support point
-/// along `direction`, stopping early once the solids are known to be more than `limit` apart.
-fn search<A, B>(a: &A, b: &B, start: &[SupportPoint], direction: Vec3, limit: f32) -> Search
+/// along `direction`, stopping early once the solids are known to be more than `limit` apart,
+/// and once the distance is known within [`TOLERANCE`] of the problem's size or within
+/// `precision` metres, whichever is looser.
+fn search<A, B>(
+    a: &A,
+    b: &B,
+    start: &[SupportPoint],
+    direction: Vec3,
+    limit: f32,
+    precision: f32,
+) -> Search
 where
     A: SupportMap + ?Sized,
     B: SupportMap + ?Sized,
@@ -510,7 +530,7 @@ where
             best = (gap, simplex);
         }
         size = size.max(point.coordinate_size());
-        if gap <= TOLERANCE * scale.max(size) {
+        if gap <= (TOLERANCE * scale.max(size)).max(precision) {
             break;
         }
         // Grown in place (`best` holds the simplex to fall back on). A simplex of four points
