@@ -31,7 +31,7 @@ pub(crate) fn integrate_velocities(
     if !motion.is_dynamic {
         return;
     }
-    let acceleration = Vec3A::from(gravity) + state.inverse_mass * Vec3A::from(motion.force);
+    let acceleration = Vec3A::from(gravity) + motion.inverse_mass * Vec3A::from(motion.force);
     let linear = state.linear_velocity + h * acceleration;
     let torque = Vec3A::from(motion.torque);
     let angular = state.angular_velocity + h * motion.world_inverse_inertia.mul_vec3a(torque);

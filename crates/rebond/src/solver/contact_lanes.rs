@@ -366,7 +366,7 @@ impl ContactLanes {
         let mut point_counts = F32x4::ZERO;
         let mut filled: [Option<LaneContact>; LANES] = [None; LANES];
         for (lane, lane_contact) in lane_contacts.into_iter().enumerate() {
-            lanes.set_contact(lane, &lane_contact, states);
+            lanes.set_contact(lane, &lane_contact, motions);
             let points = lane_contact.contact.manifold.points();
             for (point, slot) in points.iter().zip(&mut positions) {
                 slot[lane] = point.position.into();
@@ -446,7 +446,7 @@ impl ContactLanes {
 
     /// Sets what lane `lane` takes straight from its contact: the bodies, the normal and its
     /// tangents, the materials, the points' separations and the cached impulses.
-    fn set_contact(&mut self, lane: usize, lane_contact: &LaneContact, states: &[BodyState]) {
+    fn set_contact(&mut self, lane: usize, lane_contact: &LaneContact, motions: &[BodyMotion]) {
         let LaneContact {
             contact,
             index,
@@ -458,9 +458,9 @@ impl ContactLanes {
         self.body_a[lane] = body_a;
         self.body_b[lane] = body_b;
         self.inverse_mass_a
-            .set_lane(lane, states[body_a].inverse_mass);
+            .set_lane(lane, motions[body_a].inverse_mass);
         self.inverse_mass_b
-            .set_lane(lane, states[body_b].inverse_mass);
+            .set_lane(lane, motions[body_b].inverse_mass);
         let normal = Vec3A::from(contact.manifold.normal);
         let (tangent_1, tangent_2) = normal.any_orthonormal_pair();
         self.normal.set_lane(lane, normal);

@@ -49,14 +49,14 @@ pub(crate) struct BodyState {
     /// Rotation since the step began, as the sum of `h ω` over the substeps (a rotation vector,
     /// rad): contacts follow the bodies to first order in the angle.
     pub delta_rotation: Vec3A,
-    /// `1/m`; zero for kinematic bodies and for solver body 0, which stands for every static or
-    /// sleeping body.
-    pub inverse_mass: f32,
 }
 
 /// The rest of a body the step needs: pose, inertia and forces for integration.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct BodyMotion {
+    /// `1/m`; zero for kinematic bodies and for solver body 0, which stands for every static or
+    /// sleeping body.
+    pub inverse_mass: f32,
     pub center_of_mass: Vec3,
     pub rotation: Quat,
     /// `R I⁻¹ Rᵀ` at the start of the step; the contact solver uses it for the whole step.
@@ -77,6 +77,7 @@ pub(crate) struct BodyMotion {
 impl BodyMotion {
     /// Solver body 0: stands for every static or sleeping body, which the step never moves.
     const FIXED: Self = Self {
+        inverse_mass: 0.0,
         center_of_mass: Vec3::ZERO,
         rotation: Quat::IDENTITY,
         world_inverse_inertia: Mat3::ZERO,
@@ -91,6 +92,7 @@ impl BodyMotion {
 
     fn from_body(body: &RigidBody) -> Self {
         Self {
+            inverse_mass: body.inverse_mass,
             center_of_mass: body.center_of_mass,
             rotation: body.rotation,
             world_inverse_inertia: body.world_inverse_inertia,
@@ -199,7 +201,6 @@ impl Solver {
                     angular_velocity: body.angular_velocity.into(),
                     delta_position: Vec3A::ZERO,
                     delta_rotation: Vec3A::ZERO,
-                    inverse_mass: body.inverse_mass,
                 });
                 self.motions.push(BodyMotion::from_body(body));
             }
