@@ -6,7 +6,7 @@
 
 use crate::collision::clipping::MAX_POLYGON_VERTICES;
 use crate::math::{Mat3, Pose, Vec3};
-use crate::shape::{ConvexHull, Cuboid, EdgeLanes, HullEdge, HullFace, Shape};
+use crate::shape::{ConvexHull, Cuboid, EdgeLanes, FaceLanes, HullEdge, HullFace, Shape};
 
 /// Box vertex `i` is `(±hx, ±hy, ±hz)` with the sign of x from bit 0 of `i`, y from bit 1 and z
 /// from bit 2 (set = positive).
@@ -194,6 +194,24 @@ impl<'a> Polyhedron<'a> {
                 }
             }
             Topology::Hull(hull) => hull_edge(hull.vertices(), hull.faces(), &hull.edges()[index]),
+        }
+    }
+
+    /// The face planes four to a group in index order, as [`Polyhedron::face_plane`] gives them:
+    /// a hull's as it stores them, a box's built in `box_lanes`.
+    pub(super) fn face_lanes<'s>(&'s self, box_lanes: &'s mut [FaceLanes; 2]) -> &'s [FaceLanes] {
+        match self.topology {
+            Topology::Cuboid(_) => {
+                let planes: [(Vec3, f32); BOX_FACE_LOOPS.len()] = std::array::from_fn(|face| {
+                    let plane = self.face_plane(face);
+                    (plane.normal, plane.offset)
+                });
+                for (lanes, group) in box_lanes.iter_mut().zip(planes.chunks(4)) {
+                    *lanes = FaceLanes::new(group);
+                }
+                box_lanes
+            }
+            Topology::Hull(hull) => hull.face_lanes(),
         }
     }
 

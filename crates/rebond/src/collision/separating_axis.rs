@@ -7,7 +7,7 @@
 
 use crate::collision::polyhedron::{box_vertex, Frame, Polyhedron, Topology, BOX_EDGES};
 use crate::math::Vec3;
-use crate::shape::EdgeLanes;
+use crate::shape::{EdgeLanes, FaceLanes};
 use glam::Vec4;
 
 /// Absolute part of the axis-choice tolerances, metres.
@@ -41,8 +41,8 @@ pub(super) struct EdgeAxis {
 
 /// The face of `reference` beyond whose plane `other` (placed in the reference frame by
 /// `other_in_reference`) lies farthest, or reaches in least (the first of equals): in closed form
-/// for two boxes, by [`best_face_axis_by_vertices`] against a hull of at most
-/// [`MAX_LANE_VERTICES`] vertices, else by [`best_face_axis_by_support`].
+/// for two boxes, by [`best_face_axis_by_vertices`] against a hull, else by
+/// [`best_face_axis_by_support`].
 pub(super) fn best_face_axis(
     reference: &Polyhedron,
     other: &Polyhedron,
@@ -52,21 +52,21 @@ pub(super) fn best_face_axis(
         (Topology::Cuboid(half_reference), Topology::Cuboid(half_other)) => {
             best_box_box_face_axis(half_reference, half_other, other_in_reference)
         }
-        (_, Topology::Hull(hull)) if hull.vertices().len() <= MAX_LANE_VERTICES => {
+        (_, Topology::Hull(hull)) => {
             best_face_axis_by_vertices(reference, hull.vertices(), other_in_reference)
         }
         _ => best_face_axis_by_support(reference, other, other_in_reference),
     }
 }
 
-/// Most vertices of the other polyhedron that [`best_face_axis_by_vertices`] holds on the stack,
-/// in groups of four.
-const MAX_LANE_VERTICES: usize = 64;
+/// How many groups of four of the reference's faces [`best_face_axis_by_vertices`] measures at
+/// a time (a stack buffer of their minima).
+const FACE_GROUP_CHUNK: usize = 32;
 
-/// [`best_face_axis`] against the `vertices` of a hull (at most [`MAX_LANE_VERTICES`]), placed
-/// in the reference frame once and laid out four to a vector by coordinate, so that each face
-/// measures four vertices per step: its separation is `min over v of n · v − offset`, the
-/// vertex deepest along the inward normal.
+/// [`best_face_axis`] against the `vertices` of a hull: each vertex is placed in the reference
+/// frame once and measured against four face planes per step ([`FaceLanes`]), so that each face's
+/// separation, `min over v of n · v − offset` (the vertex deepest along the inward normal),
+/// builds up in a lane.
 fn best_face_axis_by_vertices(
     reference: &Polyhedron,
     vertices: &[Vec3],
@@ -76,35 +76,30 @@ fn best_face_axis_by_vertices(
         face: 0,
         separation: f32::NEG_INFINITY,
     };
-    let Some(&first) = vertices.first() else {
-        return best;
-    };
-    // Lanes past the last vertex repeat the first, which leaves every minimum unchanged.
-    let mut coordinates = [[0.0; MAX_LANE_VERTICES]; 3];
-    for lane in 0..vertices.len().next_multiple_of(4) {
-        let placed = other_in_reference.point(vertices.get(lane).copied().unwrap_or(first));
-        for (axis, column) in coordinates.iter_mut().enumerate() {
-            column[lane] = placed[axis];
+    let mut box_lanes = [FaceLanes::default(); 2];
+    let face_lanes = reference.face_lanes(&mut box_lanes);
+    let face_count = reference.face_count();
+    for (chunk, planes) in face_lanes.chunks(FACE_GROUP_CHUNK).enumerate() {
+        let mut lowest = [Vec4::INFINITY; FACE_GROUP_CHUNK];
+        for &vertex in vertices {
+            let placed = other_in_reference.point(vertex);
+            let [x, y, z] = placed.to_array().map(Vec4::splat);
+            for (low, group) in lowest.iter_mut().zip(planes) {
+                let [nx, ny, nz] = group.normal;
+                *low = low.min(nx * x + ny * y + nz * z);
+            }
         }
-    }
-    let groups = vertices.len().div_ceil(4);
-    let [xs, ys, zs] = coordinates.map(|column| {
-        let mut lanes = [Vec4::ZERO; MAX_LANE_VERTICES / 4];
-        for (group, slot) in lanes.iter_mut().enumerate().take(groups) {
-            *slot = Vec4::from_slice(&column[4 * group..]);
-        }
-        lanes
-    });
-    for face in 0..reference.face_count() {
-        let plane = reference.face_plane(face);
-        let normal = plane.normal;
-        let lowest = (0..groups)
-            .map(|group| xs[group] * normal.x + ys[group] * normal.y + zs[group] * normal.z)
-            .fold(Vec4::INFINITY, Vec4::min)
-            .min_element();
-        let separation = lowest - plane.offset;
-        if separation > best.separation {
-            best = FaceAxis { face, separation };
+        for (group, (low, plane)) in lowest.iter().zip(planes).enumerate() {
+            let first_face = 4 * (chunk * FACE_GROUP_CHUNK + group);
+            let separations = (*low - plane.offset).to_array();
+            for (lane, &separation) in separations.iter().enumerate() {
+                if first_face + lane < face_count && separation > best.separation {
+                    best = FaceAxis {
+                        face: first_face + lane,
+                        separation,
+                    };
+                }
+            }
         }
     }
     best

@@ -90,6 +90,9 @@ pub struct ConvexHull {
     /// The edges four at a time, in the order of [`ConvexHull::edges`], for the separating-axis
     /// edge query.
     edge_lanes: Vec<EdgeLanes>,
+    /// The face planes four at a time, in the order of [`ConvexHull::faces`], for the
+    /// separating-axis face query.
+    face_lanes: Vec<FaceLanes>,
     /// The mean of the vertices, metres: a point inside the hull.
     mean_vertex: Vec3,
     /// Radius of a ball about the mean vertex inside the hull, metres: its distance to the
@@ -157,6 +160,33 @@ impl EdgeLanes {
     }
 }
 
+/// Four face planes laid out by coordinate, a lane each (zero in lanes past the last face): unit
+/// outward normals and offsets, `normal · p = offset` on the face.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct FaceLanes {
+    pub(crate) normal: [Vec4; 3],
+    pub(crate) offset: Vec4,
+}
+
+impl FaceLanes {
+    /// At most four planes, each as its normal and offset.
+    pub(crate) fn new(planes: &[(Vec3, f32)]) -> Self {
+        let lane = |value: &dyn Fn(&(Vec3, f32)) -> f32| {
+            Vec4::from_array(std::array::from_fn(|lane| {
+                planes.get(lane).map_or(0.0, value)
+            }))
+        };
+        Self {
+            normal: [
+                lane(&|(normal, _)| normal.x),
+                lane(&|(normal, _)| normal.y),
+                lane(&|(normal, _)| normal.z),
+            ],
+            offset: lane(&|&(_, offset)| offset),
+        }
+    }
+}
+
 /// The vector in lane `lane` of x, y and z lanes.
 #[inline]
 fn lane_vector(coordinates: &[Vec4; 3], lane: usize) -> Vec3 {
@@ -212,6 +242,11 @@ impl ConvexHull {
     /// The edges four to a group, in the order of [`ConvexHull::edges`].
     pub(crate) fn edge_lanes(&self) -> &[EdgeLanes] {
         &self.edge_lanes
+    }
+
+    /// The face planes four to a group, in the order of [`ConvexHull::faces`].
+    pub(crate) fn face_lanes(&self) -> &[FaceLanes] {
+        &self.face_lanes
     }
 
     /// The mean of the vertices, metres: a point inside the hull.
@@ -1075,8 +1110,13 @@ fn assemble(
         .iter()
         .map(|face| face.offset - face.normal.dot(mean_vertex))
         .fold(f32::INFINITY, f32::min);
+    let planes: Vec<(Vec3, f32)> = faces
+        .iter()
+        .map(|face| (face.normal, face.offset))
+        .collect();
     Ok(ConvexHull {
         edge_lanes: edge_ends.chunks(4).map(EdgeLanes::new).collect(),
+        face_lanes: planes.chunks(4).map(FaceLanes::new).collect(),
         mean_vertex,
         inner_radius: (nearest_face - 2.0 * tolerance as f32).max(0.0),
         faces,

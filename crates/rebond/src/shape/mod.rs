@@ -13,8 +13,8 @@ mod sphere;
 
 pub use capsule::Capsule;
 pub use compound::{Compound, CompoundChild};
-pub(crate) use convex_hull::EdgeLanes;
 pub use convex_hull::{ConvexHull, HullEdge, HullFace};
+pub(crate) use convex_hull::{EdgeLanes, FaceLanes};
 pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
 pub use halfspace::{Halfspace, HALFSPACE_EXTENT};
