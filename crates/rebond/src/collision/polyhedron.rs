@@ -455,13 +455,15 @@ pub(super) fn crossing_poses(t: f32) -> (Pose, Pose) {
     (pose_a, pose_b)
 }
 
+/// A box of half extents (0.5, 1, 1.5) m, for the tests.
+#[cfg(test)]
+pub(super) fn unit_box() -> Cuboid {
+    Cuboid::new(Vec3::new(0.5, 1.0, 1.5)).expect("valid box")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn unit_box() -> Cuboid {
-        Cuboid::new(Vec3::new(0.5, 1.0, 1.5)).expect("valid box")
-    }
 
     #[test]
     fn box_topology_is_consistent() {

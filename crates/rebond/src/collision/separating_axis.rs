@@ -567,12 +567,8 @@ fn crossing_axis(edge: &PlacedEdge, moved: &PlacedEdge) -> Option<(Vec3, f32)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::collision::polyhedron::crossing_poses;
+    use crate::collision::polyhedron::{crossing_poses, unit_box};
     use crate::shape::{ConvexHull, Cuboid};
-
-    fn unit_box() -> Cuboid {
-        Cuboid::new(Vec3::new(0.5, 1.0, 1.5)).expect("valid box")
-    }
 
     /// The box routes and the vertex lanes find the same face as every support point, and the
     /// box routes and the skipping of edges out of reach the same edge pair, axis and separation
