@@ -2,7 +2,7 @@
 //!
 //! Run with `cargo bench -p rebond --bench ray_cast`.
 
-use rebond::{BodyDesc, Pose, Quat, QueryFilter, Ray, RayHit, Shape, Vec3, World, WorldSettings};
+use rebond::{BodyDesc, Pose, Quat, QueryFilter, Ray, RayHit, Shape, World, WorldSettings};
 
 fn main() {
     divan::main();
@@ -14,17 +14,6 @@ const COUNT: usize = 10_000;
 #[path = "../tests/common/random.rs"]
 mod random;
 use random::Random;
-
-impl Random {
-    fn unit_vector(&mut self) -> Vec3 {
-        loop {
-            let v = self.vec3(-1.0, 1.0);
-            if (0.01..=1.0).contains(&v.length_squared()) {
-                return v.normalize();
-            }
-        }
-    }
-}
 
 /// Half the side of the cube the boxes and the ray origins fill, metres.
 const EXTENT: f32 = 50.0;

@@ -41,4 +41,14 @@ impl Random {
             self.range(low, high),
         )
     }
+
+    /// A unit vector, uniform on the sphere (rejection from the cube, then normalised).
+    pub fn unit_vector(&mut self) -> Vec3 {
+        loop {
+            let v = self.vec3(-1.0, 1.0);
+            if (0.01..=1.0).contains(&v.length_squared()) {
+                return v.normalize();
+            }
+        }
+    }
 }

@@ -18,18 +18,10 @@ mod random;
 use random::Random as Rng;
 
 impl Rng {
-    fn in_cube(&mut self, half: f32) -> Vec3 {
-        Vec3::new(
-            self.range(-half, half),
-            self.range(-half, half),
-            self.range(-half, half),
-        )
-    }
-
     /// Uniform on the unit sphere (rejection from the cube, then normalised).
     fn on_sphere(&mut self) -> Vec3 {
         loop {
-            let v = self.in_cube(1.0);
+            let v = self.vec3(-1.0, 1.0);
             let length = v.length();
             if length > 0.1 && length <= 1.0 {
                 return v / length;
@@ -39,7 +31,7 @@ impl Rng {
 
     fn in_ball(&mut self, radius: f32) -> Vec3 {
         loop {
-            let v = self.in_cube(radius);
+            let v = self.vec3(-radius, radius);
             if v.length() <= radius {
                 return v;
             }

@@ -9,7 +9,7 @@ fn random_clouds_satisfy_euler_and_convexity() {
         for trial in 0..6 {
             let points: Vec<Vec3> = (0..count)
                 .map(|_| match trial % 3 {
-                    0 => rng.in_cube(1.0),
+                    0 => rng.vec3(-1.0, 1.0),
                     1 => rng.in_ball(2.0) + Vec3::new(5.0, -3.0, 1.0),
                     _ => rng.on_sphere() * 0.5,
                 })
@@ -162,7 +162,7 @@ fn degenerate_inputs_are_errors() {
     let line: Vec<Vec3> = (0..10).map(|k| p + direction * k as f32).collect();
     assert_eq!(degenerate_reason(&line), "all points are collinear");
     let mut rng = Rng(1);
-    let noisy: Vec<Vec3> = line.iter().map(|q| *q + rng.in_cube(1e-6)).collect();
+    let noisy: Vec<Vec3> = line.iter().map(|q| *q + rng.vec3(-1e-6, 1e-6)).collect();
     assert_eq!(degenerate_reason(&noisy), "all points are collinear");
     assert_eq!(
         degenerate_reason(&[p, p, Vec3::ZERO, Vec3::ZERO, p]),
@@ -216,14 +216,14 @@ fn random_degenerate_and_tiny_clouds_never_panic() {
     // Clouds mixing duplicates, near-duplicates and flat subsets: each builds or fails cleanly.
     let mut rng = Rng(17);
     for trial in 0..300 {
-        let base: Vec<Vec3> = (0..1 + rng.below(6)).map(|_| rng.in_cube(1.0)).collect();
+        let base: Vec<Vec3> = (0..1 + rng.below(6)).map(|_| rng.vec3(-1.0, 1.0)).collect();
         let count = rng.below(30);
         let points: Vec<Vec3> = (0..count)
             .map(|_| {
                 let q = base[rng.below(base.len())];
                 match rng.below(3) {
                     0 => q,
-                    1 => q + rng.in_cube(1e-6),
+                    1 => q + rng.vec3(-1e-6, 1e-6),
                     _ => q.with_z(0.25),
                 }
             })
@@ -247,7 +247,7 @@ fn adversarial_clouds_stay_valid() {
     for trial in 0..1200 {
         let kind = trial % 6;
         let rotation = Quat::from_axis_angle(rng.on_sphere(), rng.range(0.0, 6.0));
-        let shift = rng.in_cube(10.0);
+        let shift = rng.vec3(-10.0, 10.0);
         let points: Vec<Vec3> = match kind {
             0 => {
                 let n = 2 + rng.below(5) as i32;
@@ -286,11 +286,12 @@ fn adversarial_clouds_stay_valid() {
                 .map(|_| rng.on_sphere() * (1.0 + rng.range(-3e-5, 3e-5)) + shift * 0.1)
                 .collect(),
             4 => {
-                let centres: Vec<Vec3> = (0..4 + rng.below(5)).map(|_| rng.in_cube(1.0)).collect();
+                let centres: Vec<Vec3> =
+                    (0..4 + rng.below(5)).map(|_| rng.vec3(-1.0, 1.0)).collect();
                 (0..4 + rng.below(100))
                     .map(|_| {
                         let spread = rng.range(0.0, 3e-5);
-                        centres[rng.below(centres.len())] + rng.in_cube(spread)
+                        centres[rng.below(centres.len())] + rng.vec3(-spread, spread)
                     })
                     .collect()
             }

@@ -42,7 +42,7 @@ fn cube_with_duplicates_interior_and_surface_points() {
     points.extend(corners.iter().copied());
     points.push(Vec3::ZERO);
     for _ in 0..50 {
-        points.push(rng.in_cube(1.0) * h * 0.999);
+        points.push(rng.vec3(-1.0, 1.0) * h * 0.999);
     }
     // Face centres and random points exactly on the faces.
     for axis in 0..3 {
@@ -51,7 +51,7 @@ fn cube_with_duplicates_interior_and_surface_points() {
             centre[axis] = sign;
             points.push(centre * h);
             for _ in 0..10 {
-                let mut p = rng.in_cube(1.0);
+                let mut p = rng.vec3(-1.0, 1.0);
                 p[axis] = sign;
                 points.push(p * h);
             }
@@ -91,7 +91,7 @@ fn noise_below_the_tolerance_merges_into_the_faces() {
     let mut points = corners.clone();
     for _ in 0..300 {
         let axis = rng.below(3);
-        let mut p = rng.in_cube(0.999);
+        let mut p = rng.vec3(-0.999, 0.999);
         p[axis] = if rng.below(2) == 0 { -1.0 } else { 1.0 } + rng.range(-2e-7, 2e-7);
         points.push(p);
     }

@@ -33,15 +33,6 @@ mod shape_casts;
 const GROW: f64 = 1e-4;
 
 impl Random {
-    fn unit_vector(&mut self) -> Vec3 {
-        loop {
-            let v = self.vec3(-1.0, 1.0);
-            if (0.01..=1.0).contains(&v.length_squared()) {
-                return v.normalize();
-            }
-        }
-    }
-
     fn rotation(&mut self) -> Quat {
         Quat::from_axis_angle(self.unit_vector(), self.range(0.0, std::f32::consts::TAU))
     }
