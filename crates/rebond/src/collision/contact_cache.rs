@@ -126,11 +126,6 @@ pub struct Contact {
     pub twist_impulse: f32,
     /// Where the manifold was computed.
     pub frame: ManifoldFrame,
-    /// The friction anchors: one material point of A and one of B, each relative to its body's
-    /// centre of mass in the body's axes, that coincided when the solver first met this manifold.
-    /// They live as long as the manifold is recycled; `None` for a fresh manifold and after the
-    /// contact slid.
-    pub(crate) friction_anchors: Option<[Vec3; 2]>,
     /// Where the cache keeps what the query that computed the manifold left for the next one
     /// ([`PartCache`]); `None` when it left nothing. Kept aside, so that contacts without one stay
     /// small to copy and sort.
@@ -189,7 +184,6 @@ impl ContactCache {
             friction_impulse: Vec3::ZERO,
             twist_impulse: 0.0,
             frame: ManifoldFrame::new(&manifold, pose_a, pose_b),
-            friction_anchors: None,
             part_cache,
             fresh: true,
         });

@@ -33,8 +33,8 @@ pub const MAX_ITERATIONS: usize = 128;
 pub const TOLERANCE: f32 = 1e-5;
 
 /// How precisely the contact query ([`Polytope::contact_from`]) measures the depth, metres, when
-/// the relative [`TOLERANCE`] asks for more: a twentieth of the solver's slop
-/// ([`crate::solver::contact_solver::LINEAR_SLOP`], 1 mm). EPA's depth errs on the deep side, by
+/// the relative [`TOLERANCE`] asks for more: a twentieth of a millimetre, far below a resting
+/// contact's depth (a few millimetres). EPA's depth errs on the deep side, by
 /// up to this, so it is half of GJK's [`gjk::CONTACT_PRECISION`], which errs on the shallow side:
 /// with f32 rounding, within the 0.1 mm the narrow phase's tests allow. `mixed` runs about 1 %
 /// fewer instructions than at the relative tolerance alone.

@@ -28,8 +28,8 @@ pub const MAX_ITERATIONS: usize = 64;
 pub const TOLERANCE: f32 = 1e-5;
 
 /// How precisely a contact query ([`distance_within`]) measures the distance, metres, when the
-/// relative [`TOLERANCE`] asks for more: a tenth of the solver's slop
-/// ([`crate::solver::contact_solver::LINEAR_SLOP`], 1 mm), and the slack of the narrow phase's tests (0.1 mm).
+/// relative [`TOLERANCE`] asks for more: a tenth of a millimetre, far below a resting contact's
+/// depth (a few millimetres), and the slack of the narrow phase's tests (0.1 mm).
 /// The distance is never underestimated, only overstated by up to this. Near a curved contact
 /// (radius `R`), where the search converges linearly (about one halving of the gap an iteration,
 /// on a cylinder's rim), the normal is then within `√(2·1e-4/R)` (1.3° for `R` = 0.4 m), and the

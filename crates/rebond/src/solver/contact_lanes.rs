@@ -10,16 +10,15 @@
 //! contacts, and their impulses go straight back to the contacts.
 
 use super::contact_solver::{
-    combine_friction, combine_restitution, FRICTION_ANCHOR_MAX_SLIP, LINEAR_SLOP, MAX_PUSH_SPEED,
-    RESTITUTION_THRESHOLD,
+    combine_friction, combine_restitution, MAX_PUSH_SPEED, RESTITUTION_THRESHOLD,
 };
 use super::softness::Softness;
-use super::wide::{F32x4, Mask4, Mat3x4, Vec3x4};
+use super::wide::{F32x4, Mat3x4, Vec3x4};
 use super::{BodyMotion, BodyState};
 use crate::body::RigidBody;
 use crate::collision::contact_cache::Contact;
 use crate::collision::MAX_MANIFOLD_POINTS;
-use crate::math::{Vec3, Vec3A};
+use crate::math::Vec3A;
 
 /// Lanes per set.
 pub const LANES: usize = 4;
@@ -240,7 +239,7 @@ const fn coupling_index(i: usize, j: usize) -> usize {
 struct PointTarget {
     /// m/s.
     bias: F32x4,
-    /// The effective mass, scaled by the softness where the point is deep, and negated, kg.
+    /// The effective mass, scaled by the softness where the point penetrates, and negated, kg.
     mass: F32x4,
     impulse_scale: F32x4,
 }
@@ -307,12 +306,6 @@ pub(crate) struct ContactLanes {
     coupling: [F32x4; COUPLINGS],
     tangent: [JacobianLanes; 2],
     tangent_impulse: [F32x4; 2],
-    friction_anchors: [[Vec3; 2]; LANES],
-    anchor_offset: [F32x4; 2],
-    /// The anchors' offset along each tangent at the substep's poses, set with the points'
-    /// targets, m.
-    tangent_offset: [F32x4; 2],
-    slid: Mask4,
     twist_spin_a: Vec3x4,
     twist_spin_b: Vec3x4,
     twist_mass: F32x4,
@@ -340,10 +333,6 @@ impl ContactLanes {
         coupling: [F32x4::ZERO; COUPLINGS],
         tangent: [JacobianLanes::ZERO; 2],
         tangent_impulse: [F32x4::ZERO; 2],
-        friction_anchors: [[Vec3::ZERO; 2]; LANES],
-        anchor_offset: [F32x4::ZERO; 2],
-        tangent_offset: [F32x4::ZERO; 2],
-        slid: Mask4::NONE,
         twist_spin_a: Vec3x4::ZERO,
         twist_spin_b: Vec3x4::ZERO,
         twist_mass: F32x4::ZERO,
@@ -352,9 +341,9 @@ impl ContactLanes {
     };
 
     /// Fills this lane set, empty before ([`Self::EMPTY`]), in place with up to four contacts,
-    /// which must share no moving body, warm-started from their cached impulses. What differs from contact to contact (normal, tangents, materials,
-    /// friction anchors) is set lane by lane; the Jacobians of every point and of the friction
-    /// and twist are then computed for the four lanes at once.
+    /// which must share no moving body, warm-started from their cached impulses. What differs
+    /// from contact to contact (normal, tangents, materials) is set lane by lane; the Jacobians
+    /// of every point and of the friction and twist are then computed for the four lanes at once.
     pub fn fill<'a>(
         &mut self,
         lane_contacts: impl IntoIterator<Item = LaneContact<'a>>,
@@ -364,7 +353,6 @@ impl ContactLanes {
         let lanes = self;
         let mut positions = [[Vec3A::ZERO; LANES]; MAX_MANIFOLD_POINTS];
         let mut point_counts = F32x4::ZERO;
-        let mut filled: [Option<LaneContact>; LANES] = [None; LANES];
         for (lane, lane_contact) in lane_contacts.into_iter().enumerate() {
             lanes.set_contact(lane, &lane_contact, motions);
             let points = lane_contact.contact.manifold.points();
@@ -372,7 +360,6 @@ impl ContactLanes {
                 slot[lane] = point.position.into();
             }
             point_counts.set_lane(lane, points.len() as f32);
-            filled[lane] = Some(lane_contact);
         }
         let side = |bodies: &[usize; LANES]| {
             let [a, b, c, d] = *bodies;
@@ -436,12 +423,6 @@ impl ContactLanes {
         lanes.twist_spin_b = b.inverse_inertia.mul_vec3(normal);
         lanes.twist_mass =
             inverse_or_zero(normal.dot(lanes.twist_spin_a) + normal.dot(lanes.twist_spin_b));
-        let centers = center.lanes();
-        for (lane, lane_contact) in filled.iter().enumerate() {
-            if let Some(lane_contact) = lane_contact {
-                lanes.set_friction_anchors(lane, lane_contact, centers[lane]);
-            }
-        }
     }
 
     /// Sets what lane `lane` takes straight from its contact: the bodies, the normal and its
@@ -485,41 +466,6 @@ impl ContactLanes {
         self.twist_impulse.set_lane(lane, contact.twist_impulse);
     }
 
-    /// Sets the friction anchors of lane `lane`: the contact's anchors carried from last step,
-    /// with B's offset from A's along the tangents, unless they slipped apart by more than
-    /// [`FRICTION_ANCHOR_MAX_SLIP`] along the contact plane; else fresh ones at the manifold's
-    /// centre `center`, with no offset.
-    fn set_friction_anchors(&mut self, lane: usize, lane_contact: &LaneContact, center: Vec3A) {
-        let (material_a, material_b) = lane_contact.materials;
-        let normal = self.normal.lane(lane);
-        let carried = lane_contact.contact.friction_anchors.map(|[on_a, on_b]| {
-            let anchor_a = material_a.center_of_mass + material_a.rotation * on_a;
-            let anchor_b = material_b.center_of_mass + material_b.rotation * on_b;
-            ([on_a, on_b], Vec3A::from(anchor_b - anchor_a))
-        });
-        let (anchors, offset) = match carried {
-            Some((anchors, offset))
-                if (offset - normal * normal.dot(offset)).length_squared()
-                    <= FRICTION_ANCHOR_MAX_SLIP * FRICTION_ANCHOR_MAX_SLIP =>
-            {
-                (anchors, offset)
-            }
-            _ => {
-                let center = Vec3::from(center);
-                let fresh = [
-                    material_a.rotation.inverse() * (center - material_a.center_of_mass),
-                    material_b.rotation.inverse() * (center - material_b.center_of_mass),
-                ];
-                (fresh, Vec3A::ZERO)
-            }
-        };
-        self.friction_anchors[lane] = anchors;
-        for axis in 0..2 {
-            let tangent = self.tangents[axis].lane(lane);
-            self.anchor_offset[axis].set_lane(lane, offset.dot(tangent));
-        }
-    }
-
     /// After the substeps: points that were approaching faster than [`RESTITUTION_THRESHOLD`] and
     /// pushed this step leave with `v_n = −e · v_n,start`, where their lane's restitution `e` is
     /// above zero; elsewhere the impulse is zero.
@@ -553,7 +499,7 @@ impl ContactLanes {
     }
 
     /// Writes the accumulated impulses back to the lanes' contacts for the next step's warm
-    /// start, and the friction anchors where friction held (`None` where it slid).
+    /// start.
     pub fn store_impulses(&self, contacts: &mut [Contact]) {
         let tangents = self.tangents.map(|tangent| tangent.lanes());
         for (lane, &index) in self.contacts.iter().enumerate() {
@@ -568,8 +514,6 @@ impl ContactLanes {
             contact.friction_impulse =
                 (tangent_1 * tangents[0][lane] + tangent_2 * tangents[1][lane]).into();
             contact.twist_impulse = self.twist_impulse.lane(lane);
-            contact.friction_anchors =
-                (!self.slid.lane(lane)).then_some(self.friction_anchors[lane]);
         }
     }
 
@@ -622,11 +566,11 @@ impl ContactLanes {
 
     /// Before the biased passes of a substep, whose poses they share: what each point's
     /// separation at those poses, `s = s₀ + n·(Δc_B − Δc_A) + Δθ_B·(r_B × n) − Δθ_A·(r_A × n)`,
-    /// asks of its normal impulse, and the friction anchors' offsets along the tangents. Apart,
-    /// a point may close by `s` this substep (speculative contact); deeper than [`LINEAR_SLOP`],
-    /// a soft constraint pushes it out at the bias rate, at most [`MAX_PUSH_SPEED`]; within the
-    /// slop the contact is rigid, so a resting contact carries its load without the sag a soft
-    /// spring has under load (docs/physics.md compares the variants).
+    /// asks of its normal impulse. Apart (`s > 0`), the point is rigid and may close by `s` this
+    /// substep (speculative contact), so a touchdown is perfectly inelastic. Penetrating, it is
+    /// a soft constraint pushing out at `bias_rate · s`, at most [`MAX_PUSH_SPEED`], at every
+    /// depth: no dead zone, in which a resting contact would hold no position and stacks would
+    /// wander (docs/physics.md, "Position correction").
     pub fn prepare_biased_passes(
         &mut self,
         states: &[BodyState],
@@ -636,37 +580,28 @@ impl ContactLanes {
         let bodies = PassLanes::gather(states, &self.body_a, &self.body_b);
         let normal_motion = self.normal.dot(bodies.relative_motion);
         let inverse_h = F32x4::splat(inverse_h);
-        let slop = F32x4::splat(LINEAR_SLOP);
         for point in &mut self.points[..self.point_count] {
             let separation = point.separation(&bodies, normal_motion);
             let apart = separation.greater_than(F32x4::ZERO);
-            let deep = separation.less_than(-slop);
-            let push = (F32x4::splat(softness.bias_rate) * (separation + slop))
-                .max(F32x4::splat(-MAX_PUSH_SPEED));
-            let mass_scale = deep.select(F32x4::splat(softness.mass_scale), F32x4::ONE);
+            let push =
+                (F32x4::splat(softness.bias_rate) * separation).max(F32x4::splat(-MAX_PUSH_SPEED));
+            let mass_scale = apart.select(F32x4::ONE, F32x4::splat(softness.mass_scale));
             point.target = PointTarget {
-                bias: apart.select(separation * inverse_h, deep.select(push, F32x4::ZERO)),
+                bias: apart.select(separation * inverse_h, push),
                 mass: -point.normal.mass * mass_scale,
-                impulse_scale: deep.select(F32x4::splat(softness.impulse_scale), F32x4::ZERO),
+                impulse_scale: apart.select(F32x4::ZERO, F32x4::splat(softness.impulse_scale)),
             };
-        }
-        for axis in 0..2 {
-            // The anchor offset now: start offset plus the motion since, along the tangent.
-            let jacobian = &self.tangent[axis];
-            self.tangent_offset[axis] = self.anchor_offset[axis]
-                + self.tangents[axis].dot(bodies.relative_motion)
-                + bodies.rotation_b.dot(jacobian.arm_b)
-                - bodies.rotation_a.dot(jacobian.arm_a);
         }
     }
 
     /// One sequential-impulse pass of the four lanes: the normal impulse of each point with
-    /// accumulated clamping (the total never pulls), then the manifold's friction clamped to the
-    /// cone `|λ_t| ≤ μ Σλ_n` and its twist to `μ Σλ_n r̄`. With `USE_BIAS`, each point's impulse
-    /// aims at its target from [`Self::prepare_biased_passes`], and friction also pulls the
-    /// anchors back together. Without `USE_BIAS` (the relax pass, after the poses moved) only
-    /// velocities are solved, which removes the energy the push added; a point still apart by
-    /// `s > 0` may close by `s` this substep.
+    /// accumulated clamping (the total never pulls). With `USE_BIAS`, each point's impulse aims
+    /// at its target from [`Self::prepare_biased_passes`], and friction is left alone. Without
+    /// `USE_BIAS` (the relax pass, after the poses moved) only velocities are solved, which
+    /// removes the energy the push added (a point still apart by `s > 0` may close by `s` this
+    /// substep), and then friction ([`Self::solve_friction`]). Friction that reacts to the
+    /// push's velocities feeds the lean of tall stacks until they topple (rapier's "no friction
+    /// when applying bias" rule; BENCHMARKS.md measures both).
     pub fn solve<const USE_BIAS: bool>(&mut self, states: &mut [BodyState], inverse_h: f32) {
         let mut bodies = PassLanes::gather(states, &self.body_a, &self.body_b);
         let normal = self.normal;
@@ -674,8 +609,7 @@ impl ContactLanes {
         let normal_motion = normal.dot(bodies.relative_motion);
         // Each point's normal velocity is its velocity at the start of the pass plus what the
         // points before it applied, through the couplings; the impulses reach the bodies after.
-        let relative_velocity = bodies.relative_velocity;
-        let linear_speed = normal.dot(relative_velocity);
+        let linear_speed = normal.dot(bodies.relative_velocity);
         let mut applied = [F32x4::ZERO; MAX_MANIFOLD_POINTS];
         let mut total_normal_impulse = F32x4::ZERO;
         for (j, point) in self.points[..self.point_count].iter_mut().enumerate() {
@@ -713,17 +647,25 @@ impl ContactLanes {
         // The normal impulses change the velocities along the tangents through the spins only
         // (n·t = 0), so the bodies get the linear impulse of the whole pass at its end.
         let mut linear_impulse = normal.scale(normal_impulse);
+        if !USE_BIAS {
+            linear_impulse += self.solve_friction(&mut bodies, total_normal_impulse);
+        }
+        bodies.finish(states, self, linear_impulse);
+    }
 
+    /// The manifold's friction at the centre of its points, clamped to the cone
+    /// `|λ_t| ≤ μ Σλ_n`, then its twist about the normal clamped to `μ Σλ_n r̄`, given
+    /// `Σλ_n`. Applies the spins to `bodies` and returns the linear impulse, for
+    /// [`PassLanes::finish`].
+    #[inline(always)]
+    fn solve_friction(&mut self, bodies: &mut PassLanes, total_normal_impulse: F32x4) -> Vec3x4 {
         let limit = self.friction * total_normal_impulse;
         let old = self.tangent_impulse;
         let mut total = [F32x4::ZERO; 2];
         for axis in 0..2 {
             let jacobian = &self.tangent[axis];
-            let mut velocity = self.tangents[axis].dot(relative_velocity)
+            let velocity = self.tangents[axis].dot(bodies.relative_velocity)
                 + jacobian.spin_velocity(bodies.angular_a, bodies.angular_b);
-            if USE_BIAS {
-                velocity += inverse_h * self.tangent_offset[axis];
-            }
             total[axis] = old[axis] - jacobian.mass * velocity;
         }
         let length = (total[0] * total[0] + total[1] * total[1]).sqrt();
@@ -734,8 +676,8 @@ impl ContactLanes {
         for value in &mut total {
             *value = slides.select(*value * scale, *value);
         }
-        self.slid = self.slid.or(slides);
         self.tangent_impulse = total;
+        let mut linear_impulse = Vec3x4::ZERO;
         for axis in 0..2 {
             let applied = total[axis] - old[axis];
             linear_impulse += self.tangents[axis].scale(applied);
@@ -743,12 +685,12 @@ impl ContactLanes {
         }
 
         let twist_limit = limit * self.twist_radius;
-        let spin = (bodies.angular_b - bodies.angular_a).dot(normal);
+        let spin = (bodies.angular_b - bodies.angular_a).dot(self.normal);
         let old_twist = self.twist_impulse;
         self.twist_impulse = (old_twist - self.twist_mass * spin)
             .max(-twist_limit)
             .min(twist_limit);
-        self.apply_twist(&mut bodies, self.twist_impulse - old_twist);
-        bodies.finish(states, self, linear_impulse);
+        self.apply_twist(bodies, self.twist_impulse - old_twist);
+        linear_impulse
     }
 }

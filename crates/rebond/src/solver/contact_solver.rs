@@ -9,10 +9,6 @@
 //! another), a box sliding down a 35° incline with μ = 0.5 then decelerates at the closed-form
 //! rate instead of 5 % too little, and no longer starts to spin about the normal.
 
-/// Penetration allowed without correction, metres: resting contacts settle this deep instead of
-/// jittering in and out of touch. Stacks sink by about this much per layer.
-pub const LINEAR_SLOP: f32 = 0.001;
-
 /// Bodies approaching faster than this, m/s, bounce with their restitution; slower ones stay
 /// down, so resting bodies do not jitter.
 pub const RESTITUTION_THRESHOLD: f32 = 1.0;
@@ -29,10 +25,6 @@ pub const CONTACT_HERTZ: f32 = 60.0;
 /// from 4 substeps at 60 Hz up. A 20-box column of unit boxes buckles below about 47 Hz
 /// (docs/physics.md); at the former cap of 1/8, 30 Hz, it toppled.
 pub const CONTACT_HERTZ_PER_SUBSTEP_RATE: f32 = 0.25;
-
-/// Friction anchors further apart than this along the contact plane, m, are set again where the
-/// manifold is now, instead of pulling the bodies back together.
-pub const FRICTION_ANCHOR_MAX_SLIP: f32 = 0.005;
 
 /// Damping ratio of contacts: over-damped, so corrections never bounce. At 4 substeps a 20-box
 /// column rocked at up to 0.2 m/s with 10 and stays within 0.05 m/s with 5.

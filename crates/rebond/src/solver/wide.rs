@@ -63,25 +63,12 @@ impl F32x4 {
     pub fn set_lane(&mut self, lane: usize, value: f32) {
         self.0[lane] = value;
     }
-
-    /// Where `self < other`.
-    pub fn less_than(self, other: Self) -> Mask4 {
-        Mask4(self.0.cmplt(other.0))
-    }
 }
 
 impl Mask4 {
-    /// No lane set.
-    pub const NONE: Self = Self(BVec4A::FALSE);
-
     /// `if_set` where the mask is set, `otherwise` elsewhere, per lane.
     pub fn select(self, if_set: F32x4, otherwise: F32x4) -> F32x4 {
         F32x4(Vec4::select(self.0, if_set.0, otherwise.0))
-    }
-
-    /// Lanes set in either mask.
-    pub fn or(self, other: Self) -> Self {
-        Self(self.0 | other.0)
     }
 
     /// Lanes set in both masks.
@@ -92,11 +79,6 @@ impl Mask4 {
     /// Lanes set in `self` but not in `other`.
     pub fn and_not(self, other: Self) -> Self {
         Self(self.0 & !other.0)
-    }
-
-    /// Whether lane `lane` is set.
-    pub fn lane(self, lane: usize) -> bool {
-        self.0.test(lane)
     }
 }
 
@@ -168,11 +150,6 @@ impl Vec3x4 {
         self.x.set_lane(lane, vector.x);
         self.y.set_lane(lane, vector.y);
         self.z.set_lane(lane, vector.z);
-    }
-
-    /// The vector of lane `lane`.
-    pub fn lane(&self, lane: usize) -> Vec3A {
-        Vec3A::new(self.x.lane(lane), self.y.lane(lane), self.z.lane(lane))
     }
 
     /// Lane `i` holds `vectors[i]`: a 4×4 transpose (glam's, a few shuffles).
