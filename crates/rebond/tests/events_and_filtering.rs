@@ -384,11 +384,21 @@ fn bodies_asleep_on_a_floor_that_stops_interacting_wake_and_fall() {
         let y = world.body(body).unwrap().position().y;
         assert!(y < start - 4.0, "fell through the floor: y = {y}");
     }
-    // In free fall the top box rests on the bottom one without weight, still stacked (to the
-    // soft contact's sink) and touching.
+    // In free fall the top box rides on the bottom one without weight, still stacked and in
+    // contact. The soft contact's sag under the top box's weight (0.14 mm at 60 Hz) springs
+    // back once the weight is gone, so the surfaces may part by a hair: the pair keeps its
+    // (speculative) contact instead of touching.
     let gap = world.body(top).unwrap().position().y - world.body(bottom).unwrap().position().y;
     assert!((gap - 1.0).abs() < 0.01, "stacked 1 m apart: {gap}");
-    assert_eq!(world.touching_pairs(), [(bottom, top)]);
+    let pair = (bottom.min(top), bottom.max(top));
+    assert!(world
+        .contacts()
+        .iter()
+        .any(|contact| (contact.key.body_a, contact.key.body_b) == pair));
+    assert!(world
+        .touching_pairs()
+        .iter()
+        .all(|&touching| touching == pair));
 }
 
 #[test]
