@@ -277,7 +277,10 @@ mod tests {
         assert_eq!(a.min(b).0.to_array(), [0.5, -2.0, -1.0, 0.0]);
         let mask = a.greater_than(b);
         assert_eq!(mask.select(a, -b).0.to_array(), [1.0, -4.0, 3.5, -0.0]);
-        assert_eq!(mask.and(mask).select(a, b).0.to_array(), [1.0, 4.0, 3.5, 0.0]);
+        assert_eq!(
+            mask.and(mask).select(a, b).0.to_array(),
+            [1.0, 4.0, 3.5, 0.0]
+        );
         assert_eq!(mask.and_not(mask).select(a, b).0.to_array(), b.0.to_array());
     }
 
