@@ -385,7 +385,7 @@ fn bodies_asleep_on_a_floor_that_stops_interacting_wake_and_fall() {
         assert!(y < start - 4.0, "fell through the floor: y = {y}");
     }
     // In free fall the top box rides on the bottom one without weight, still stacked and in
-    // contact. The soft contact's sag under the top box's weight (0.14 mm at 60 Hz) springs
+    // contact. The soft contact's sag under the top box's weight (0.035 mm at 120 Hz) springs
     // back once the weight is gone, so the surfaces may part by a hair: the pair keeps its
     // (speculative) contact instead of touching.
     let gap = world.body(top).unwrap().position().y - world.body(bottom).unwrap().position().y;
