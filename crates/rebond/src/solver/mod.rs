@@ -1,10 +1,11 @@
 //! The solver: one step of the soft-step scheme (Box2D v3 / Box3D "solver2d" soft step).
 //!
 //! For each of the `n` substeps of length `h = dt / n`: integrate velocities, warm-start the
-//! contacts, solve them with soft position correction (the biased pass, twice), integrate poses,
-//! then solve them again without position correction (the relax pass, which takes back the energy
-//! the correction added). After the substeps, one restitution pass, and the impulses go back to
-//! the contact cache for the next step's warm start.
+//! contacts, solve their normal impulses with soft position correction (the biased pass, twice),
+//! integrate poses, then solve them again without position correction, normal impulses and then
+//! friction (the relax pass, which takes back the energy the correction added). After the
+//! substeps, one restitution pass, and the impulses go back to the contact cache for the next
+//! step's warm start.
 //!
 //! The contacts are solved four at a time: `graph_colour.rs` groups them into lane sets of up to
 //! four that share no moving body, and `contact_lanes.rs` solves a lane set in SIMD lanes
