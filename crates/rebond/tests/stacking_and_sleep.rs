@@ -145,8 +145,8 @@ fn a_column_leans_under_a_torque_as_its_contact_springs_and_gravity_give() {
     );
     let tilt = world.body(top).unwrap().rotation().to_scaled_axis().x;
     // Measured within 0.3 % of the chain's answer (6.34e-5 rad); 2 % leaves room for the
-    // solver's residual. Gravity adds 0.2 % here; with ten boxes at 60 Hz (4 substeps) 5 %,
-    // and rebond follows it there too (docs/physics.md, "Soft stacks lean").
+    // solver's residual. Gravity adds 0.2 % here; with ten boxes at 60 Hz (4 substeps) 5 %, and
+    // rebond leans 6 % more than the chain there (docs/physics.md, "Soft stacks lean").
     assert!(
         (tilt - expected).abs() < 0.02 * expected,
         "the top box tilted {tilt} rad, the springs give {expected} rad"
