@@ -465,6 +465,15 @@ impl RigidBody {
         self.can_sleep
     }
 
+    /// Lets the body fall asleep or not; `false` also wakes it (and, at the next step, the rest
+    /// of its sleeping group).
+    pub fn set_can_sleep(&mut self, can_sleep: bool) {
+        self.can_sleep = can_sleep;
+        if !can_sleep {
+            self.wake();
+        }
+    }
+
     /// Whether the body is a sensor (reports overlaps, never pushes).
     pub fn is_sensor(&self) -> bool {
         self.sensor
