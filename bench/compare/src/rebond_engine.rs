@@ -42,7 +42,7 @@ impl RebondEngine {
         for spec in &scene.bodies {
             let shape = rebond_shape(&spec.shape);
             let desc = if spec.fixed {
-                BodyDesc::fixed(shape)
+                BodyDesc::static_body(shape)
             } else {
                 BodyDesc::dynamic(shape).mass(spec.mass).can_sleep(false)
             };
@@ -75,7 +75,7 @@ impl Engine for RebondEngine {
     fn deepest_penetration(&self) -> f32 {
         let mut deepest = 0.0f32;
         for contact in self.world.contacts() {
-            for point in contact.manifold.points() {
+            for point in contact.points() {
                 deepest = deepest.min(point.separation);
             }
         }

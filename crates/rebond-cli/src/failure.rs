@@ -4,7 +4,7 @@ use std::fmt;
 use std::io;
 use std::path::{Path, PathBuf};
 
-use crate::scene::SceneError;
+use rebond::scene::SceneError;
 
 /// Exit status for a scene that is not valid (the contract's "bad input").
 pub const EXIT_INVALID_SCENE: u8 = 2;

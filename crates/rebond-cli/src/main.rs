@@ -1,6 +1,6 @@
 //! `rebond`: runs, times and lists physics scenes from the command line.
 //!
-//! Scene files and records follow the contract in `shared/scene-format.md`. Exit status: 0 on
+//! Scene files and records follow the contract in `docs/scene-format.md`. Exit status: 0 on
 //! success, 1 when a file cannot be read or written, 2 for an invalid scene or bad arguments.
 
 mod bench;
@@ -8,7 +8,6 @@ mod builtin;
 mod failure;
 mod record;
 mod run;
-mod scene;
 mod source;
 mod view;
 

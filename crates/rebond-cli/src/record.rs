@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use crate::failure::Failure;
-use crate::scene::Scene;
+use rebond::scene::Scene;
 
 /// One line of a record.
 #[derive(Debug, Serialize)]

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use crate::builtin::{self, BuiltinScene};
 use crate::failure::Failure;
-use crate::scene::Scene;
+use rebond::scene::Scene;
 
 /// The scene a command was given.
 #[derive(Debug, Clone)]

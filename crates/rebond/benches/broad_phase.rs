@@ -2,8 +2,8 @@
 //!
 //! Run with `cargo bench -p rebond --bench broad_phase`.
 
-use rebond::collision::broad_phase::{BroadPhase, ProxyHandle};
-use rebond::collision::dynamic_tree::AABB_MARGIN;
+use rebond::internals::collision::broad_phase::{BroadPhase, ProxyHandle};
+use rebond::internals::collision::dynamic_tree::AABB_MARGIN;
 use rebond::{Aabb, Vec3};
 
 fn main() {

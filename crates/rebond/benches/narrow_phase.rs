@@ -4,8 +4,8 @@
 //!
 //! Run with `cargo bench -p rebond --bench narrow_phase`.
 
-use rebond::collision::narrow_phase::NarrowPhase;
-use rebond::collision::SPECULATIVE_DISTANCE;
+use rebond::internals::collision::narrow_phase::NarrowPhase;
+use rebond::internals::collision::SPECULATIVE_DISTANCE;
 use rebond::{Pose, Quat, Shape, Vec3};
 
 fn main() {

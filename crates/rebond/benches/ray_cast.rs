@@ -29,7 +29,7 @@ fn scene() -> (World, Vec<Ray>) {
         let rotation = Quat::from_axis_angle(random.unit_vector(), random.range(0.0, 6.3));
         world
             .add_body(
-                BodyDesc::fixed(shape)
+                BodyDesc::static_body(shape)
                     .position(random.vec3(-EXTENT, EXTENT))
                     .rotation(rotation),
             )

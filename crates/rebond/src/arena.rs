@@ -13,11 +13,6 @@ impl ArenaIndex {
     pub fn slot(&self) -> usize {
         self.index as usize
     }
-
-    /// How many times the slot had been emptied before this item took it.
-    pub fn generation(&self) -> u32 {
-        self.generation
-    }
 }
 
 #[derive(Debug, Clone)]
@@ -115,11 +110,6 @@ impl<T> Arena<T> {
     /// Number of live items.
     pub fn len(&self) -> usize {
         self.len
-    }
-
-    /// Whether the arena holds no item.
-    pub fn is_empty(&self) -> bool {
-        self.len == 0
     }
 
     /// Live items with their handles, in slot order.

@@ -11,7 +11,7 @@ use crate::error::{
 };
 use crate::filter::InteractionGroups;
 use crate::mass::MassProperties;
-use crate::math::{normalize_rotation, rotate_tensor, Aabb, Mat3, Pose, Quat, Vec3};
+use crate::math::{normalize_rotation, rotate_tensor, skew, Aabb, Mat3, Pose, Quat, Vec3};
 use crate::shape::Shape;
 
 /// How a body moves.
@@ -65,8 +65,13 @@ pub struct BodyDesc {
     pub friction: f32,
     /// Coefficient of restitution, 0 to 1, default 0.
     pub restitution: f32,
-    /// World force at the centre of mass applied during every step, newtons.
+    /// World force applied during every step, newtons, at the centre of mass or at
+    /// `constant_force_point`.
     pub constant_force: Vec3,
+    /// Where `constant_force` acts: a point in the body frame (it turns with the body), metres
+    /// from the body origin; `None` (the default) for the centre of mass. Off the centre of mass
+    /// the force also gives the torque `r × F`, `r` from the centre of mass to the point.
+    pub constant_force_point: Option<Vec3>,
     /// World torque applied during every step, N·m.
     pub constant_torque: Vec3,
     /// Linear damping, 1/s, ≥ 0: `v ← v / (1 + h·c)` each substep.
@@ -87,6 +92,9 @@ pub struct BodyDesc {
     /// [`crate::events::ContactForceEvent`]s; default infinity (no reports). A pair uses the
     /// smaller threshold of its two bodies.
     pub contact_force_threshold: f32,
+    /// Whatever the user wants to keep with the body (an entity id, an index), default 0; the
+    /// engine never reads it.
+    pub user_data: u128,
 }
 
 impl BodyDesc {
@@ -104,6 +112,7 @@ impl BodyDesc {
             friction: DEFAULT_FRICTION,
             restitution: 0.0,
             constant_force: Vec3::ZERO,
+            constant_force_point: None,
             constant_torque: Vec3::ZERO,
             linear_damping: 0.0,
             angular_damping: 0.0,
@@ -111,20 +120,23 @@ impl BodyDesc {
             sensor: false,
             collision_groups: InteractionGroups::ALL,
             contact_force_threshold: f32::INFINITY,
+            user_data: 0,
         }
     }
 
-    /// A dynamic body.
+    /// A dynamic body: moved by gravity, forces and contacts.
     pub fn dynamic(shape: Shape) -> Self {
         Self::new(BodyType::Dynamic, shape)
     }
 
-    /// A static body.
-    pub fn fixed(shape: Shape) -> Self {
+    /// A static body ([`BodyType::Static`], `"static"` in scene files): never moves, infinite
+    /// mass.
+    pub fn static_body(shape: Shape) -> Self {
         Self::new(BodyType::Static, shape)
     }
 
-    /// A kinematic body.
+    /// A kinematic body: moves at the velocity it is given, pushes dynamic bodies, is pushed by
+    /// nothing.
     pub fn kinematic(shape: Shape) -> Self {
         Self::new(BodyType::Kinematic, shape)
     }
@@ -180,6 +192,15 @@ impl BodyDesc {
     /// Sets the force applied at the centre of mass during every step.
     pub fn constant_force(mut self, force: Vec3) -> Self {
         self.constant_force = force;
+        self.constant_force_point = None;
+        self
+    }
+
+    /// Sets the world force applied during every step at `point`, a point in the body frame
+    /// (it turns with the body).
+    pub fn constant_force_at_point(mut self, force: Vec3, point: Vec3) -> Self {
+        self.constant_force = force;
+        self.constant_force_point = Some(point);
         self
     }
 
@@ -219,6 +240,12 @@ impl BodyDesc {
         self.contact_force_threshold = threshold;
         self
     }
+
+    /// Sets the user data.
+    pub fn user_data(mut self, data: u128) -> Self {
+        self.user_data = data;
+        self
+    }
 }
 
 /// A rigid body in a world.
@@ -244,6 +271,8 @@ pub struct RigidBody {
     pub(crate) force: Vec3,
     pub(crate) torque: Vec3,
     pub(crate) constant_force: Vec3,
+    /// Where the constant force acts, body frame; `None` for the centre of mass.
+    pub(crate) constant_force_point: Option<Vec3>,
     pub(crate) constant_torque: Vec3,
     pub(crate) linear_damping: f32,
     pub(crate) angular_damping: f32,
@@ -263,6 +292,7 @@ pub struct RigidBody {
     pub(crate) collision_groups: InteractionGroups,
     /// Newtons; infinity for no force reports.
     pub(crate) contact_force_threshold: f32,
+    pub(crate) user_data: u128,
 }
 
 impl RigidBody {
@@ -279,6 +309,9 @@ impl RigidBody {
         check_non_negative("friction", desc.friction)?;
         check_range("restitution", desc.restitution, 0.0, 1.0)?;
         check_finite_vector("force", desc.constant_force)?;
+        if let Some(point) = desc.constant_force_point {
+            check_finite_vector("force_point", point)?;
+        }
         check_finite_vector("torque", desc.constant_torque)?;
         check_non_negative("linear_damping", desc.linear_damping)?;
         check_non_negative("angular_damping", desc.angular_damping)?;
@@ -313,6 +346,7 @@ impl RigidBody {
             force: Vec3::ZERO,
             torque: Vec3::ZERO,
             constant_force: desc.constant_force,
+            constant_force_point: desc.constant_force_point,
             constant_torque: desc.constant_torque,
             linear_damping: desc.linear_damping,
             angular_damping: desc.angular_damping,
@@ -327,6 +361,7 @@ impl RigidBody {
             sensor: desc.sensor,
             collision_groups: desc.collision_groups,
             contact_force_threshold: desc.contact_force_threshold,
+            user_data: desc.user_data,
         };
         if let Some((properties, inverse_inertia)) = mass_properties {
             body.mass = properties.mass;
@@ -414,6 +449,14 @@ impl RigidBody {
         self.world_inverse_inertia
     }
 
+    /// How the velocity of the material point at world `point` answers an impulse there, s/kg:
+    /// `Δv = K J` with `K = (1/m)·𝟙 − [r]ₓ I⁻¹ [r]ₓ`, `r = p − c` (zero unless dynamic). Its
+    /// inverse is the point's effective mass, what a mouse spring or a point constraint needs.
+    pub fn inverse_mass_at_point(&self, point: Vec3) -> Mat3 {
+        let arm = skew(point - self.center_of_mass);
+        Mat3::from_diagonal(Vec3::splat(self.inverse_mass)) - arm * self.world_inverse_inertia * arm
+    }
+
     /// Inertia in world axes, `R · I · Rᵀ`; zero unless dynamic.
     pub fn world_inertia(&self) -> Mat3 {
         rotate_tensor(self.rotation, self.local_inertia)
@@ -453,6 +496,11 @@ impl RigidBody {
     /// The force applied at the centre of mass during every step, N.
     pub fn constant_force(&self) -> Vec3 {
         self.constant_force
+    }
+
+    /// Where the constant force acts, a point in the body frame; `None` for the centre of mass.
+    pub fn constant_force_point(&self) -> Option<Vec3> {
+        self.constant_force_point
     }
 
     /// The torque applied during every step, N·m.
@@ -624,8 +672,43 @@ impl RigidBody {
     /// Sets the force applied at the centre of mass during every step.
     pub fn set_constant_force(&mut self, force: Vec3) -> Result<()> {
         self.constant_force = check_finite_vector("force", force)?;
+        self.constant_force_point = None;
         self.wake();
         Ok(())
+    }
+
+    /// Sets the world force applied during every step at `point`, a point in the body frame
+    /// (it turns with the body): the force, and the torque `r × F` about the centre of mass.
+    pub fn set_constant_force_at_point(&mut self, force: Vec3, point: Vec3) -> Result<()> {
+        check_finite_vector("force", force)?;
+        check_finite_vector("point", point)?;
+        self.constant_force = force;
+        self.constant_force_point = Some(point);
+        self.wake();
+        Ok(())
+    }
+
+    /// The user data (default 0; the engine never reads it).
+    pub fn user_data(&self) -> u128 {
+        self.user_data
+    }
+
+    /// Sets the user data.
+    pub fn set_user_data(&mut self, data: u128) {
+        self.user_data = data;
+    }
+
+    /// The force and torque this step applies: what the user applied since the last step plus
+    /// the constant ones, with `r × F` of a constant force off the centre of mass
+    /// (`r = R (p − c_local)`), N and N·m.
+    pub(crate) fn applied_force_and_torque(&self) -> (Vec3, Vec3) {
+        let force = self.force + self.constant_force;
+        let mut torque = self.torque + self.constant_torque;
+        if let Some(point) = self.constant_force_point {
+            let arm = self.rotation * (point - self.local_center_of_mass);
+            torque += arm.cross(self.constant_force);
+        }
+        (force, torque)
     }
 
     /// Sets the torque applied during every step.
@@ -692,8 +775,9 @@ impl RigidBody {
 }
 
 /// Mass properties of a dynamic body and its inverse inertia, with every failure named: a
-/// halfspace (field `shape`), or a mass or inertia that is not positive and finite (field `mass`
-/// when given, `density` otherwise).
+/// halfspace (field `shape`); a shape whose mass or inertia is out of `f32`'s reach even at unit
+/// density (`shape.radius`, `shape.half_extents`, …); otherwise a mass or inertia that is not
+/// positive and finite (field `mass` when given, `density` otherwise).
 fn dynamic_mass_properties(desc: &BodyDesc) -> Result<(MassProperties, Mat3)> {
     let properties = desc
         .shape
@@ -703,22 +787,34 @@ fn dynamic_mass_properties(desc: &BodyDesc) -> Result<(MassProperties, Mat3)> {
         Some(mass) => properties.scaled_to_mass(mass),
         None => properties,
     };
+    if let Some(inverse_inertia) = inverse_inertia(&properties) {
+        return Ok((properties, inverse_inertia));
+    }
+    let unit_density = desc.shape.mass_properties(1.0);
+    if unit_density.as_ref().and_then(inverse_inertia).is_none() {
+        let field = format!("shape.{}", desc.shape.size_field());
+        return Err(Error::new(field, ErrorKind::UnrepresentableSize));
+    }
     let field = if desc.mass.is_some() {
         "mass"
     } else {
         "density"
     };
-    let invalid = || Error::new(field, ErrorKind::InvalidMass);
-    if !(properties.mass.is_finite() && properties.mass > 0.0) {
-        return Err(invalid());
+    Err(Error::new(field, ErrorKind::InvalidMass))
+}
+
+/// The inverse inertia, when the mass and the inertia are positive, finite and invertible. The
+/// inverse is taken in `f64`, whose determinant neither overflows for a large body nor underflows
+/// for a small one where the `f32` inertia and its inverse are both fine.
+fn inverse_inertia(properties: &MassProperties) -> Option<Mat3> {
+    if !(properties.mass.is_finite() && properties.mass > 0.0 && properties.inertia.is_finite()) {
+        return None;
     }
-    let determinant = properties.inertia.determinant();
-    if !(determinant.is_finite() && determinant > 0.0) {
-        return Err(invalid());
+    let inertia = properties.inertia.as_dmat3();
+    if inertia.determinant() <= 0.0 {
+        return None;
     }
-    let inverse_inertia = properties.inertia.inverse();
-    if !(inverse_inertia.is_finite() && properties.inertia.is_finite()) {
-        return Err(invalid());
-    }
-    Ok((properties, inverse_inertia))
+    let inverse = inertia.inverse().as_mat3();
+    let diagonal = Vec3::new(inverse.x_axis.x, inverse.y_axis.y, inverse.z_axis.z);
+    (inverse.is_finite() && diagonal.min_element() > 0.0).then_some(inverse)
 }

@@ -25,6 +25,9 @@ pub enum ErrorKind {
     HalfspaceOnDynamicBody,
     /// The body's mass would not be positive and finite.
     InvalidMass,
+    /// A shape so small or so large that its mass or inertia cannot be represented in 32-bit
+    /// floats, whatever the density.
+    UnrepresentableSize,
     /// A handle to a body that was removed, or that never belonged to this world.
     StaleHandle,
 }
@@ -86,6 +89,11 @@ impl fmt::Display for ErrorKind {
                 )
             }
             Self::InvalidMass => write!(f, "mass of a dynamic body must be positive and finite"),
+            Self::UnrepresentableSize => write!(
+                f,
+                "too small or too large: the mass and inertia of a dynamic body of this size \
+                 cannot be represented in 32-bit floats"
+            ),
             Self::StaleHandle => write!(f, "body handle is stale or unknown"),
         }
     }

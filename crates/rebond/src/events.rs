@@ -23,11 +23,11 @@
 //!
 //! let mut world = World::new(WorldSettings::default())?;
 //! let floor = world.add_body(
-//!     BodyDesc::fixed(Shape::cuboid(Vec3::new(10.0, 0.5, 10.0))?)
+//!     BodyDesc::static_body(Shape::cuboid(Vec3::new(10.0, 0.5, 10.0))?)
 //!         .position(Vec3::new(0.0, -0.5, 0.0)),
 //! )?;
 //! let trigger = world.add_body(
-//!     BodyDesc::fixed(Shape::cuboid(Vec3::splat(1.0))?)
+//!     BodyDesc::static_body(Shape::cuboid(Vec3::splat(1.0))?)
 //!         .position(Vec3::new(0.0, 3.0, 0.0))
 //!         .sensor(true),
 //! )?;

@@ -1,26 +1,61 @@
 //! rebond: an impulse-based 3D rigid-body physics engine.
 //!
-//! The pipeline, one module a stage: [`shape`] (geometry and mass), [`body`] (rigid bodies),
-//! [`integration`] (semi-implicit Euler), [`world`] (owns everything and steps it), with
-//! [`query`] (rays, shape casts, overlaps), [`events`] (contacts, forces, sensors) and [`filter`]
-//! (collision groups).
+//! A [`World`] holds rigid bodies, each with one [`Shape`], and advances them in time with
+//! [`World::step`]: gravity and forces, collision detection, contacts with friction and
+//! restitution solved by sequential impulses, sleeping. Units are SI (metres, kilograms,
+//! seconds), +Y is up by default, rotations are unit quaternions.
+//!
+//! ```
+//! use rebond::prelude::*;
+//!
+//! let mut world = World::new(WorldSettings::default())?;
+//! world.add_body(
+//!     BodyDesc::static_body(Shape::cuboid(Vec3::new(10.0, 0.5, 10.0))?)
+//!         .position(Vec3::new(0.0, -0.5, 0.0)),
+//! )?;
+//! let ball = world.add_body(
+//!     BodyDesc::dynamic(Shape::sphere(0.5)?)
+//!         .position(Vec3::new(0.0, 2.0, 0.0))
+//!         .restitution(0.5),
+//! )?;
+//! for _ in 0..120 {
+//!     world.step(1.0 / 60.0)?;
+//! }
+//! // After two seconds the ball has bounced and rests on the ground.
+//! let height = world.body(ball)?.position().y;
+//! assert!((height - 0.5).abs() < 0.01);
+//! # Ok::<(), rebond::Error>(())
+//! ```
+//!
+//! Every call that takes user values checks them and returns an [`Error`] naming the field;
+//! nothing a user passes in makes the engine panic or puts NaN or infinity into a body.
+//!
+//! The modules, in pipeline order: [`shape`] (geometry and mass), bodies ([`BodyDesc`],
+//! [`RigidBody`]), collision detection and the solver (private), [`World`] (owns everything and
+//! steps it), with [`query`] (rays, shape casts, overlaps), [`events`] (contacts, forces,
+//! sensors) and [`scene`] (scene files).
 
-pub mod arena;
-pub mod body;
-pub mod collision;
-pub mod error;
+mod arena;
+mod body;
+mod collision;
+mod error;
 pub mod events;
-pub mod filter;
+mod filter;
 mod integration;
-pub mod island;
-pub mod mass;
-pub mod math;
+mod island;
+mod mass;
+mod math;
+pub mod prelude;
 pub mod query;
+#[cfg(feature = "scene")]
+pub mod scene;
 pub mod shape;
-pub mod solver;
-pub mod world;
+mod solver;
+mod world;
 
 pub use body::{BodyDesc, BodyHandle, BodyType, RigidBody};
+pub use collision::contact_cache::Contact;
+pub use collision::{ContactPoint, MAX_MANIFOLD_POINTS};
 pub use error::{Error, ErrorKind, Result};
 pub use events::{ContactEvent, ContactEventKind, ContactForceEvent, SensorEvent, SensorEventKind};
 pub use filter::InteractionGroups;
@@ -28,7 +63,31 @@ pub use mass::MassProperties;
 pub use math::{Aabb, Mat3, Pose, Quat, Vec3};
 pub use query::{QueryFilter, Ray, RayHit, ShapeHit};
 pub use shape::{CompoundChild, Shape};
-pub use world::{World, WorldSettings};
+pub use world::{
+    World, WorldSettings, DEFAULT_GRAVITY, DEFAULT_MAX_LINEAR_SPEED, DEFAULT_SUBSTEPS, MAX_SUBSTEPS,
+};
+
+/// The engine's internal modules, for its own tests and benchmarks: not part of the public API,
+/// and free to change in any release.
+#[doc(hidden)]
+pub mod internals {
+    /// Collision detection internals.
+    pub mod collision {
+        pub use crate::collision::*;
+    }
+    /// Math helpers.
+    pub mod math {
+        pub use crate::math::*;
+    }
+    /// Islands and sleeping.
+    pub mod island {
+        pub use crate::island::*;
+    }
+    /// Solver constants.
+    pub mod solver {
+        pub use crate::solver::*;
+    }
+}
 
 /// The README's examples, compiled and run as doc tests.
 #[cfg(doctest)]

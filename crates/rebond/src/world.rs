@@ -120,11 +120,22 @@ impl World {
         &self.settings
     }
 
-    /// Replaces the settings; on error the world keeps the old ones.
+    /// Replaces the settings; on error the world keeps the old ones. A change of gravity wakes
+    /// every body, since a body resting under the old gravity may not rest under the new one.
     pub fn set_settings(&mut self, settings: WorldSettings) -> Result<()> {
         settings.validate()?;
+        if settings.gravity != self.settings.gravity {
+            self.wake_all();
+        }
         self.settings = settings;
         Ok(())
+    }
+
+    /// Wakes every sleeping body.
+    pub fn wake_all(&mut self) {
+        for body in self.bodies.values_mut() {
+            body.wake();
+        }
     }
 
     /// Checks `desc` and adds the body; on error the world is unchanged.

@@ -9,8 +9,8 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
 use common::{add_ground, unit_box, world, DT, G};
-use rebond::collision::epa;
-use rebond::collision::PosedCore;
+use rebond::internals::collision::epa;
+use rebond::internals::collision::PosedCore;
 use rebond::{BodyDesc, BodyHandle, Pose, Quat, Shape, Vec3, World};
 
 /// Counts the allocations of the calling thread, so a test can prove a step allocates nothing
@@ -178,7 +178,7 @@ fn a_steady_step_of_cylinders_hulls_and_capsules_allocates_nothing() {
             pebble()
         };
         world
-            .add_body(BodyDesc::fixed(shape).position(Vec3::new(x, 5.0, 0.0)))
+            .add_body(BodyDesc::static_body(shape).position(Vec3::new(x, 5.0, 0.0)))
             .unwrap();
     }
     let sweepers = [

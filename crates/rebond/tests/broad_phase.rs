@@ -6,8 +6,8 @@ mod random;
 
 use random::Random;
 
-use rebond::collision::broad_phase::{BroadPhase, ProxyHandle};
-use rebond::collision::dynamic_tree::AABB_MARGIN;
+use rebond::internals::collision::broad_phase::{BroadPhase, ProxyHandle};
+use rebond::internals::collision::dynamic_tree::AABB_MARGIN;
 use rebond::{Aabb, Vec3};
 
 /// Half the side of the cube the boxes live in, metres.

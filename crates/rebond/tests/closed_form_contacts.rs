@@ -3,8 +3,10 @@
 //! Tolerance: positions are a few f32 operations on values below 10 m, so 1e-5 m covers their
 //! rounding; separations likewise.
 
-use rebond::collision::closed_form::{capsule_capsule, sphere_box, sphere_capsule, sphere_sphere};
-use rebond::collision::{Manifold, SPECULATIVE_DISTANCE};
+use rebond::internals::collision::closed_form::{
+    capsule_capsule, sphere_box, sphere_capsule, sphere_sphere,
+};
+use rebond::internals::collision::{Manifold, SPECULATIVE_DISTANCE};
 use rebond::shape::{Capsule, Cuboid, Sphere};
 use rebond::{Pose, Quat, Vec3};
 

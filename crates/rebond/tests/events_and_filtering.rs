@@ -111,7 +111,7 @@ fn a_sensor_reports_each_enter_and_exit_once_and_changes_no_velocity() {
     let mut world = zero_gravity();
     let sensor = world
         .add_body(
-            BodyDesc::fixed(Shape::cuboid(Vec3::splat(half)).unwrap())
+            BodyDesc::static_body(Shape::cuboid(Vec3::splat(half)).unwrap())
                 .sensor(true)
                 .restitution(1.0),
         )
@@ -168,14 +168,14 @@ fn a_moving_sensor_sees_static_and_sleeping_bodies_without_waking_them() {
     let ground = add_ground(&mut world, 0.5);
     let post = world
         .add_body(
-            BodyDesc::fixed(Shape::cuboid(Vec3::splat(0.5)).unwrap())
+            BodyDesc::static_body(Shape::cuboid(Vec3::splat(0.5)).unwrap())
                 .position(Vec3::new(3.0, 0.5, 0.0)),
         )
         .unwrap();
     let sleeper = world.add_body(unit_box(Vec3::new(6.0, 0.5, 0.0))).unwrap();
     let static_sensor = world
         .add_body(
-            BodyDesc::fixed(Shape::cuboid(Vec3::splat(1.0)).unwrap())
+            BodyDesc::static_body(Shape::cuboid(Vec3::splat(1.0)).unwrap())
                 .position(Vec3::new(3.0, 0.5, 0.0))
                 .sensor(true),
         )
@@ -204,7 +204,7 @@ fn a_moving_sensor_sees_static_and_sleeping_bodies_without_waking_them() {
         assert!(world
             .contacts()
             .iter()
-            .all(|c| c.key.body_a != sweep && c.key.body_b != sweep));
+            .all(|c| c.bodies().0 != sweep && c.bodies().1 != sweep));
     }
     use SensorEventKind::{Entered, Exited};
     // The slab sits 1 m up with half height 1: it overlaps the floor's top face from the start.
@@ -233,7 +233,7 @@ fn a_body_asleep_inside_a_sensor_stays_inside() {
     add_ground(&mut world, 0.5);
     let zone = world
         .add_body(
-            BodyDesc::fixed(Shape::cuboid(Vec3::new(2.0, 1.0, 2.0)).unwrap())
+            BodyDesc::static_body(Shape::cuboid(Vec3::new(2.0, 1.0, 2.0)).unwrap())
                 .position(Vec3::new(0.0, 1.0, 0.0))
                 .sensor(true),
         )
@@ -252,7 +252,7 @@ fn a_body_asleep_inside_a_sensor_stays_inside() {
     // A sensor added around the sleeping box sees it at the next step, and lets it sleep.
     let late = world
         .add_body(
-            BodyDesc::fixed(Shape::sphere(1.0).unwrap())
+            BodyDesc::static_body(Shape::sphere(1.0).unwrap())
                 .position(Vec3::new(0.0, 0.5, 0.0))
                 .sensor(true),
         )
@@ -331,7 +331,7 @@ fn ignoring_a_pair_or_changing_groups_at_runtime_drops_its_contacts() {
         world
             .contacts()
             .iter()
-            .any(|contact| (contact.key.body_a, contact.key.body_b) == (a.min(b), a.max(b)))
+            .any(|contact| contact.bodies() == (a.min(b), a.max(b)))
     };
     assert!(!in_contacts(&world, bottom, top), "dropped at once");
     world.step(DT).unwrap();
@@ -394,7 +394,7 @@ fn bodies_asleep_on_a_floor_that_stops_interacting_wake_and_fall() {
     assert!(world
         .contacts()
         .iter()
-        .any(|contact| (contact.key.body_a, contact.key.body_b) == pair));
+        .any(|contact| contact.bodies() == pair));
     assert!(world
         .touching_pairs()
         .iter()
@@ -506,7 +506,7 @@ fn query_filters_use_collision_groups_and_can_skip_sensors() {
     let shape = || Shape::cuboid(Vec3::splat(0.5)).unwrap();
     let near = world
         .add_body(
-            BodyDesc::fixed(shape())
+            BodyDesc::static_body(shape())
                 .position(Vec3::new(2.0, 0.0, 0.0))
                 .sensor(true)
                 .collision_groups(InteractionGroups::new(0b100, u32::MAX)),
@@ -514,14 +514,14 @@ fn query_filters_use_collision_groups_and_can_skip_sensors() {
         .unwrap();
     let middle = world
         .add_body(
-            BodyDesc::fixed(shape())
+            BodyDesc::static_body(shape())
                 .position(Vec3::new(4.0, 0.0, 0.0))
                 .collision_groups(InteractionGroups::new(0b10, u32::MAX)),
         )
         .unwrap();
     let far = world
         .add_body(
-            BodyDesc::fixed(shape())
+            BodyDesc::static_body(shape())
                 .position(Vec3::new(6.0, 0.0, 0.0))
                 .collision_groups(InteractionGroups::new(0b01, u32::MAX)),
         )

@@ -6,7 +6,7 @@
 //! bound over directions ([`least_overlap`]) brackets the true value to compare with.
 //!
 //! Tolerances: GJK and EPA stop within `TOLERANCE · scale` of the answer (1e-5 of the largest
-//! support point of A − B, `rebond::collision::gjk::TOLERANCE`), and f32 rounds each support
+//! support point of A − B, `rebond::internals::collision::gjk::TOLERANCE`), and f32 rounds each support
 //! point by about 6e-8 of its magnitude. Closed-form scenes here are at most ~6 m across, so 1e-4 m
 //! covers both with margin; random scenes are at most ~15 m across, so 3e-4 m.
 
@@ -15,9 +15,9 @@ mod spiral;
 
 use glam::DVec3;
 use proptest::prelude::*;
-use rebond::collision::epa::{self, ContactInfo, Penetration, Polytope};
-use rebond::collision::gjk::{self, Distance, SimplexCache};
-use rebond::collision::{PosedCore, SupportMap};
+use rebond::internals::collision::epa::{self, ContactInfo, Penetration, Polytope};
+use rebond::internals::collision::gjk::{self, Distance, SimplexCache};
+use rebond::internals::collision::{PosedCore, SupportMap};
 use rebond::{Pose, Quat, Shape, Vec3};
 use spiral::spiral_directions;
 use std::cmp::Ordering;

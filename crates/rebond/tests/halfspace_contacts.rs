@@ -2,8 +2,8 @@
 //!
 //! Tolerance 1e-5 m: a handful of f32 operations on coordinates below 10 m.
 
-use rebond::collision::halfspace::collide_halfspace;
-use rebond::collision::{Manifold, SPECULATIVE_DISTANCE};
+use rebond::internals::collision::halfspace::collide_halfspace;
+use rebond::internals::collision::{Manifold, SPECULATIVE_DISTANCE};
 use rebond::shape::Halfspace;
 use rebond::{Pose, Quat, Shape, Vec3};
 

@@ -3,7 +3,7 @@
 //! Tolerances: the engine computes in f32, whose relative rounding is about 6e-8 per operation;
 //! a few dozen operations stay below 1e-5 relative, which is the bound used here unless stated.
 
-use rebond::math::{parallel_axis_shift, rotate_tensor};
+use rebond::internals::math::{parallel_axis_shift, rotate_tensor};
 use rebond::shape::CompoundChild;
 use rebond::{BodyDesc, MassProperties, Mat3, Pose, Quat, Shape, Vec3, World, WorldSettings};
 

@@ -15,8 +15,8 @@
 
 use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
 
-use rebond::collision::narrow_phase::{collide, collide_convex};
-use rebond::collision::{Manifold, SPECULATIVE_DISTANCE};
+use rebond::internals::collision::narrow_phase::{collide, collide_convex};
+use rebond::internals::collision::{Manifold, SPECULATIVE_DISTANCE};
 use rebond::{CompoundChild, Pose, Quat, Shape, Vec3};
 
 /// Closed forms, the plane test and the separating-axis test: every coordinate is below 6 m,

@@ -25,8 +25,8 @@
 mod spiral;
 
 use proptest::prelude::*;
-use rebond::collision::narrow_phase::collide_convex;
-use rebond::collision::{gjk, PosedCore, SupportMap, SPECULATIVE_DISTANCE};
+use rebond::internals::collision::narrow_phase::collide_convex;
+use rebond::internals::collision::{gjk, PosedCore, SupportMap, SPECULATIVE_DISTANCE};
 use rebond::shape::ConvexHull;
 use rebond::{Pose, Quat, Shape, Vec3};
 use spiral::spiral_directions;

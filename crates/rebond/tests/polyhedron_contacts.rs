@@ -5,10 +5,10 @@
 use std::f32::consts::{FRAC_PI_4, PI};
 
 use proptest::prelude::*;
-use rebond::collision::clipping::SIDE_PLANE_SLOP;
-use rebond::collision::polyhedron::Polyhedron;
-use rebond::collision::polyhedron_contact::collide_polyhedra;
-use rebond::collision::{Manifold, SPECULATIVE_DISTANCE};
+use rebond::internals::collision::clipping::SIDE_PLANE_SLOP;
+use rebond::internals::collision::polyhedron::Polyhedron;
+use rebond::internals::collision::polyhedron_contact::collide_polyhedra;
+use rebond::internals::collision::{Manifold, SPECULATIVE_DISTANCE};
 use rebond::shape::{ConvexHull, Cuboid, Shape};
 use rebond::{Mat3, Pose, Quat, Vec3};
 

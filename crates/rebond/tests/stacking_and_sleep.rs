@@ -4,8 +4,8 @@
 mod common;
 
 use common::{add_ground, run, unit_box, world, DT, G};
-use rebond::solver::contact_solver::{CONTACT_HERTZ, CONTACT_HERTZ_PER_SUBSTEP_RATE};
-use rebond::world::DEFAULT_SUBSTEPS;
+use rebond::internals::solver::contact_solver::{CONTACT_HERTZ, CONTACT_HERTZ_PER_SUBSTEP_RATE};
+use rebond::DEFAULT_SUBSTEPS;
 use rebond::{BodyDesc, BodyHandle, Quat, Shape, Vec3, World, WorldSettings};
 
 /// Largest distance any body moved from its start over `seconds`.

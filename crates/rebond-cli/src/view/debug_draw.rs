@@ -47,8 +47,8 @@ pub fn debug_geometry(viewer: &Viewer) -> DebugGeometry {
     let mut geometry = DebugGeometry::default();
     if viewer.display.contacts {
         for contact in world.contacts() {
-            let normal = contact.manifold.normal;
-            for point in contact.manifold.points() {
+            let normal = contact.normal();
+            for point in contact.points() {
                 let colour = if point.separation < 0.0 {
                     CONTACT_POINT
                 } else {
@@ -110,9 +110,9 @@ mod tests {
     use three_d::Key;
 
     use super::*;
-    use crate::scene::Scene;
     use crate::view::controls::action_for_key;
     use crate::view::simulation::Simulation;
+    use rebond::scene::Scene;
 
     /// A box resting on a ground box, and a ball in the air.
     const SCENE: &str = r#"{"bodies": [

@@ -10,8 +10,7 @@
 
 use std::f32::consts::TAU;
 
-use rebond::math::skew;
-use rebond::{BodyHandle, Mat3, Vec3, World};
+use rebond::{BodyHandle, Vec3, World};
 
 use super::picking::Ray;
 
@@ -88,10 +87,7 @@ impl Drag {
         let offset = anchor - self.target;
         let wanted = (velocity - timestep * omega * omega * offset)
             / (1.0 + 2.0 * SPRING_DAMPING_RATIO * omega * timestep + (omega * timestep).powi(2));
-        let arm = skew(anchor - body.center_of_mass());
-        let point_inverse_mass = Mat3::from_diagonal(Vec3::splat(body.inverse_mass()))
-            - arm * body.world_inverse_inertia() * arm;
-        let impulse = point_inverse_mass.inverse() * (wanted - velocity);
+        let impulse = body.inverse_mass_at_point(anchor).inverse() * (wanted - velocity);
         let force = (impulse / timestep).clamp_length_max(body.mass() * MAX_ACCELERATION);
         let spin_damping = -ANGULAR_DAMPING * (body.world_inertia() * body.angular_velocity());
         if force.is_finite() {

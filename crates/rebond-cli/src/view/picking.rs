@@ -294,7 +294,7 @@ mod tests {
     fn pick_finds_the_nearest_body() {
         let mut world = World::new(WorldSettings::default()).expect("a world");
         let far = world
-            .add_body(BodyDesc::fixed(Shape::sphere(1.0).expect("a sphere")))
+            .add_body(BodyDesc::static_body(Shape::sphere(1.0).expect("a sphere")))
             .expect("added");
         let near = world
             .add_body(

@@ -10,7 +10,7 @@ use rebond::{BodyDesc, BodyHandle, BodyType, RigidBody, Shape, World};
 use super::drag::Drag;
 use super::palette::{body_colour, Rgb};
 use super::picking::{pick, Ray};
-use crate::scene::Scene;
+use rebond::scene::Scene;
 
 /// Simulated time per second of wall clock in slow motion.
 pub const SLOW_MOTION_RATE: f64 = 0.25;

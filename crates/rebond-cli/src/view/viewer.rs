@@ -195,7 +195,7 @@ mod tests {
     use three_d::{Key, Modifiers};
 
     use super::*;
-    use crate::scene::Scene;
+    use rebond::scene::Scene;
 
     const VIEWPORT: Vec2 = Vec2::new(960.0, 540.0);
 

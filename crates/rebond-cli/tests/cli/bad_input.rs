@@ -64,8 +64,14 @@ fn invalid_json_is_refused_with_line_and_column() {
     assert_refused(
         "number_out_of_range",
         "{\"gravity\": [0, 1e400, 0], \"bodies\": []}",
-        "line 1, column 21",
-        "number out of range",
+        "gravity[1]",
+        "got 1e400, a number beyond the floating-point range",
+    );
+    assert_refused(
+        "number_out_of_range_in_a_shape",
+        "{\"bodies\": [\n  {\"shape\": {\"type\": \"sphere\", \"radius\": -1E+999}}\n]}",
+        "bodies[0].shape.radius",
+        "got -1E+999, a number beyond the floating-point range",
     );
 }
 
@@ -323,6 +329,18 @@ fn dynamic_bodies_without_a_positive_finite_mass_are_refused() {
         ),
         "bodies[1].density",
         "mass of a dynamic body must be positive and finite",
+    );
+    assert_refused(
+        "sphere_too_small_for_its_inertia",
+        &scene_with(r#"{"shape": {"type": "sphere", "radius": 1e-9}}"#),
+        "bodies[1].shape.radius",
+        "too small or too large",
+    );
+    assert_refused(
+        "needle_cylinder",
+        &scene_with(r#"{"shape": {"type": "cylinder", "radius": 1e-20, "half_height": 1}}"#),
+        "bodies[1].shape.radius",
+        "too small or too large",
     );
 }
 

@@ -1,4 +1,4 @@
-//! Tests of the `rebond` binary against the contract in `shared/scene-format.md`: they run the
+//! Tests of the `rebond` binary against the contract in `docs/scene-format.md`: they run the
 //! built binary on scene files written to a scratch directory.
 
 mod bad_input;

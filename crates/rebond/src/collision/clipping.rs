@@ -387,7 +387,7 @@ fn signed_double_area(a: Vec3, b: Vec3, c: Vec3, normal: Vec3) -> f32 {
 
 /// Builds a manifold with `normal` from `candidates`, keeping all of them when there are at most
 /// [`MAX_MANIFOLD_POINTS`], else four that hold the contact best: the deepest point (it must be
-/// resolved), then points spread from it ([`spread`]). Points too close to the line or triangle
+/// resolved), then points spread from it (`spread`). Points too close to the line or triangle
 /// already chosen are not added, so a manifold of a thin patch may have two or three points. The
 /// order is the order of choice.
 pub fn reduce_contacts(normal: Vec3, candidates: &[ContactPoint]) -> Manifold {
@@ -403,7 +403,7 @@ pub fn reduce_contacts(normal: Vec3, candidates: &[ContactPoint]) -> Manifold {
 /// As [`reduce_contacts`], but choosing the four points by where they lie on the face rather than
 /// by depth, so that small motions, which shift depths more than positions, keep the same ids: the
 /// points farthest along `tangent`, along `normal × tangent`, against `tangent` and against
-/// `normal × tangent` (counter-clockwise about `normal`), any still missing added by [`spread`].
+/// `normal × tangent` (counter-clockwise about `normal`), any still missing added by `spread`.
 /// `tangent` is a unit direction in the face's plane fixed to the reference body.
 ///
 /// When a dropped point is deeper than every kept one by more than [`DEEPEST_SLACK`], the kept

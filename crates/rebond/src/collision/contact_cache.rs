@@ -3,7 +3,7 @@
 
 use std::ops::Range;
 
-use super::manifold::{Manifold, MAX_MANIFOLD_POINTS};
+use super::manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
 use super::narrow_phase::{PartCache, PartContacts};
 use crate::body::BodyHandle;
 use crate::math::{Pose, Vec3, Vec3A};
@@ -110,22 +110,24 @@ pub struct ContactKey {
     pub child_b: u32,
 }
 
-/// One manifold between two bodies with the impulses the solver accumulated on it, N·s.
+/// One manifold between two bodies (or two children of compound bodies) with the impulses the
+/// solver applied on it in the last step, N·s. Read it through its methods; its layout belongs to
+/// the contact cache.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Contact {
     /// Which bodies and children touch.
-    pub key: ContactKey,
+    pub(crate) key: ContactKey,
     /// The geometry from the narrow phase.
-    pub manifold: Manifold,
+    pub(crate) manifold: Manifold,
     /// `normal_impulses[i]` belongs to `manifold.points()[i]`; never negative.
-    pub normal_impulses: [f32; MAX_MANIFOLD_POINTS],
+    pub(crate) normal_impulses: [f32; MAX_MANIFOLD_POINTS],
     /// Friction impulse of the whole manifold, a world vector in the contact plane (kept as a
     /// vector so it survives a change of the solver's tangent basis).
-    pub friction_impulse: Vec3,
+    pub(crate) friction_impulse: Vec3,
     /// Angular friction impulse about the normal, N·m·s.
-    pub twist_impulse: f32,
+    pub(crate) twist_impulse: f32,
     /// Where the manifold was computed.
-    pub frame: ManifoldFrame,
+    pub(crate) frame: ManifoldFrame,
     /// Where the cache keeps what the query that computed the manifold left for the next one
     /// ([`PartCache`]); `None` when it left nothing. Kept aside, so that contacts without one stay
     /// small to copy and sort.
@@ -133,6 +135,46 @@ pub struct Contact {
     /// Whether the narrow phase found the manifold this step, so that its impulses are still to
     /// be carried over by feature id; recycled and kept contacts bring theirs along.
     fresh: bool,
+}
+
+impl Contact {
+    /// The two bodies, A then B (A's handle is the smaller).
+    pub fn bodies(&self) -> (BodyHandle, BodyHandle) {
+        (self.key.body_a, self.key.body_b)
+    }
+
+    /// The compound children of A and B that touch (0 for a body whose shape is not a compound).
+    pub fn children(&self) -> (u32, u32) {
+        (self.key.child_a, self.key.child_b)
+    }
+
+    /// Unit world normal, from A toward B.
+    pub fn normal(&self) -> Vec3 {
+        self.manifold.normal
+    }
+
+    /// The contact points (at most [`MAX_MANIFOLD_POINTS`]), with their separations (negative
+    /// when overlapping, positive for a speculative point still apart).
+    pub fn points(&self) -> &[ContactPoint] {
+        self.manifold.points()
+    }
+
+    /// The normal impulse on each point in the last step, N·s, never negative:
+    /// `normal_impulses()[i]` belongs to `points()[i]`.
+    pub fn normal_impulses(&self) -> &[f32] {
+        &self.normal_impulses[..self.manifold.len()]
+    }
+
+    /// The friction impulse on the whole manifold in the last step, a world vector in the
+    /// contact plane, N·s.
+    pub fn friction_impulse(&self) -> Vec3 {
+        self.friction_impulse
+    }
+
+    /// The twisting friction impulse about the normal in the last step, N·m·s.
+    pub fn twist_impulse(&self) -> f32 {
+        self.twist_impulse
+    }
 }
 
 /// This step's contacts, sorted by key, and last step's, kept to warm-start from.

@@ -233,11 +233,11 @@ fn polyhedron_face(polyhedron: &Polyhedron, pose: &Pose, direction: Vec3) -> Fea
 /// compounds or halfspaces) with the normal from A toward B, or `None` beyond `margin`.
 ///
 /// When both supporting features are faces within 11° of the GJK/EPA normal, the better aligned
-/// one is the reference, or, when they are aligned alike (within [`REFERENCE_PREFERENCE`]), the
+/// one is the reference, or, when they are aligned alike (within `REFERENCE_PREFERENCE`), the
 /// larger one; no clipped point is reported deeper than the GJK/EPA depth. A cylinder's cap is an
 /// octagon of rim points as the reference face and a square of every other one as the incident
 /// face, its corner nearest the deepest rim point moved there when the cap is tilted (see
-/// [`CORNER_SNAP_DISTANCE`]): a cylinder standing or wobbling on a face keeps the same four ids.
+/// `CORNER_SNAP_DISTANCE`): a cylinder standing or wobbling on a face keeps the same four ids.
 /// EPA grows `polytope`, scratch space reused from call to call; GJK starts from `simplex`, last
 /// query's between the same shapes (or an empty one), and leaves its own there.
 pub fn collide_features(

@@ -53,7 +53,7 @@ impl Candidates {
 /// compound or a halfspace), with the normal from A toward B: the plane's outward normal.
 /// Points: a sphere's lowest point; a capsule's two lowest segment ends; a box's or hull's
 /// vertices; a cylinder's four fixed rim samples on each cap, the one nearest a cap's deepest rim
-/// point moved there when it lies deeper by more than [`DEEPEST_SNAP_DISTANCE`] (so a cylinder
+/// point moved there when it lies deeper by more than `DEEPEST_SNAP_DISTANCE` (so a cylinder
 /// keeps the same ids whether it stands flat, wobbles or lies on its side). More than four are
 /// reduced to four by depth and spread.
 pub fn collide_halfspace(

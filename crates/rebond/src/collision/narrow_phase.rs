@@ -43,7 +43,7 @@ pub enum PartCache {
     /// The simplex GJK ended with, to start from.
     Simplex(SimplexCache),
     /// Two polyhedra, one a hull, that the separating-axis test found in contact: the next query
-    /// skips GJK's pre-test ([`apart_beyond`]), which would let them through, and goes straight to
+    /// skips GJK's pre-test (`apart_beyond`), which would let them through, and goes straight to
     /// the separating-axis test.
     Touching,
 }

@@ -125,17 +125,17 @@ fn clearly_larger(candidate: f32, incumbent: f32, relative: f32) -> bool {
 /// separation beats the face's by 10 % plus 0.5 mm. The chosen axis thus trails the true
 /// least-overlap axis by at most one of these tolerances. While the shapes overlap, the best
 /// axis's separation is the penetration depth; should the chosen axis's contact not reach it
-/// (within [`DEPTH_TOLERANCE`]) or give no point, the best axis makes the contact. While they are
+/// (within `DEPTH_TOLERANCE`) or give no point, the best axis makes the contact. While they are
 /// apart, the axes' separations may fall short of the distance, which GJK then measures: a contact
 /// on the chosen or the best axis is kept only if its deepest point is that distance (within
-/// [`DEPTH_TOLERANCE`]), else the contact is one point midway between the closest points, with
-/// the direction between them as the normal and the id [`CLOSEST_POINTS_ID`].
+/// `DEPTH_TOLERANCE`), else the contact is one point midway between the closest points, with
+/// the direction between them as the normal and the id `CLOSEST_POINTS_ID`.
 ///
 /// Face contact: the reference face's side planes clip the incident face (the face of the other
 /// body, among those through its vertex deepest below the reference plane, most anti-parallel to
 /// the reference normal); points whose separation from the reference plane is at most `margin`
 /// are kept and reduced to four ([`reduce_contacts_on_face`], along a direction fixed to the
-/// reference face, [`REDUCTION_ANGLE`] from its first edge). Each point sits halfway between the
+/// reference face, `REDUCTION_ANGLE` from its first edge). Each point sits halfway between the
 /// incident point and its projection on the reference plane. Its id packs, from the top bit down:
 /// 0, whether B holds the reference face, the reference and incident face indices (7 bits each,
 /// wrapping) and the [`ClipFeature::key`] of the clipped point.

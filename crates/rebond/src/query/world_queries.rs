@@ -22,7 +22,7 @@ impl World {
     /// use rebond::{BodyDesc, QueryFilter, Ray, Shape, Vec3, World, WorldSettings};
     ///
     /// let mut world = World::new(WorldSettings::default())?;
-    /// let ground = world.add_body(BodyDesc::fixed(Shape::cuboid(Vec3::new(10.0, 1.0, 10.0))?))?;
+    /// let ground = world.add_body(BodyDesc::static_body(Shape::cuboid(Vec3::new(10.0, 1.0, 10.0))?))?;
     /// let ray = Ray::new(Vec3::new(0.0, 5.0, 0.0), Vec3::NEG_Y);
     /// let hit = world.cast_ray(&ray, &QueryFilter::default())?.expect("the ground is below");
     /// assert_eq!(hit.body, ground);
@@ -102,7 +102,7 @@ impl World {
     ///
     /// let mut world = World::new(WorldSettings::default())?;
     /// let wall = world.add_body(
-    ///     BodyDesc::fixed(Shape::cuboid(Vec3::splat(1.0))?).position(Vec3::new(5.0, 0.0, 0.0)),
+    ///     BodyDesc::static_body(Shape::cuboid(Vec3::splat(1.0))?).position(Vec3::new(5.0, 0.0, 0.0)),
     /// )?;
     /// let ball = Shape::sphere(0.5)?;
     /// let hit = world

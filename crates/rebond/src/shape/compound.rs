@@ -15,6 +15,13 @@ pub struct CompoundChild {
     pub shape: Shape,
 }
 
+impl CompoundChild {
+    /// `shape` placed at `pose` in the body frame ([`Compound::new`] checks both).
+    pub fn new(shape: Shape, pose: Pose) -> Self {
+        Self { pose, shape }
+    }
+}
+
 /// A rigid union of convex children.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Compound {

@@ -98,6 +98,22 @@ impl Shape {
         }
     }
 
+    /// The field that sets the shape's size, as [`Shape`]'s constructors and scene files name
+    /// it: where an error about a size the engine cannot handle points.
+    pub(crate) fn size_field(&self) -> &'static str {
+        match self {
+            Shape::Sphere(_) | Shape::Capsule(_) => "radius",
+            Shape::Cuboid(_) => "half_extents",
+            Shape::Cylinder(cylinder) if cylinder.half_height() < cylinder.radius() => {
+                "half_height"
+            }
+            Shape::Cylinder(_) => "radius",
+            Shape::ConvexHull(_) => "points",
+            Shape::Compound(_) => "children",
+            Shape::Halfspace(_) => "normal",
+        }
+    }
+
     /// Volume in m³; infinite for a halfspace.
     pub fn volume(&self) -> f32 {
         self.mass_properties(1.0)

@@ -92,6 +92,7 @@ impl BodyMotion {
     };
 
     fn from_body(body: &RigidBody) -> Self {
+        let (force, torque) = body.applied_force_and_torque();
         Self {
             inverse_mass: body.inverse_mass,
             center_of_mass: body.center_of_mass,
@@ -100,8 +101,8 @@ impl BodyMotion {
             local_inertia: body.local_inertia,
             has_isotropic_inertia: body.local_inertia
                 == Mat3::from_diagonal(Vec3::splat(body.local_inertia.x_axis.x)),
-            force: body.force + body.constant_force,
-            torque: body.torque + body.constant_torque,
+            force,
+            torque,
             linear_damping: body.linear_damping,
             angular_damping: body.angular_damping,
             is_dynamic: body.body_type == BodyType::Dynamic,

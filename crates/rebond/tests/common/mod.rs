@@ -21,7 +21,7 @@ pub fn world(gravity: Vec3) -> World {
 pub fn add_ground(world: &mut World, friction: f32) -> BodyHandle {
     world
         .add_body(
-            BodyDesc::fixed(Shape::cuboid(Vec3::new(50.0, 0.5, 50.0)).unwrap())
+            BodyDesc::static_body(Shape::cuboid(Vec3::new(50.0, 0.5, 50.0)).unwrap())
                 .position(Vec3::new(0.0, -0.5, 0.0))
                 .friction(friction),
         )
@@ -38,7 +38,7 @@ pub fn add_incline(world: &mut World, angle: f32, friction: f32) -> BodyHandle {
     let rotation = Quat::from_rotation_z(angle);
     world
         .add_body(
-            BodyDesc::fixed(Shape::cuboid(Vec3::new(50.0, 0.5, 50.0)).unwrap())
+            BodyDesc::static_body(Shape::cuboid(Vec3::new(50.0, 0.5, 50.0)).unwrap())
                 .position(rotation * Vec3::new(0.0, -0.5, 0.0))
                 .rotation(rotation)
                 .friction(friction),

@@ -9,7 +9,7 @@
 
 use std::f32::consts::PI;
 
-use rebond::math::rotate_tensor;
+use rebond::internals::math::rotate_tensor;
 use rebond::shape::{ConvexHull, Cuboid};
 use rebond::{ErrorKind, MassProperties, Mat3, Pose, Quat, Vec3};
 

@@ -8,7 +8,7 @@ fn filters_pick_bodies_by_handle_type_and_predicate() {
     let cube = || Shape::cuboid(Vec3::splat(0.5)).unwrap();
     let at = |x: f32| Vec3::new(x, 0.0, 0.0);
     let fixed = world
-        .add_body(BodyDesc::fixed(cube()).position(at(2.0)))
+        .add_body(BodyDesc::static_body(cube()).position(at(2.0)))
         .unwrap();
     let moving = world
         .add_body(BodyDesc::dynamic(cube()).position(at(4.0)))
@@ -104,13 +104,13 @@ fn equally_near_hits_go_to_the_smaller_handle_and_sleeping_bodies_count() {
     let handles: Vec<_> = (0..4)
         .map(|_| {
             world
-                .add_body(BodyDesc::fixed(cube()).position(Vec3::new(3.0, 0.0, 0.0)))
+                .add_body(BodyDesc::static_body(cube()).position(Vec3::new(3.0, 0.0, 0.0)))
                 .unwrap()
         })
         .collect();
     world.remove_body(handles[0]).unwrap();
     let reused = world
-        .add_body(BodyDesc::fixed(cube()).position(Vec3::new(3.0, 0.0, 0.0)))
+        .add_body(BodyDesc::static_body(cube()).position(Vec3::new(3.0, 0.0, 0.0)))
         .unwrap();
     let ray = Ray::new(Vec3::ZERO, Vec3::X);
     let hit = world.cast_ray(&ray, &QueryFilter::new()).unwrap().unwrap();
@@ -145,7 +145,7 @@ fn equally_near_hits_go_to_the_smaller_handle_and_sleeping_bodies_count() {
     let mut world = self::world();
     world
         .add_body(
-            BodyDesc::fixed(Shape::cuboid(Vec3::new(10.0, 0.5, 10.0)).unwrap())
+            BodyDesc::static_body(Shape::cuboid(Vec3::new(10.0, 0.5, 10.0)).unwrap())
                 .position(Vec3::new(0.0, -0.5, 0.0)),
         )
         .unwrap();
@@ -171,7 +171,7 @@ fn equally_near_hits_go_to_the_smaller_handle_and_sleeping_bodies_count() {
 fn bad_inputs_are_errors_naming_the_field() {
     let mut world = world();
     world
-        .add_body(BodyDesc::fixed(Shape::sphere(1.0).unwrap()))
+        .add_body(BodyDesc::static_body(Shape::sphere(1.0).unwrap()))
         .unwrap();
     let filter = QueryFilter::new();
     let ray = Ray::new(Vec3::new(0.0, 5.0, 0.0), Vec3::NEG_Y);

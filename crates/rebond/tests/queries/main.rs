@@ -17,7 +17,7 @@ use random::Random;
 use std::ops::ControlFlow;
 
 use glam::DVec3;
-use rebond::collision::dynamic_tree::DynamicTree;
+use rebond::internals::collision::dynamic_tree::DynamicTree;
 use rebond::shape::CompoundChild;
 use rebond::{
     Aabb, BodyDesc, BodyHandle, BodyType, ErrorKind, Pose, Quat, QueryFilter, Ray, RayHit,

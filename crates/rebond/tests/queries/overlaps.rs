@@ -61,7 +61,7 @@ fn random_scene(random: &mut Random, count: usize) -> (World, Vec<(BodyHandle, S
         let pose = random.pose(6.0);
         let handle = world
             .add_body(
-                BodyDesc::fixed(shape.clone())
+                BodyDesc::static_body(shape.clone())
                     .position(pose.position)
                     .rotation(pose.rotation),
             )

@@ -28,7 +28,7 @@ fn ray_casts_match_closed_forms_and_brute_force_for_every_shape() {
             let mut world = world();
             let body = world
                 .add_body(
-                    BodyDesc::fixed(shape.clone())
+                    BodyDesc::static_body(shape.clone())
                         .position(pose.position)
                         .rotation(pose.rotation),
                 )
@@ -115,7 +115,7 @@ fn scene_ray_casts_find_every_body_brute_force_finds() {
     let mut bodies: Vec<(BodyHandle, Shape, Pose)> = Vec::new();
     let ground = Shape::halfspace(Vec3::Y).unwrap();
     let handle = world
-        .add_body(BodyDesc::fixed(ground.clone()).position(Vec3::new(0.0, -12.0, 0.0)))
+        .add_body(BodyDesc::static_body(ground.clone()).position(Vec3::new(0.0, -12.0, 0.0)))
         .unwrap();
     bodies.push((handle, ground, world.body(handle).unwrap().pose()));
     for index in 0..400 {
@@ -172,16 +172,17 @@ fn ray_distance_limit_solid_and_hollow_rays() {
     let mut world = world();
     let wall = world
         .add_body(
-            BodyDesc::fixed(Shape::cuboid(Vec3::splat(1.0)).unwrap())
+            BodyDesc::static_body(Shape::cuboid(Vec3::splat(1.0)).unwrap())
                 .position(Vec3::new(6.0, 0.0, 0.0)),
         )
         .unwrap();
     let ball = world
-        .add_body(BodyDesc::fixed(Shape::sphere(1.0).unwrap()))
+        .add_body(BodyDesc::static_body(Shape::sphere(1.0).unwrap()))
         .unwrap();
     let ground = world
         .add_body(
-            BodyDesc::fixed(Shape::halfspace(Vec3::Y).unwrap()).position(Vec3::new(0.0, -5.0, 0.0)),
+            BodyDesc::static_body(Shape::halfspace(Vec3::Y).unwrap())
+                .position(Vec3::new(0.0, -5.0, 0.0)),
         )
         .unwrap();
     let filter = QueryFilter::new();

@@ -87,7 +87,7 @@ fn a_sphere_swept_at_a_box_finds_the_closed_form_time_of_impact_within_1e_4() {
         let mut world = world();
         let target = world
             .add_body(
-                BodyDesc::fixed(Shape::cuboid(half).unwrap())
+                BodyDesc::static_body(Shape::cuboid(half).unwrap())
                     .position(random.vec3(-5.0, 5.0))
                     .rotation(random.rotation()),
             )
@@ -139,7 +139,7 @@ fn a_box_swept_at_a_box_finds_the_closed_form_time_of_impact_within_1e_3() {
         let mut world = world();
         let target = world
             .add_body(
-                BodyDesc::fixed(Shape::cuboid(half_b).unwrap())
+                BodyDesc::static_body(Shape::cuboid(half_b).unwrap())
                     .position(random.vec3(-5.0, 5.0))
                     .rotation(random.rotation()),
             )
@@ -200,13 +200,14 @@ fn every_shape_dropped_on_a_floor_lands_on_its_lowest_point() {
     let mut world = world();
     let floor = world
         .add_body(
-            BodyDesc::fixed(Shape::cuboid(Vec3::new(50.0, 1.0, 50.0)).unwrap())
+            BodyDesc::static_body(Shape::cuboid(Vec3::new(50.0, 1.0, 50.0)).unwrap())
                 .position(Vec3::new(0.0, -1.0, 0.0)),
         )
         .unwrap();
     let ground = world
         .add_body(
-            BodyDesc::fixed(Shape::halfspace(Vec3::Y).unwrap()).position(Vec3::new(0.0, -4.0, 0.0)),
+            BodyDesc::static_body(Shape::halfspace(Vec3::Y).unwrap())
+                .position(Vec3::new(0.0, -4.0, 0.0)),
         )
         .unwrap();
     let floor_only = [ground];
@@ -268,7 +269,9 @@ fn every_shape_dropped_on_a_floor_lands_on_its_lowest_point() {
 fn shape_casts_starting_in_contact_halfspaces_and_the_nearest_body() {
     let mut world = world();
     let block = world
-        .add_body(BodyDesc::fixed(Shape::cuboid(Vec3::splat(1.0)).unwrap()))
+        .add_body(BodyDesc::static_body(
+            Shape::cuboid(Vec3::splat(1.0)).unwrap(),
+        ))
         .unwrap();
     let far_block = world
         .add_body(
@@ -349,7 +352,7 @@ fn shape_casts_starting_in_contact_halfspaces_and_the_nearest_body() {
     assert!((hit.distance - 3.0).abs() < 1e-5 && hit.normal == Vec3::Y && hit.point.y == 1.0);
     let floor = world
         .add_body(
-            BodyDesc::fixed(Shape::halfspace(Vec3::Y).unwrap())
+            BodyDesc::static_body(Shape::halfspace(Vec3::Y).unwrap())
                 .position(Vec3::new(0.0, -20.0, 0.0)),
         )
         .unwrap();

@@ -1,0 +1,233 @@
+//! From the file's model to the engine's descriptions: every number narrowed to `f32` and checked,
+//! every error placed at the path of the value the user wrote (`bodies[3].shape.radius`).
+
+use crate::body::BodyDesc;
+use crate::filter::InteractionGroups;
+use crate::math::{Pose, Quat, Vec3};
+use crate::shape::{CompoundChild, Shape};
+
+use super::format::{BodyEntry, ChildEntry, ShapeEntry, ShapeKind};
+use super::{join, SceneError, Timestep, DEFAULT_TIMESTEP};
+
+/// Narrows a file number to `f32`, refusing one beyond the `f32` range.
+pub(super) fn scalar(place: &str, value: f64) -> Result<f32, SceneError> {
+    let narrowed = value as f32;
+    if narrowed.is_finite() {
+        Ok(narrowed)
+    } else {
+        Err(SceneError::new(
+            place,
+            format!(
+                "must be finite, got {}, which is beyond the 32-bit float range",
+                number(value)
+            ),
+        ))
+    }
+}
+
+/// Narrows a file vector to a [`Vec3`], naming the bad component.
+pub(super) fn vector(place: &str, value: [f64; 3]) -> Result<Vec3, SceneError> {
+    let mut narrowed = [0.0; 3];
+    for (index, component) in value.into_iter().enumerate() {
+        narrowed[index] = scalar(&format!("{place}[{index}]"), component)?;
+    }
+    Ok(Vec3::from_array(narrowed))
+}
+
+/// Narrows a file quaternion `[x, y, z, w]` to a [`Quat`] (not normalised: the engine does it).
+pub(super) fn rotation(place: &str, value: [f64; 4]) -> Result<Quat, SceneError> {
+    let mut narrowed = [0.0; 4];
+    for (index, component) in value.into_iter().enumerate() {
+        narrowed[index] = scalar(&format!("{place}[{index}]"), component)?;
+    }
+    Ok(Quat::from_array(narrowed))
+}
+
+/// The time step: finite and positive, also once rounded to `f32`.
+pub(super) fn timestep(value: Option<f64>) -> Result<Timestep, SceneError> {
+    let seconds = value.unwrap_or(DEFAULT_TIMESTEP);
+    let engine_seconds = scalar("timestep", seconds)?;
+    if engine_seconds > 0.0 {
+        Ok(Timestep {
+            seconds,
+            engine_seconds,
+        })
+    } else if seconds > 0.0 {
+        Err(SceneError::new(
+            "timestep",
+            format!(
+                "must be positive, got {}, which rounds to 0 as a 32-bit float",
+                number(seconds)
+            ),
+        ))
+    } else {
+        Err(SceneError::new(
+            "timestep",
+            format!("must be positive, got {}", number(seconds)),
+        ))
+    }
+}
+
+/// A file number for a message: plain notation for ordinary magnitudes, scientific otherwise.
+fn number(value: f64) -> String {
+    if value == 0.0 || (1e-4..1e16).contains(&value.abs()) {
+        value.to_string()
+    } else {
+        format!("{value:e}")
+    }
+}
+
+/// The engine description of one body; errors are placed under `place` (`bodies[i]`).
+pub(super) fn body_desc(entry: &BodyEntry, place: &str) -> Result<BodyDesc, SceneError> {
+    let field = |name: &str| format!("{place}.{name}");
+    let shape = shape(&entry.shape, &field("shape"))?;
+    let mut desc = BodyDesc::new(entry.kind.into(), shape);
+    if let Some(value) = entry.position {
+        desc.position = vector(&field("position"), value)?;
+    }
+    if let Some(value) = entry.rotation {
+        desc.rotation = rotation(&field("rotation"), value)?;
+    }
+    if let Some(value) = entry.linear_velocity {
+        desc.linear_velocity = vector(&field("linear_velocity"), value)?;
+    }
+    if let Some(value) = entry.angular_velocity {
+        desc.angular_velocity = vector(&field("angular_velocity"), value)?;
+    }
+    if let Some(value) = entry.density {
+        desc.density = scalar(&field("density"), value)?;
+    }
+    if let Some(value) = entry.mass {
+        desc.mass = Some(scalar(&field("mass"), value)?);
+    }
+    if let Some(value) = entry.friction {
+        desc.friction = scalar(&field("friction"), value)?;
+    }
+    if let Some(value) = entry.restitution {
+        desc.restitution = scalar(&field("restitution"), value)?;
+    }
+    if let Some(value) = entry.force {
+        desc.constant_force = vector(&field("force"), value)?;
+    }
+    if let Some(value) = entry.force_point {
+        desc.constant_force_point = Some(vector(&field("force_point"), value)?);
+    }
+    if let Some(value) = entry.torque {
+        desc.constant_torque = vector(&field("torque"), value)?;
+    }
+    if let Some(value) = entry.linear_damping {
+        desc.linear_damping = scalar(&field("linear_damping"), value)?;
+    }
+    if let Some(value) = entry.angular_damping {
+        desc.angular_damping = scalar(&field("angular_damping"), value)?;
+    }
+    if let Some(value) = entry.can_sleep {
+        desc.can_sleep = value;
+    }
+    if let Some(value) = entry.sensor {
+        desc.sensor = value;
+    }
+    if let Some(groups) = &entry.collision_groups {
+        desc.collision_groups = InteractionGroups::new(
+            groups.memberships.unwrap_or(u32::MAX),
+            groups.filter.unwrap_or(u32::MAX),
+        );
+    }
+    Ok(desc)
+}
+
+/// The engine shape of a shape entry; errors are placed under `place` (`bodies[i].shape`).
+fn shape(entry: &ShapeEntry, place: &str) -> Result<Shape, SceneError> {
+    let kind = entry.kind;
+    if let Some(stray) = entry
+        .present_fields()
+        .find(|field| !kind.fields().contains(field))
+    {
+        let expected = kind
+            .fields()
+            .iter()
+            .map(|field| format!("`{field}`"))
+            .collect::<Vec<_>>()
+            .join(", ");
+        return Err(SceneError::new(
+            join(place, stray),
+            format!(
+                "unknown field `{stray}` for a {} shape, expected `type`, {expected}",
+                kind.name()
+            ),
+        ));
+    }
+    let required = |field: &'static str| {
+        SceneError::new(
+            join(place, field),
+            format!(
+                "required field is missing (a {} shape needs it)",
+                kind.name()
+            ),
+        )
+    };
+    let field = |name: &str| join(place, name);
+    let shape = match kind {
+        ShapeKind::Sphere => {
+            let radius = entry.radius.ok_or_else(|| required("radius"))?;
+            Shape::sphere(scalar(&field("radius"), radius)?)
+        }
+        ShapeKind::Box => {
+            let half_extents = entry.half_extents.ok_or_else(|| required("half_extents"))?;
+            Shape::cuboid(vector(&field("half_extents"), half_extents)?)
+        }
+        ShapeKind::Capsule | ShapeKind::Cylinder => {
+            let radius = entry.radius.ok_or_else(|| required("radius"))?;
+            let half_height = entry.half_height.ok_or_else(|| required("half_height"))?;
+            let radius = scalar(&field("radius"), radius)?;
+            let half_height = scalar(&field("half_height"), half_height)?;
+            if kind == ShapeKind::Capsule {
+                Shape::capsule(radius, half_height)
+            } else {
+                Shape::cylinder(radius, half_height)
+            }
+        }
+        ShapeKind::ConvexHull => {
+            let points = entry.points.as_ref().ok_or_else(|| required("points"))?;
+            let points = points
+                .iter()
+                .enumerate()
+                .map(|(index, point)| vector(&format!("{place}.points[{index}]"), *point))
+                .collect::<Result<Vec<_>, _>>()?;
+            Shape::convex_hull(&points)
+        }
+        ShapeKind::Compound => {
+            let children = entry
+                .children
+                .as_ref()
+                .ok_or_else(|| required("children"))?;
+            let children = children
+                .iter()
+                .enumerate()
+                .map(|(index, child)| compound_child(child, &format!("{place}.children[{index}]")))
+                .collect::<Result<Vec<_>, _>>()?;
+            Shape::compound(children)
+        }
+        ShapeKind::Halfspace => {
+            let normal = entry.normal.ok_or_else(|| required("normal"))?;
+            Shape::halfspace(vector(&field("normal"), normal)?)
+        }
+    };
+    shape.map_err(|error| SceneError::from(error.within(place)))
+}
+
+/// One child of a compound; errors are placed under `place` (`...children[i]`).
+fn compound_child(entry: &ChildEntry, place: &str) -> Result<CompoundChild, SceneError> {
+    let position = match entry.position {
+        Some(value) => vector(&format!("{place}.position"), value)?,
+        None => Vec3::ZERO,
+    };
+    let rotation = match entry.rotation {
+        Some(value) => rotation(&format!("{place}.rotation"), value)?,
+        None => Quat::IDENTITY,
+    };
+    Ok(CompoundChild {
+        pose: Pose::new(position, rotation),
+        shape: shape(&entry.shape, &format!("{place}.shape"))?,
+    })
+}

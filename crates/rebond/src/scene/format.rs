@@ -1,0 +1,284 @@
+//! The serde model of a scene file, as written: every field optional where the format allows it,
+//! numbers as `f64` (narrowed to `f32` in `convert.rs`, so a value beyond `f32` is refused rather
+//! than read as infinity), unknown fields refused.
+//!
+//! Shapes are read as one flat object whose `type` says which of the other fields it takes; this
+//! keeps `deny_unknown_fields` and the error paths of `serde_path_to_error` working inside shapes,
+//! which serde's internally tagged enums would lose. Every object of the format is read through
+//! [`JsonObject`], since serde's derived structs would also accept a JSON array, by position.
+
+use std::fmt;
+use std::marker::PhantomData;
+use std::ops::Deref;
+
+use serde::de::value::MapAccessDeserializer;
+use serde::de::{Deserializer, MapAccess, Visitor};
+use serde::Deserialize;
+
+use crate::body::BodyType;
+
+/// A value that must be written as a JSON object. Derived structs alone would also take a JSON
+/// array of their fields in order, which the format does not allow.
+#[derive(Debug)]
+pub(super) struct JsonObject<T>(pub(super) T);
+
+impl<T> Deref for JsonObject<T> {
+    type Target = T;
+
+    fn deref(&self) -> &T {
+        &self.0
+    }
+}
+
+impl<'de, T: Deserialize<'de>> Deserialize<'de> for JsonObject<T> {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_map(ObjectVisitor(PhantomData))
+    }
+}
+
+/// Accepts a JSON object only, and hands its entries to `T`'s own deserialiser.
+struct ObjectVisitor<T>(PhantomData<T>);
+
+impl<'de, T: Deserialize<'de>> Visitor<'de> for ObjectVisitor<T> {
+    type Value = JsonObject<T>;
+
+    fn expecting(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
+        formatter.write_str("a JSON object")
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<Self::Value, A::Error> {
+        T::deserialize(MapAccessDeserializer::new(map)).map(JsonObject)
+    }
+}
+
+/// The top level of a scene file, as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct SceneFile {
+    pub(super) gravity: Option<[f64; 3]>,
+    pub(super) timestep: Option<f64>,
+    pub(super) substeps: Option<u32>,
+    pub(super) bodies: Vec<JsonObject<BodyEntry>>,
+}
+
+/// How a body moves, as written.
+#[derive(Debug, Clone, Copy, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum BodyKind {
+    #[default]
+    Dynamic,
+    Static,
+    Kinematic,
+}
+
+impl From<BodyKind> for BodyType {
+    fn from(kind: BodyKind) -> Self {
+        match kind {
+            BodyKind::Dynamic => BodyType::Dynamic,
+            BodyKind::Static => BodyType::Static,
+            BodyKind::Kinematic => BodyType::Kinematic,
+        }
+    }
+}
+
+/// One body, as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct BodyEntry {
+    pub(super) name: Option<String>,
+    #[serde(rename = "type", default)]
+    pub(super) kind: BodyKind,
+    pub(super) shape: JsonObject<ShapeEntry>,
+    pub(super) position: Option<[f64; 3]>,
+    pub(super) rotation: Option<[f64; 4]>,
+    pub(super) linear_velocity: Option<[f64; 3]>,
+    pub(super) angular_velocity: Option<[f64; 3]>,
+    pub(super) density: Option<f64>,
+    pub(super) mass: Option<f64>,
+    pub(super) friction: Option<f64>,
+    pub(super) restitution: Option<f64>,
+    pub(super) force: Option<[f64; 3]>,
+    pub(super) force_point: Option<[f64; 3]>,
+    pub(super) torque: Option<[f64; 3]>,
+    pub(super) linear_damping: Option<f64>,
+    pub(super) angular_damping: Option<f64>,
+    pub(super) can_sleep: Option<bool>,
+    /// Extension of the contract: a sensor reports overlaps and pushes nothing.
+    pub(super) sensor: Option<bool>,
+    /// Extension of the contract: the body's collision groups.
+    pub(super) collision_groups: Option<JsonObject<GroupsEntry>>,
+}
+
+/// Collision groups, as written: two 32-bit masks, each all ones when left out.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct GroupsEntry {
+    pub(super) memberships: Option<u32>,
+    pub(super) filter: Option<u32>,
+}
+
+/// The shape types of the format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub(super) enum ShapeKind {
+    Sphere,
+    Box,
+    Capsule,
+    Cylinder,
+    ConvexHull,
+    Compound,
+    Halfspace,
+}
+
+impl ShapeKind {
+    /// The name used in the file.
+    pub(super) fn name(self) -> &'static str {
+        match self {
+            Self::Sphere => "sphere",
+            Self::Box => "box",
+            Self::Capsule => "capsule",
+            Self::Cylinder => "cylinder",
+            Self::ConvexHull => "convex_hull",
+            Self::Compound => "compound",
+            Self::Halfspace => "halfspace",
+        }
+    }
+
+    /// The fields this shape type takes besides `type`; all of them are required.
+    pub(super) fn fields(self) -> &'static [&'static str] {
+        match self {
+            Self::Sphere => &["radius"],
+            Self::Box => &["half_extents"],
+            Self::Capsule | Self::Cylinder => &["radius", "half_height"],
+            Self::ConvexHull => &["points"],
+            Self::Compound => &["children"],
+            Self::Halfspace => &["normal"],
+        }
+    }
+}
+
+/// A shape, as written: `type` and the fields of every type, checked against `type` later.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct ShapeEntry {
+    #[serde(rename = "type")]
+    pub(super) kind: ShapeKind,
+    pub(super) radius: Option<f64>,
+    pub(super) half_extents: Option<[f64; 3]>,
+    pub(super) half_height: Option<f64>,
+    pub(super) points: Option<Vec<[f64; 3]>>,
+    pub(super) children: Option<Vec<JsonObject<ChildEntry>>>,
+    pub(super) normal: Option<[f64; 3]>,
+}
+
+impl ShapeEntry {
+    /// The names of the type-specific fields present in the file.
+    pub(super) fn present_fields(&self) -> impl Iterator<Item = &'static str> {
+        [
+            ("radius", self.radius.is_some()),
+            ("half_extents", self.half_extents.is_some()),
+            ("half_height", self.half_height.is_some()),
+            ("points", self.points.is_some()),
+            ("children", self.children.is_some()),
+            ("normal", self.normal.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(field, present)| present.then_some(field))
+    }
+}
+
+/// One child of a compound shape, as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct ChildEntry {
+    pub(super) shape: JsonObject<ShapeEntry>,
+    pub(super) position: Option<[f64; 3]>,
+    pub(super) rotation: Option<[f64; 4]>,
+}
+
+#[cfg(test)]
+mod tests {
+    //! The users' reference, `docs/scene-format.md`, names every field and type name the loader
+    //! knows: each structure of the model tells its field names to a deserialiser that only
+    //! records them, and each must stand in the reference in backticks, as `name` or as the JSON
+    //! string `"name"`.
+
+    use serde::de::value::Error;
+    use serde::de::{Error as _, Visitor};
+    use serde::{forward_to_deserialize_any, Deserialize, Deserializer};
+
+    use super::{BodyEntry, BodyKind, ChildEntry, GroupsEntry, SceneFile, ShapeEntry, ShapeKind};
+
+    const REFERENCE: &str = include_str!("../../../../docs/scene-format.md");
+
+    /// A deserialiser that records the field names or variant names it is asked for, and fails.
+    #[derive(Default)]
+    struct NameRecorder(Vec<&'static str>);
+
+    impl<'de> Deserializer<'de> for &mut NameRecorder {
+        type Error = Error;
+
+        fn deserialize_any<V: Visitor<'de>>(self, _visitor: V) -> Result<V::Value, Error> {
+            Err(Error::custom("names recorded"))
+        }
+
+        fn deserialize_struct<V: Visitor<'de>>(
+            self,
+            _name: &'static str,
+            fields: &'static [&'static str],
+            _visitor: V,
+        ) -> Result<V::Value, Error> {
+            self.0.extend(fields);
+            Err(Error::custom("names recorded"))
+        }
+
+        fn deserialize_enum<V: Visitor<'de>>(
+            self,
+            _name: &'static str,
+            variants: &'static [&'static str],
+            _visitor: V,
+        ) -> Result<V::Value, Error> {
+            self.0.extend(variants);
+            Err(Error::custom("names recorded"))
+        }
+
+        forward_to_deserialize_any! {
+            bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string bytes byte_buf
+            option unit unit_struct newtype_struct seq tuple tuple_struct map identifier
+            ignored_any
+        }
+    }
+
+    /// The names `T` asks its deserialiser for.
+    fn names_of<'de, T: Deserialize<'de>>() -> Vec<&'static str> {
+        let mut recorder = NameRecorder::default();
+        assert!(T::deserialize(&mut recorder).is_err());
+        recorder.0
+    }
+
+    #[test]
+    fn the_reference_mentions_every_field_and_type_the_loader_knows() {
+        let names = [
+            names_of::<SceneFile>(),
+            names_of::<BodyEntry>(),
+            names_of::<GroupsEntry>(),
+            names_of::<ShapeEntry>(),
+            names_of::<ChildEntry>(),
+            names_of::<ShapeKind>(),
+            names_of::<BodyKind>(),
+        ]
+        .concat();
+        assert!(names.len() > 30, "recorded only {names:?}");
+        let missing: Vec<_> = names
+            .iter()
+            .filter(|name| {
+                !REFERENCE.contains(&format!("`{name}`"))
+                    && !REFERENCE.contains(&format!("`\"{name}\"`"))
+            })
+            .collect();
+        assert!(
+            missing.is_empty(),
+            "docs/scene-format.md does not mention {missing:?} (in backticks)"
+        );
+    }
+}

@@ -1,0 +1,359 @@
+//! Scene files: JSON descriptions of a world (gravity, timestep, bodies with their shapes and
+//! materials), loaded into a [`World`] ready to step. The format is documented field by field in
+//! `docs/scene-format.md`; the `rebond` command line runs such files.
+//!
+//! ```
+//! use rebond::scene::Scene;
+//!
+//! let json = br#"{
+//!     "bodies": [
+//!         { "name": "ground", "type": "static",
+//!           "shape": { "type": "box", "half_extents": [10, 0.5, 10] }, "position": [0, -0.5, 0] },
+//!         { "name": "ball", "shape": { "type": "sphere", "radius": 0.5 }, "position": [0, 3, 0] }
+//!     ]
+//! }"#;
+//! let mut scene = Scene::from_json(json)?;
+//! for _ in 0..120 {
+//!     scene.step()?;
+//! }
+//! let ball = scene.body_handle("ball").expect("the scene names it");
+//! assert!((scene.world().body(ball)?.position().y - 0.5).abs() < 0.01);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! Every value is checked before anything is built: an invalid scene is a [`SceneError`] naming
+//! the place of the bad value in the file (`bodies[3].shape.radius`) and what is wrong with it.
+
+mod convert;
+mod format;
+
+use std::collections::HashMap;
+use std::fmt;
+use std::fs;
+use std::io;
+use std::path::{Path, PathBuf};
+
+use crate::body::{BodyHandle, RigidBody};
+use crate::world::{World, WorldSettings};
+use convert::{body_desc, timestep, vector};
+use format::{JsonObject, SceneFile};
+
+/// Default seconds per step when a scene leaves `timestep` out.
+pub const DEFAULT_TIMESTEP: f64 = 1.0 / 60.0;
+
+/// An invalid scene: where in the file, and what is wrong.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneError {
+    /// Path of the bad value, such as `bodies[3].shape.radius`, or `line 3, column 7` for text
+    /// that is not JSON; empty for the file as a whole.
+    pub place: String,
+    /// What is wrong with it.
+    pub message: String,
+}
+
+impl SceneError {
+    /// An error about the value at `place`.
+    fn new(place: impl Into<String>, message: impl Into<String>) -> Self {
+        Self {
+            place: place.into(),
+            message: message.into(),
+        }
+    }
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.place.is_empty() {
+            write!(formatter, "{}", self.message)
+        } else {
+            write!(formatter, "{}: {}", self.place, self.message)
+        }
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+impl From<crate::Error> for SceneError {
+    fn from(error: crate::Error) -> Self {
+        Self::new(error.field, error.kind.to_string())
+    }
+}
+
+/// Why a scene file could not be loaded.
+#[derive(Debug)]
+pub enum LoadError {
+    /// The file could not be read.
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        error: io::Error,
+    },
+    /// The file was read but is not a valid scene.
+    Invalid(SceneError),
+}
+
+impl fmt::Display for LoadError {
+    fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Read { path, error } => {
+                write!(formatter, "{}: cannot read scene: {error}", path.display())
+            }
+            Self::Invalid(error) => error.fmt(formatter),
+        }
+    }
+}
+
+impl std::error::Error for LoadError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Read { error, .. } => Some(error),
+            Self::Invalid(error) => Some(error),
+        }
+    }
+}
+
+impl World {
+    /// The world of the scene file at `path` (see [`Scene::from_file`], which also keeps the
+    /// bodies' names and the scene's timestep).
+    pub fn from_scene_file(path: impl AsRef<Path>) -> Result<Self, LoadError> {
+        Scene::from_file(path).map(Scene::into_world)
+    }
+}
+
+/// Seconds per step, as written and as the engine steps with it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Timestep {
+    /// The scene's value in double precision; record times are `step × seconds`.
+    pub seconds: f64,
+    /// The same value rounded to `f32`, passed to `World::step`.
+    pub engine_seconds: f32,
+}
+
+/// A body of a loaded scene.
+#[derive(Debug, Clone)]
+struct SceneBody {
+    /// Its unique name, used in records.
+    name: String,
+    /// Its handle in the scene's world.
+    handle: BodyHandle,
+}
+
+/// A scene checked and loaded into a world, ready to step.
+///
+/// Bodies are never removed from the world, so the handle of every scene body stays valid.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    world: World,
+    bodies: Vec<SceneBody>,
+    timestep: Timestep,
+}
+
+impl Scene {
+    /// Reads, checks and loads the scene file at `path`. Nothing is stepped.
+    pub fn from_file(path: impl AsRef<Path>) -> Result<Self, LoadError> {
+        let path = path.as_ref();
+        let bytes = fs::read(path).map_err(|error| LoadError::Read {
+            path: path.to_owned(),
+            error,
+        })?;
+        Self::from_json(&bytes).map_err(LoadError::Invalid)
+    }
+
+    /// Parses and checks a scene given as JSON text and builds its world. Nothing is stepped.
+    pub fn from_json(bytes: &[u8]) -> Result<Self, SceneError> {
+        let file = parse(bytes)?;
+        let timestep = timestep(file.timestep)?;
+        let gravity = match file.gravity {
+            Some(gravity) => vector("gravity", gravity)?,
+            None => crate::DEFAULT_GRAVITY,
+        };
+        let settings = WorldSettings {
+            gravity,
+            substeps: file.substeps.unwrap_or(crate::DEFAULT_SUBSTEPS),
+            ..WorldSettings::default()
+        };
+        let mut world = World::new(settings)?;
+        let mut bodies = Vec::with_capacity(file.bodies.len());
+        let mut indices_by_name: HashMap<String, usize> = HashMap::new();
+        for (index, entry) in file.bodies.iter().enumerate() {
+            let place = format!("bodies[{index}]");
+            let name = entry.name.clone().unwrap_or_else(|| format!("body{index}"));
+            if let Some(first) = indices_by_name.insert(name.clone(), index) {
+                let message =
+                    format!("duplicate name \"{name}\": bodies[{first}] and {place} both have it");
+                return Err(SceneError::new(format!("{place}.name"), message));
+            }
+            let desc = body_desc(entry, &place)?;
+            let handle = world
+                .add_body(desc)
+                .map_err(|error| SceneError::from(error.within(&place)))?;
+            bodies.push(SceneBody { name, handle });
+        }
+        Ok(Self {
+            world,
+            bodies,
+            timestep,
+        })
+    }
+
+    /// The world holding every body of the scene.
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// Seconds per step.
+    pub fn timestep(&self) -> Timestep {
+        self.timestep
+    }
+
+    /// Advances the world by one time step.
+    pub fn step(&mut self) -> crate::Result<()> {
+        self.world.step(self.timestep.engine_seconds)
+    }
+
+    /// Every body with its name, in scene order (a body removed through [`Scene::world_mut`] is
+    /// left out).
+    pub fn bodies(&self) -> impl Iterator<Item = (&str, &RigidBody)> {
+        self.bodies.iter().filter_map(|body| {
+            let state = self.world.body(body.handle).ok()?;
+            Some((body.name.as_str(), state))
+        })
+    }
+
+    /// The handle of the body named `name`.
+    pub fn body_handle(&self, name: &str) -> Option<BodyHandle> {
+        self.bodies
+            .iter()
+            .find(|body| body.name == name)
+            .map(|body| body.handle)
+    }
+
+    /// The world, to change: set velocities, apply forces, add bodies.
+    pub fn world_mut(&mut self) -> &mut World {
+        &mut self.world
+    }
+
+    /// The world alone, without the names and the timestep.
+    pub fn into_world(self) -> World {
+        self.world
+    }
+}
+
+/// Deserialises the file, turning serde errors into a place and a message.
+fn parse(bytes: &[u8]) -> Result<SceneFile, SceneError> {
+    let mut deserializer = serde_json::Deserializer::from_slice(bytes);
+    let JsonObject(file) =
+        serde_path_to_error::deserialize(&mut deserializer).map_err(|error| {
+            out_of_range_number(bytes, error.inner())
+                .unwrap_or_else(|| serde_error(error.path().to_string(), error.inner()))
+        })?;
+    deserializer
+        .end()
+        .map_err(|error| serde_error(String::new(), &error))?;
+    Ok(file)
+}
+
+/// The place of a number too large even for `f64` (`1e999`), which stops serde_json's reader
+/// before it knows the field: the file is read again with the number replaced by `[]`, which no
+/// numeric field takes, so that this second reading fails at the number with its path.
+fn out_of_range_number(bytes: &[u8], error: &serde_json::Error) -> Option<SceneError> {
+    if !error.to_string().starts_with("number out of range") {
+        return None;
+    }
+    let token = number_token_at(bytes, byte_offset(bytes, error.line(), error.column())?)?;
+    let mut patched = Vec::with_capacity(bytes.len());
+    patched.extend_from_slice(&bytes[..token.start]);
+    patched.extend_from_slice(b"[]");
+    patched.extend_from_slice(&bytes[token.end..]);
+    let mut deserializer = serde_json::Deserializer::from_slice(&patched);
+    let retry = serde_path_to_error::deserialize::<_, JsonObject<SceneFile>>(&mut deserializer);
+    let error = retry.err()?;
+    let at = byte_offset(&patched, error.inner().line(), error.inner().column())?;
+    if !(token.start..=token.start + 1).contains(&at) {
+        return None;
+    }
+    let text = String::from_utf8_lossy(&bytes[token]);
+    Some(SceneError::new(
+        error.path().to_string(),
+        format!("got {text}, a number beyond the floating-point range"),
+    ))
+}
+
+/// The byte offset where serde_json's reader stood: `line` is 1-based, `column` counts the bytes
+/// it had read of that line.
+fn byte_offset(bytes: &[u8], line: usize, column: usize) -> Option<usize> {
+    let line_start = if line <= 1 {
+        0
+    } else {
+        bytes
+            .iter()
+            .enumerate()
+            .filter(|&(_, &byte)| byte == b'\n')
+            .nth(line - 2)?
+            .0
+            + 1
+    };
+    Some((line_start + column).min(bytes.len()))
+}
+
+/// The span of the JSON number that ends at or runs through `offset`.
+fn number_token_at(bytes: &[u8], offset: usize) -> Option<std::ops::Range<usize>> {
+    let in_number = |byte: &u8| byte.is_ascii_digit() || b"+-.eE".contains(byte);
+    let offset = offset.min(bytes.len());
+    let start = bytes[..offset]
+        .iter()
+        .rposition(|byte| !in_number(byte))
+        .map_or(0, |index| index + 1);
+    let end = offset
+        + bytes[offset..]
+            .iter()
+            .position(|byte| !in_number(byte))
+            .unwrap_or(bytes.len() - offset);
+    (start < end).then_some(start..end)
+}
+
+/// A place and message for a serde error found at `path` (`.` for the top level).
+///
+/// Syntax errors get the line and column; data errors get the path, and a missing field is
+/// reported at the field's own path (`bodies[0].shape` rather than `bodies[0]`).
+fn serde_error(path: String, error: &serde_json::Error) -> SceneError {
+    let full_message = error.to_string();
+    let position = format!(" at line {} column {}", error.line(), error.column());
+    let message = full_message
+        .strip_suffix(&position)
+        .unwrap_or(&full_message);
+    let location = format!("line {}, column {}", error.line(), error.column());
+    if error.is_syntax() || error.is_eof() || error.is_io() {
+        return SceneError::new(location, format!("invalid JSON: {message}"));
+    }
+    let parent = if path == "." { String::new() } else { path };
+    if let Some(field) = missing_field(message) {
+        return SceneError::new(
+            join(&parent, field),
+            format!("required field is missing ({location})"),
+        );
+    }
+    let place = if parent.is_empty() {
+        "top level".to_owned()
+    } else {
+        parent
+    };
+    SceneError::new(place, format!("{message} ({location})"))
+}
+
+/// The field named by serde's "missing field `name`" message.
+fn missing_field(message: &str) -> Option<&str> {
+    message
+        .strip_prefix("missing field `")
+        .and_then(|rest| rest.strip_suffix('`'))
+}
+
+/// `parent.field`, or `field` at the top level.
+fn join(parent: &str, field: &str) -> String {
+    if parent.is_empty() {
+        field.to_owned()
+    } else {
+        format!("{parent}.{field}")
+    }
+}

@@ -1,0 +1,111 @@
+//! The world's conveniences: user data, waking, and scene files loaded by the library.
+
+mod common;
+
+use common::{add_ground, run, unit_box, world, G};
+use rebond::scene::{LoadError, Scene};
+use rebond::{BodyDesc, Shape, Vec3, World, WorldSettings};
+
+#[test]
+fn user_data_rides_along_with_the_body() {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    let body = world
+        .add_body(BodyDesc::dynamic(Shape::sphere(0.5).unwrap()).user_data(42))
+        .unwrap();
+    assert_eq!(world.body(body).unwrap().user_data(), 42);
+    world.body_mut(body).unwrap().set_user_data(u128::MAX);
+    run(&mut world, 3);
+    assert_eq!(world.body(body).unwrap().user_data(), u128::MAX);
+}
+
+/// A unit box resting on the ground until it sleeps, with the step count it took.
+fn box_asleep_on_the_ground() -> (World, rebond::BodyHandle) {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    add_ground(&mut world, 0.5);
+    let body = world.add_body(unit_box(Vec3::new(0.0, 0.5, 0.0))).unwrap();
+    run(&mut world, 120);
+    assert!(world.body(body).unwrap().is_sleeping(), "the box rests");
+    (world, body)
+}
+
+#[test]
+fn wake_all_wakes_every_sleeping_body() {
+    let (mut world, body) = box_asleep_on_the_ground();
+    world.wake_all();
+    assert!(!world.body(body).unwrap().is_sleeping());
+    assert_eq!(world.sleeping_body_count(), 0);
+}
+
+#[test]
+fn a_change_of_gravity_wakes_the_bodies_and_they_follow_it() {
+    let (mut world, body) = box_asleep_on_the_ground();
+    let settings = *world.settings();
+    world
+        .set_settings(WorldSettings {
+            gravity: Vec3::new(0.0, G, 0.0),
+            ..settings
+        })
+        .unwrap();
+    assert!(!world.body(body).unwrap().is_sleeping());
+    run(&mut world, 60);
+    // Pulled up at g for one second from rest: 4.9 m, less the few millimetres of the step's
+    // start on the ground.
+    let height = world.body(body).unwrap().position().y - 0.5;
+    assert!((height - 0.5 * G).abs() < 0.05, "rose {height} m");
+}
+
+#[test]
+fn the_same_gravity_again_leaves_sleeping_bodies_asleep() {
+    let (mut world, body) = box_asleep_on_the_ground();
+    let settings = *world.settings();
+    world.set_settings(settings).unwrap();
+    assert!(world.body(body).unwrap().is_sleeping());
+}
+
+/// The workspace's built-in scenes, for the loader.
+fn scene_path(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes")
+        .join(format!("{name}.json"))
+}
+
+#[test]
+fn a_scene_file_loads_into_a_world_with_its_names_and_timestep() {
+    let scene = Scene::from_file(scene_path("column")).unwrap();
+    assert_eq!(scene.bodies().count(), 11);
+    let ground = scene
+        .body_handle("ground")
+        .expect("the column stands on `ground`");
+    assert!(scene.world().body(ground).is_ok());
+    assert!((scene.timestep().seconds - 1.0 / 60.0).abs() < 1e-9);
+    let world = World::from_scene_file(scene_path("column")).unwrap();
+    assert_eq!(world.body_count(), 11);
+}
+
+#[test]
+fn a_missing_scene_file_is_a_read_error_and_a_bad_one_names_the_place() {
+    match Scene::from_file(scene_path("no such scene")) {
+        Err(LoadError::Read { path, .. }) => assert!(path.ends_with("no such scene.json")),
+        other => panic!("expected a read error, got {other:?}"),
+    }
+    let error = Scene::from_json(br#"{"bodies": [{"shape": {"type": "sphere", "radius": -1}}]}"#)
+        .unwrap_err();
+    assert_eq!(error.place, "bodies[0].shape.radius");
+    assert_eq!(error.message, "must be positive, got -1");
+}
+
+#[test]
+fn force_point_in_a_scene_turns_the_body_as_r_cross_f() {
+    let json = br#"{"gravity": [0, 0, 0], "bodies": [{"name": "rod",
+        "shape": {"type": "box", "half_extents": [1, 0.1, 0.1]}, "mass": 3,
+        "force": [0, 6, 0], "force_point": [1, 0, 0]}]}"#;
+    let mut scene = Scene::from_json(json).unwrap();
+    scene.step().unwrap();
+    let rod = scene.body_handle("rod").unwrap();
+    let body = scene.world().body(rod).unwrap();
+    // Izz = m (a² + b²) / 3 with half extents a = 1, b = 0.1; τ = r × F = (0, 0, 6).
+    let izz = 3.0 * (1.0 + 0.01) / 3.0;
+    let expected = 6.0 / izz * scene.timestep().engine_seconds;
+    assert!((body.angular_velocity().z - expected).abs() <= 1e-5 * expected);
+    assert!((body.linear_velocity().y - 2.0 * scene.timestep().engine_seconds).abs() < 1e-6);
+}
