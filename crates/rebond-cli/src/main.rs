@@ -10,6 +10,7 @@ mod record;
 mod run;
 mod scene;
 mod source;
+#[cfg(feature = "viewer")]
 mod view;
 
 use std::io::{self, Write};
@@ -19,9 +20,20 @@ use std::process::ExitCode;
 use clap::{Args, Parser, Subcommand};
 
 use crate::builtin::BUILTIN_SCENES;
+#[cfg(not(feature = "viewer"))]
+use crate::failure::Failure;
 use crate::run::{RunLength, RunOptions};
 use crate::source::SceneSource;
+#[cfg(feature = "viewer")]
 use crate::view::{ViewError, ViewOptions};
+
+/// Why a command failed: a [`Failure`](failure::Failure) of the scene or a file, or for `view` a
+/// window that cannot be opened.
+#[cfg(feature = "viewer")]
+type CommandError = ViewError;
+/// Why a command failed: the scene or a file, or `view` in a build without the viewer.
+#[cfg(not(feature = "viewer"))]
+type CommandError = Failure;
 
 /// What `SCENE` means, shared by the subcommands' help.
 const SCENE_HELP: &str =
@@ -81,6 +93,22 @@ enum Command {
     /// prints the counts and, for each body, its colour and the pixel its centre of mass is drawn
     /// at, and exits. OpenGL and the X11 or Wayland libraries are loaded at run time; on a machine
     /// without a screen, run under `xvfb-run -s "-screen 0 1280x720x24"`.
+    ///
+    /// The viewer is the cargo feature `viewer`, on by default; a rebond built with
+    /// --no-default-features has no viewer and answers `view` with an error (exit status 2).
+    // The headless build keeps the command, so that `rebond view` answers why it cannot run
+    // rather than calling `view` an unknown subcommand.
+    #[cfg_attr(
+        not(feature = "viewer"),
+        command(
+            about = "Not in this build: open a window that simulates a scene live",
+            long_about = "Not in this build: open a window that simulates a scene live.\n\n\
+                          This rebond was built without the cargo feature `viewer` \
+                          (--no-default-features), so `rebond view` only prints an error and \
+                          exits with status 2. Install it with the default features to get the \
+                          viewer: cargo install --path crates/rebond-cli"
+        )
+    )]
     View(ViewArgs),
 }
 
@@ -171,9 +199,8 @@ fn main() -> ExitCode {
     }
 }
 
-/// Runs one subcommand and returns what it prints on stdout. Errors are the commands' failures,
-/// or for `view` a window that cannot be opened.
-fn execute(command: Command) -> Result<String, ViewError> {
+/// Runs one subcommand and returns what it prints on stdout.
+fn execute(command: Command) -> Result<String, CommandError> {
     match command {
         Command::Run(arguments) => {
             let source = SceneSource::resolve(&arguments.scene)?;
@@ -194,6 +221,7 @@ fn execute(command: Command) -> Result<String, ViewError> {
             let steps = usize::try_from(arguments.steps).unwrap_or(usize::MAX);
             Ok(bench::bench(&source, steps)?.to_string())
         }
+        #[cfg(feature = "viewer")]
         Command::View(arguments) => {
             let source = SceneSource::resolve(&arguments.scene)?;
             let options = ViewOptions {
@@ -202,6 +230,8 @@ fn execute(command: Command) -> Result<String, ViewError> {
             };
             view::view(&source, &options)
         }
+        #[cfg(not(feature = "viewer"))]
+        Command::View(_) => Err(Failure::NoViewer),
         Command::Scenes => Ok(BUILTIN_SCENES
             .iter()
             .map(|scene| format!("{:<10} {}\n", scene.name, scene.description))

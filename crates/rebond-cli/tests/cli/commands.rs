@@ -145,3 +145,63 @@ fn help_documents_the_defaults_and_the_scene_rule() {
     assert!(help.contains("30 warm-up steps"), "{help}");
     assert!(help.contains("[default: 300]"), "{help}");
 }
+
+#[cfg(feature = "viewer")]
+#[test]
+fn help_says_the_viewer_is_a_cargo_feature() {
+    let outcome = rebond(["view", "--help"]);
+    assert_eq!(outcome.status, 0);
+    let help = outcome
+        .stdout
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    assert!(
+        help.contains("the cargo feature `viewer`, on by default"),
+        "{help}"
+    );
+}
+
+#[cfg(not(feature = "viewer"))]
+#[test]
+fn without_the_viewer_view_is_one_error_line_with_status_2() {
+    for arguments in [
+        &["view", "showcase"][..],
+        &[
+            "view",
+            "no-such-scene",
+            "--screenshot",
+            "frame.png",
+            "--steps",
+            "5",
+        ],
+    ] {
+        let outcome = rebond(arguments);
+        assert_eq!(outcome.status, 2, "{arguments:?}: {}", outcome.stderr);
+        assert_eq!(outcome.stdout, "", "{arguments:?}");
+        let lines: Vec<&str> = outcome.stderr.lines().collect();
+        assert_eq!(lines.len(), 1, "{arguments:?}: {}", outcome.stderr);
+        assert!(
+            lines[0].starts_with(
+                "error: this rebond was built without the viewer (cargo feature `viewer`); "
+            ),
+            "{}",
+            lines[0]
+        );
+    }
+    // Arguments are still checked first, as in a build with the viewer.
+    let outcome = rebond(["view", "showcase", "--steps", "5"]);
+    assert_eq!(outcome.status, 2);
+    assert!(
+        outcome.stderr.contains("--screenshot"),
+        "{}",
+        outcome.stderr
+    );
+    let help = rebond(["view", "--help"]).stdout;
+    let help = help.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(help.starts_with("Not in this build"), "{help}");
+    assert!(
+        help.contains("without the cargo feature `viewer`"),
+        "{help}"
+    );
+}
