@@ -19,6 +19,7 @@ use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 
+use crate::bench::BenchOptions;
 use crate::builtin::BUILTIN_SCENES;
 #[cfg(not(feature = "viewer"))]
 use crate::failure::Failure;
@@ -82,7 +83,10 @@ enum Command {
     /// Time the steps of a scene: 30 warm-up steps, then N timed steps (300 by default).
     ///
     /// Prints the median, min, max and interquartile spread of the wall-clock time of a step in
-    /// milliseconds, and the counts of bodies, contacts and islands at the end.
+    /// milliseconds, and at the end the counts of bodies, contacts and islands, and of dynamic
+    /// bodies awake and asleep. The step skips sleeping bodies: when every dynamic body is asleep
+    /// at the end, a note says that the timings are of a sleeping scene, and --no-sleep keeps the
+    /// bodies awake.
     Bench(BenchArgs),
     /// List the built-in scenes, one per line with a description.
     Scenes,
@@ -151,6 +155,10 @@ struct BenchArgs {
         value_parser = clap::value_parser!(u32).range(1..)
     )]
     steps: u32,
+    /// Turn sleeping off for every body before the warm-up, so that still bodies are stepped
+    /// and timed like moving ones
+    #[arg(long)]
+    no_sleep: bool,
 }
 
 /// Arguments of `rebond view`.
@@ -218,8 +226,11 @@ fn execute(command: Command) -> Result<String, CommandError> {
         }
         Command::Bench(arguments) => {
             let source = SceneSource::resolve(&arguments.scene)?;
-            let steps = usize::try_from(arguments.steps).unwrap_or(usize::MAX);
-            Ok(bench::bench(&source, steps)?.to_string())
+            let options = BenchOptions {
+                measured_steps: usize::try_from(arguments.steps).unwrap_or(usize::MAX),
+                sleep: !arguments.no_sleep,
+            };
+            Ok(bench::bench(&source, options)?.to_string())
         }
         #[cfg(feature = "viewer")]
         Command::View(arguments) => {
