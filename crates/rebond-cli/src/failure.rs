@@ -10,6 +10,9 @@ use rebond::scene::SceneError;
 pub const EXIT_INVALID_SCENE: u8 = 2;
 /// Exit status for a file that cannot be read or written.
 pub const EXIT_IO: u8 = 1;
+/// Exit status for bad arguments, which is also clap's for usage errors.
+#[cfg(not(feature = "viewer"))]
+pub const EXIT_USAGE: u8 = 2;
 
 /// A failed command; printed as one `error:` line on stderr.
 #[derive(Debug)]
@@ -44,6 +47,9 @@ pub enum Failure {
         /// The engine's reason.
         error: rebond::Error,
     },
+    /// `rebond view` in a build without the cargo feature `viewer`.
+    #[cfg(not(feature = "viewer"))]
+    NoViewer,
 }
 
 impl Failure {
@@ -61,6 +67,8 @@ impl Failure {
         match self {
             Self::InvalidScene { .. } => EXIT_INVALID_SCENE,
             Self::Io { .. } | Self::UnknownScene { .. } | Self::Step { .. } => EXIT_IO,
+            #[cfg(not(feature = "viewer"))]
+            Self::NoViewer => EXIT_USAGE,
         }
     }
 }
@@ -84,6 +92,12 @@ impl fmt::Display for Failure {
                 step,
                 error,
             } => write!(formatter, "{source}: step {step} failed: {error}"),
+            #[cfg(not(feature = "viewer"))]
+            Self::NoViewer => write!(
+                formatter,
+                "this rebond was built without the viewer (cargo feature `viewer`); reinstall it \
+                 with the default features for `rebond view`: cargo install --path crates/rebond-cli"
+            ),
         }
     }
 }

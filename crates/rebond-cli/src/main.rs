@@ -9,6 +9,7 @@ mod failure;
 mod record;
 mod run;
 mod source;
+#[cfg(feature = "viewer")]
 mod view;
 
 use std::io::{self, Write};
@@ -17,10 +18,22 @@ use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 
+use crate::bench::BenchOptions;
 use crate::builtin::BUILTIN_SCENES;
+#[cfg(not(feature = "viewer"))]
+use crate::failure::Failure;
 use crate::run::{RunLength, RunOptions};
 use crate::source::SceneSource;
+#[cfg(feature = "viewer")]
 use crate::view::{ViewError, ViewOptions};
+
+/// Why a command failed: a [`Failure`](failure::Failure) of the scene or a file, or for `view` a
+/// window that cannot be opened.
+#[cfg(feature = "viewer")]
+type CommandError = ViewError;
+/// Why a command failed: the scene or a file, or `view` in a build without the viewer.
+#[cfg(not(feature = "viewer"))]
+type CommandError = Failure;
 
 /// What `SCENE` means, shared by the subcommands' help.
 const SCENE_HELP: &str =
@@ -69,7 +82,10 @@ enum Command {
     /// Time the steps of a scene: 30 warm-up steps, then N timed steps (300 by default).
     ///
     /// Prints the median, min, max and interquartile spread of the wall-clock time of a step in
-    /// milliseconds, and the counts of bodies, contacts and islands at the end.
+    /// milliseconds, and at the end the counts of bodies, contacts and islands, and of dynamic
+    /// bodies awake and asleep. The step skips sleeping bodies: when every dynamic body is asleep
+    /// at the end, a note says that the timings are of a sleeping scene, and --no-sleep keeps the
+    /// bodies awake.
     Bench(BenchArgs),
     /// List the built-in scenes, one per line with a description.
     Scenes,
@@ -80,6 +96,22 @@ enum Command {
     /// prints the counts and, for each body, its colour and the pixel its centre of mass is drawn
     /// at, and exits. OpenGL and the X11 or Wayland libraries are loaded at run time; on a machine
     /// without a screen, run under `xvfb-run -s "-screen 0 1280x720x24"`.
+    ///
+    /// The viewer is the cargo feature `viewer`, on by default; a rebond built with
+    /// --no-default-features has no viewer and answers `view` with an error (exit status 2).
+    // The headless build keeps the command, so that `rebond view` answers why it cannot run
+    // rather than calling `view` an unknown subcommand.
+    #[cfg_attr(
+        not(feature = "viewer"),
+        command(
+            about = "Not in this build: open a window that simulates a scene live",
+            long_about = "Not in this build: open a window that simulates a scene live.\n\n\
+                          This rebond was built without the cargo feature `viewer` \
+                          (--no-default-features), so `rebond view` only prints an error and \
+                          exits with status 2. Install it with the default features to get the \
+                          viewer: cargo install --path crates/rebond-cli"
+        )
+    )]
     View(ViewArgs),
 }
 
@@ -122,6 +154,10 @@ struct BenchArgs {
         value_parser = clap::value_parser!(u32).range(1..)
     )]
     steps: u32,
+    /// Turn sleeping off for every body before the warm-up, so that still bodies are stepped
+    /// and timed like moving ones
+    #[arg(long)]
+    no_sleep: bool,
 }
 
 /// Arguments of `rebond view`.
@@ -170,9 +206,8 @@ fn main() -> ExitCode {
     }
 }
 
-/// Runs one subcommand and returns what it prints on stdout. Errors are the commands' failures,
-/// or for `view` a window that cannot be opened.
-fn execute(command: Command) -> Result<String, ViewError> {
+/// Runs one subcommand and returns what it prints on stdout.
+fn execute(command: Command) -> Result<String, CommandError> {
     match command {
         Command::Run(arguments) => {
             let source = SceneSource::resolve(&arguments.scene)?;
@@ -190,9 +225,13 @@ fn execute(command: Command) -> Result<String, ViewError> {
         }
         Command::Bench(arguments) => {
             let source = SceneSource::resolve(&arguments.scene)?;
-            let steps = usize::try_from(arguments.steps).unwrap_or(usize::MAX);
-            Ok(bench::bench(&source, steps)?.to_string())
+            let options = BenchOptions {
+                measured_steps: usize::try_from(arguments.steps).unwrap_or(usize::MAX),
+                sleep: !arguments.no_sleep,
+            };
+            Ok(bench::bench(&source, options)?.to_string())
         }
+        #[cfg(feature = "viewer")]
         Command::View(arguments) => {
             let source = SceneSource::resolve(&arguments.scene)?;
             let options = ViewOptions {
@@ -201,6 +240,8 @@ fn execute(command: Command) -> Result<String, ViewError> {
             };
             view::view(&source, &options)
         }
+        #[cfg(not(feature = "viewer"))]
+        Command::View(_) => Err(Failure::NoViewer),
         Command::Scenes => Ok(BUILTIN_SCENES
             .iter()
             .map(|scene| format!("{:<10} {}\n", scene.name, scene.description))

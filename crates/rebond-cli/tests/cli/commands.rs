@@ -66,6 +66,9 @@ fn bench_prints_timings_and_counts() {
         "bodies           3",
         "contacts ",
         "islands ",
+        "sleep            allowed",
+        "awake bodies ",
+        "sleeping bodies ",
     ] {
         assert!(
             outcome.stdout.lines().any(|line| line.starts_with(label)),
@@ -73,6 +76,81 @@ fn bench_prints_timings_and_counts() {
             outcome.stdout
         );
     }
+}
+
+/// Two boxes resting on a static ground: still from the start, so asleep after half a second.
+const RESTING_SCENE: &str = r#"{"bodies": [
+    {"name": "ground", "type": "static",
+     "shape": {"type": "box", "half_extents": [10, 0.5, 10]}, "position": [0, -0.5, 0]},
+    {"shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5]}, "position": [0, 0.5, 0]},
+    {"shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5]}, "position": [3, 0.5, 0]}
+]}"#;
+
+/// The note `rebond bench` prints when every dynamic body sleeps at the end.
+const ASLEEP_NOTE: &str = "note             every dynamic body is asleep at the end";
+
+#[test]
+fn bench_says_when_it_timed_a_sleeping_scene() {
+    let dir = TestDir::new("bench_asleep");
+    let scene = dir.write("scene.json", RESTING_SCENE);
+    let outcome = rebond([
+        "bench".as_ref(),
+        scene.as_os_str(),
+        "--steps".as_ref(),
+        "60".as_ref(),
+    ]);
+    assert_eq!(outcome.status, 0, "{}", outcome.stderr);
+    let stdout = &outcome.stdout;
+    assert!(stdout.contains("sleep            allowed\n"), "{stdout}");
+    // The static ground neither sleeps nor counts as awake.
+    assert!(stdout.contains("awake bodies     0\n"), "{stdout}");
+    assert!(stdout.contains("sleeping bodies  2\n"), "{stdout}");
+    assert!(stdout.contains(ASLEEP_NOTE), "{stdout}");
+    assert!(
+        stdout.contains("--no-sleep"),
+        "the note names the way out: {stdout}"
+    );
+}
+
+#[test]
+fn bench_no_sleep_keeps_every_body_awake() {
+    let dir = TestDir::new("bench_no_sleep");
+    let scene = dir.write("scene.json", RESTING_SCENE);
+    let outcome = rebond([
+        "bench".as_ref(),
+        scene.as_os_str(),
+        "--steps".as_ref(),
+        "60".as_ref(),
+        "--no-sleep".as_ref(),
+    ]);
+    assert_eq!(outcome.status, 0, "{}", outcome.stderr);
+    let stdout = &outcome.stdout;
+    assert!(stdout.contains("measured steps   60\n"), "{stdout}");
+    assert!(
+        stdout.contains("sleep            off (--no-sleep)\n"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("awake bodies     2\n"), "{stdout}");
+    assert!(stdout.contains("sleeping bodies  0\n"), "{stdout}");
+    assert!(!stdout.contains("note "), "{stdout}");
+}
+
+#[test]
+fn bench_of_moving_bodies_has_no_sleeping_note() {
+    let dir = TestDir::new("bench_awake");
+    let scene = dir.write("scene.json", SCENE);
+    let outcome = rebond([
+        "bench".as_ref(),
+        scene.as_os_str(),
+        "--steps".as_ref(),
+        "5".as_ref(),
+    ]);
+    assert_eq!(outcome.status, 0, "{}", outcome.stderr);
+    let stdout = &outcome.stdout;
+    // The balls are still falling after 35 steps.
+    assert!(stdout.contains("awake bodies     2\n"), "{stdout}");
+    assert!(stdout.contains("sleeping bodies  0\n"), "{stdout}");
+    assert!(!stdout.contains("note "), "{stdout}");
 }
 
 #[test]
@@ -113,6 +191,7 @@ fn bad_arguments_are_usage_errors() {
         &["run", "column", "--every", "2"],
         &["run"],
         &["bench", "column", "--steps", "0"],
+        &["bench", "column", "--no-sleep=yes"],
         &["fly", "column"],
     ] {
         let outcome = rebond(arguments);
@@ -144,4 +223,66 @@ fn help_documents_the_defaults_and_the_scene_rule() {
     let help = words(&outcome.stdout);
     assert!(help.contains("30 warm-up steps"), "{help}");
     assert!(help.contains("[default: 300]"), "{help}");
+    assert!(help.contains("--no-sleep"), "{help}");
+    assert!(help.contains("awake and asleep"), "{help}");
+}
+
+#[cfg(feature = "viewer")]
+#[test]
+fn help_says_the_viewer_is_a_cargo_feature() {
+    let outcome = rebond(["view", "--help"]);
+    assert_eq!(outcome.status, 0);
+    let help = outcome
+        .stdout
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    assert!(
+        help.contains("the cargo feature `viewer`, on by default"),
+        "{help}"
+    );
+}
+
+#[cfg(not(feature = "viewer"))]
+#[test]
+fn without_the_viewer_view_is_one_error_line_with_status_2() {
+    for arguments in [
+        &["view", "showcase"][..],
+        &[
+            "view",
+            "no-such-scene",
+            "--screenshot",
+            "frame.png",
+            "--steps",
+            "5",
+        ],
+    ] {
+        let outcome = rebond(arguments);
+        assert_eq!(outcome.status, 2, "{arguments:?}: {}", outcome.stderr);
+        assert_eq!(outcome.stdout, "", "{arguments:?}");
+        let lines: Vec<&str> = outcome.stderr.lines().collect();
+        assert_eq!(lines.len(), 1, "{arguments:?}: {}", outcome.stderr);
+        assert!(
+            lines[0].starts_with(
+                "error: this rebond was built without the viewer (cargo feature `viewer`); "
+            ),
+            "{}",
+            lines[0]
+        );
+    }
+    // Arguments are still checked first, as in a build with the viewer.
+    let outcome = rebond(["view", "showcase", "--steps", "5"]);
+    assert_eq!(outcome.status, 2);
+    assert!(
+        outcome.stderr.contains("--screenshot"),
+        "{}",
+        outcome.stderr
+    );
+    let help = rebond(["view", "--help"]).stdout;
+    let help = help.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(help.starts_with("Not in this build"), "{help}");
+    assert!(
+        help.contains("without the cargo feature `viewer`"),
+        "{help}"
+    );
 }

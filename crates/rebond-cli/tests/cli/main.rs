@@ -7,4 +7,5 @@ mod common;
 mod filtering;
 mod records;
 mod scenes;
+#[cfg(feature = "viewer")]
 mod view;
