@@ -11,7 +11,6 @@ pub mod collision;
 pub mod error;
 pub mod events;
 pub mod filter;
-mod integration;
 pub mod island;
 pub mod mass;
 pub mod math;

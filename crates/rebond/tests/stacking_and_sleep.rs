@@ -4,7 +4,7 @@
 mod common;
 
 use common::{add_ground, run, unit_box, world, DT, G};
-use rebond::solver::contact_solver::{CONTACT_HERTZ, CONTACT_HERTZ_PER_SUBSTEP_RATE};
+use rebond::solver::contact_model::{CONTACT_HERTZ, CONTACT_HERTZ_PER_SUBSTEP_RATE};
 use rebond::world::DEFAULT_SUBSTEPS;
 use rebond::{BodyDesc, BodyHandle, Quat, Shape, Vec3, World, WorldSettings};
 

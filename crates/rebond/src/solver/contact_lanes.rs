@@ -9,7 +9,7 @@
 //! points of no mass the same way. The constraints are built straight into their lanes, from the
 //! contacts, and their impulses go straight back to the contacts.
 
-use super::contact_solver::{
+use super::contact_model::{
     combine_friction, combine_restitution, MAX_PUSH_SPEED, RESTITUTION_THRESHOLD,
 };
 use super::softness::Softness;

@@ -9,12 +9,13 @@
 //!
 //! The contacts are solved four at a time: `graph_colour.rs` groups them into lane sets of up to
 //! four that share no moving body, and `contact_lanes.rs` solves a lane set in SIMD lanes
-//! (`wide.rs`). What is left over goes into lane sets of one. `contact_solver.rs` holds the
-//! contact model's constants.
+//! (`wide.rs`). What is left over goes into lane sets of one. `contact_model.rs` holds the
+//! contact model's constants, `integration.rs` the time integration of the bodies.
 
 mod contact_lanes;
-pub mod contact_solver;
+pub mod contact_model;
 mod graph_colour;
+mod integration;
 mod softness;
 mod wide;
 
@@ -22,13 +23,11 @@ use crate::arena::Arena;
 use crate::body::{BodyType, RigidBody};
 use crate::collision::contact_cache::Contact;
 use crate::collision::contact_cache::ContactCache;
-use crate::integration::{
-    integrate_pose, integrate_velocities, SpeedLimits, MAX_ROTATION_PER_SUBSTEP,
-};
 use crate::math::{Mat3, Quat, Vec3, Vec3A};
 use contact_lanes::{ContactLanes, LaneContact};
-use contact_solver::{CONTACT_DAMPING_RATIO, CONTACT_HERTZ, CONTACT_HERTZ_PER_SUBSTEP_RATE};
+use contact_model::{CONTACT_DAMPING_RATIO, CONTACT_HERTZ, CONTACT_HERTZ_PER_SUBSTEP_RATE};
 use graph_colour::GraphColouring;
+use integration::{integrate_pose, integrate_velocities, SpeedLimits, MAX_ROTATION_PER_SUBSTEP};
 use softness::Softness;
 
 /// Biased passes per substep. With the contacts solved in lane sets instead of strictly one
