@@ -9,13 +9,15 @@
 //!
 //! The contacts are solved four at a time: `graph_colour.rs` groups them into lane sets of up to
 //! four that share no moving body, and `contact_lanes.rs` solves a lane set in SIMD lanes
-//! (`wide.rs`). What is left over goes into lane sets of one. `contact_model.rs` holds the
-//! contact model's constants, `integration.rs` the time integration of the bodies.
+//! (`wide.rs`) from the constraint parts of `parts.rs`. What is left over goes into lane sets of
+//! one. `contact_model.rs` holds the contact model's constants, `integration.rs` the time
+//! integration of the bodies.
 
 mod contact_lanes;
 pub mod contact_model;
 mod graph_colour;
 mod integration;
+mod parts;
 mod softness;
 mod wide;
 
