@@ -41,7 +41,6 @@ mod collision;
 mod error;
 pub mod events;
 mod filter;
-mod integration;
 mod island;
 mod mass;
 mod math;

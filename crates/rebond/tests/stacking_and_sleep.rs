@@ -4,7 +4,7 @@
 mod common;
 
 use common::{add_ground, run, unit_box, world, DT, G};
-use rebond::internals::solver::contact_solver::{CONTACT_HERTZ, CONTACT_HERTZ_PER_SUBSTEP_RATE};
+use rebond::internals::solver::contact_model::{CONTACT_HERTZ, CONTACT_HERTZ_PER_SUBSTEP_RATE};
 use rebond::DEFAULT_SUBSTEPS;
 use rebond::{BodyDesc, BodyHandle, Quat, Shape, Vec3, World, WorldSettings};
 

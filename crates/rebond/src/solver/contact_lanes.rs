@@ -7,52 +7,20 @@
 //! constraints fills the rest with empty lanes on solver body 0 (no mass, zero Jacobians: their
 //! impulses are zero); a manifold with fewer points than the widest one of the set gets empty
 //! points of no mass the same way. The constraints are built straight into their lanes, from the
-//! contacts, and their impulses go straight back to the contacts.
+//! contacts, and their impulses go straight back to the contacts. Each point's normal and the two
+//! friction directions are axis parts (`parts.rs`).
 
-use super::contact_solver::{
+use super::contact_model::{
     combine_friction, combine_restitution, MAX_PUSH_SPEED, RESTITUTION_THRESHOLD,
 };
+use super::parts::{inverse_or_zero, BodyFrame, BodyLanes, JacobianLanes};
 use super::softness::Softness;
-use super::wide::{F32x4, Mat3x4, Vec3x4};
+use super::wide::{F32x4, Vec3x4, LANES};
 use super::{BodyMotion, BodyState};
 use crate::body::RigidBody;
 use crate::collision::contact_cache::Contact;
 use crate::collision::MAX_MANIFOLD_POINTS;
 use crate::math::Vec3A;
-
-/// Lanes per set.
-pub const LANES: usize = 4;
-
-/// The velocities of a lane set's bodies on one side, gathered from the body states.
-struct BodyLanes {
-    linear_velocity: Vec3x4,
-    angular_velocity: Vec3x4,
-}
-
-impl BodyLanes {
-    fn gather(states: &[BodyState], bodies: &[usize; LANES]) -> Self {
-        let [a, b, c, d] = *bodies;
-        let (a, b, c, d) = (&states[a], &states[b], &states[c], &states[d]);
-        let field = |f: fn(&BodyState) -> Vec3A| Vec3x4::from_lanes([f(a), f(b), f(c), f(d)]);
-        Self {
-            linear_velocity: field(|s| s.linear_velocity),
-            angular_velocity: field(|s| s.angular_velocity),
-        }
-    }
-
-    /// Writes the velocities back; body 0 (fixed, and the empty lanes) never changes.
-    fn scatter(&self, states: &mut [BodyState], bodies: &[usize; LANES]) {
-        let linear = self.linear_velocity.lanes();
-        let angular = self.angular_velocity.lanes();
-        for (lane, &body) in bodies.iter().enumerate() {
-            if body != 0 {
-                let state = &mut states[body];
-                state.linear_velocity = linear[lane];
-                state.angular_velocity = angular[lane];
-            }
-        }
-    }
-}
 
 /// What a solver pass reads of its bodies: both sides' spins and rotations, but of the linear
 /// velocities and moves only B's minus A's, since the impulses act on both along one direction
@@ -115,27 +83,6 @@ impl PassLanes {
     }
 }
 
-/// What the constraint builder reads of the bodies on one side of four contacts.
-struct BodyFrame {
-    center_of_mass: Vec3x4,
-    inverse_inertia: Mat3x4,
-    linear_velocity: Vec3x4,
-    angular_velocity: Vec3x4,
-}
-
-impl BodyFrame {
-    /// The velocity of the point at `anchor` from the centre of mass, `v + ω × r`, per lane.
-    fn velocity_at(&self, anchor: Vec3x4) -> Vec3x4 {
-        self.linear_velocity + self.angular_velocity.cross(anchor)
-    }
-}
-
-/// `1 / k` per lane, or zero where `k` is not above zero.
-fn inverse_or_zero(k: F32x4) -> F32x4 {
-    k.greater_than(F32x4::ZERO)
-        .select(F32x4::ONE / k, F32x4::ZERO)
-}
-
 /// One contact to put into a lane: the contact, its index in the contact cache, its solver
 /// bodies and the two bodies, for their materials and poses.
 #[derive(Clone, Copy)]
@@ -145,83 +92,6 @@ pub(crate) struct LaneContact<'a> {
     pub body_a: usize,
     pub body_b: usize,
     pub materials: (&'a RigidBody, &'a RigidBody),
-}
-
-/// The velocity Jacobian of one direction `d` of four contacts, for both bodies, with the
-/// angular response precomputed from the inverse inertia at the start of the step.
-#[derive(Debug, Clone, Copy)]
-struct JacobianLanes {
-    /// `r_A × d` and `r_B × d`: how each body's spin moves the contact along `d`.
-    arm_a: Vec3x4,
-    arm_b: Vec3x4,
-    /// `I_A⁻¹ (r_A × d)` and `I_B⁻¹ (r_B × d)`: the spin a unit impulse along `d` gives.
-    spin_a: Vec3x4,
-    spin_b: Vec3x4,
-    /// The effective mass along `d`, kg.
-    mass: F32x4,
-}
-
-impl JacobianLanes {
-    const ZERO: Self = Self {
-        arm_a: Vec3x4::ZERO,
-        arm_b: Vec3x4::ZERO,
-        spin_a: Vec3x4::ZERO,
-        spin_b: Vec3x4::ZERO,
-        mass: F32x4::ZERO,
-    };
-
-    /// The Jacobian of direction `direction` at the anchors `r_A`, `r_B` (from each centre of
-    /// mass) per lane, with `mass = 1 / (m_A⁻¹ + m_B⁻¹ + (r_A × d)·I_A⁻¹(r_A × d) +
-    /// (r_B × d)·I_B⁻¹(r_B × d))`, or zero where nothing can move along `d`.
-    fn new(
-        (a, b): (&BodyFrame, &BodyFrame),
-        (inverse_mass_a, inverse_mass_b): (F32x4, F32x4),
-        (anchor_a, anchor_b): (Vec3x4, Vec3x4),
-        direction: Vec3x4,
-    ) -> Self {
-        let arm_a = anchor_a.cross(direction);
-        let arm_b = anchor_b.cross(direction);
-        let spin_a = a.inverse_inertia.mul_vec3(arm_a);
-        let spin_b = b.inverse_inertia.mul_vec3(arm_b);
-        let k = inverse_mass_a + inverse_mass_b + arm_a.dot(spin_a) + arm_b.dot(spin_b);
-        Self {
-            arm_a,
-            arm_b,
-            spin_a,
-            spin_b,
-            mass: inverse_or_zero(k),
-        }
-    }
-
-    /// `d·(v_B − v_A) + ω_B·(r_B × d) − ω_A·(r_A × d)` per lane.
-    fn velocity(&self, a: &BodyLanes, b: &BodyLanes, direction: Vec3x4) -> F32x4 {
-        direction.dot(b.linear_velocity - a.linear_velocity)
-            + self.spin_velocity(a.angular_velocity, b.angular_velocity)
-    }
-
-    /// The part of [`Self::velocity`] the spins `ω_A`, `ω_B` give, `ω_B·(r_B × d) − ω_A·(r_A × d)`.
-    fn spin_velocity(&self, angular_a: Vec3x4, angular_b: Vec3x4) -> F32x4 {
-        angular_b.dot(self.arm_b) - angular_a.dot(self.arm_a)
-    }
-
-    /// The spin part of [`Self::apply`]: `Δω_A = −λ I_A⁻¹ (r_A × d)`, `Δω_B = +λ I_B⁻¹ (r_B × d)`.
-    fn apply_spin(&self, angular_a: &mut Vec3x4, angular_b: &mut Vec3x4, impulse: F32x4) {
-        *angular_a -= self.spin_a.scale(impulse);
-        *angular_b += self.spin_b.scale(impulse);
-    }
-
-    /// `Δv = ±λ d / m`, `Δω = ±λ I⁻¹ (r × d)` per lane (A gets the minus sign).
-    fn apply(
-        &self,
-        (a, b): (&mut BodyLanes, &mut BodyLanes),
-        (inverse_mass_a, inverse_mass_b): (F32x4, F32x4),
-        direction: Vec3x4,
-        impulse: F32x4,
-    ) {
-        a.linear_velocity -= direction.scale(inverse_mass_a * impulse);
-        b.linear_velocity += direction.scale(inverse_mass_b * impulse);
-        self.apply_spin(&mut a.angular_velocity, &mut b.angular_velocity, impulse);
-    }
 }
 
 /// Pairs of distinct points in a manifold.
@@ -361,18 +231,8 @@ impl ContactLanes {
             }
             point_counts.set_lane(lane, points.len() as f32);
         }
-        let side = |bodies: &[usize; LANES]| {
-            let [a, b, c, d] = *bodies;
-            let states = [&states[a], &states[b], &states[c], &states[d]];
-            let motions = [&motions[a], &motions[b], &motions[c], &motions[d]];
-            BodyFrame {
-                center_of_mass: Vec3x4::from_lanes(motions.map(|m| m.center_of_mass.into())),
-                inverse_inertia: Mat3x4::from_lanes(motions.map(|m| &m.world_inverse_inertia)),
-                linear_velocity: Vec3x4::from_lanes(states.map(|s| s.linear_velocity)),
-                angular_velocity: Vec3x4::from_lanes(states.map(|s| s.angular_velocity)),
-            }
-        };
-        let (a, b) = (side(&lanes.body_a), side(&lanes.body_b));
+        let a = BodyFrame::gather(states, motions, &lanes.body_a);
+        let b = BodyFrame::gather(states, motions, &lanes.body_b);
         let masses = lanes.inverse_masses();
         let normal = lanes.normal;
         let mut center = Vec3x4::ZERO;

@@ -12,7 +12,7 @@
 //! never changes velocity and does not count. A constraint whose bodies are in every open colour
 //! goes to the overflow: lane sets of one constraint each, solved after the others.
 
-use super::contact_lanes::LANES;
+use super::wide::LANES;
 
 /// Colours open at a time. A box in a stack or a pile touches about a dozen others, and the
 /// colours fill quickly; 16 or 32 gave the same step times on `pyramid` and `rain` (2026-12-01).

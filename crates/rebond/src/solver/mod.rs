@@ -1,41 +1,50 @@
-//! The solver: one step of the soft-step scheme (Box2D v3 / Box3D "solver2d" soft step).
+//! The solver: one step of the soft-step scheme (Box2D v3 / Box3D "solver2d" soft step), run as
+//! a pipeline of stages over the kinds of constraint (`stages.rs`; contacts are the one kind so
+//! far, `contacts.rs`).
 //!
-//! For each of the `n` substeps of length `h = dt / n`: integrate velocities, warm-start the
-//! contacts, solve their normal impulses with soft position correction (the biased pass, twice),
-//! integrate poses, then solve them again without position correction, normal impulses and then
-//! friction (the relax pass, which takes back the energy the correction added). After the
-//! substeps, one restitution pass, and the impulses go back to the contact cache for the next
-//! step's warm start.
+//! The stages of a step, and what each does to the velocities `v`, `ω` and the positions `c`, `q`
+//! of the moving bodies (`h = dt / n` for `n` substeps; `Δc`, `Δθ` the motion since the step
+//! began):
 //!
-//! The contacts are solved four at a time: `graph_colour.rs` groups them into lane sets of up to
-//! four that share no moving body, and `contact_lanes.rs` solves a lane set in SIMD lanes
-//! (`wide.rs`). What is left over goes into lane sets of one. `contact_solver.rs` holds the
-//! contact model's constants.
+//! | stage | runs | velocities | positions |
+//! |---|---|---|---|
+//! | prepare | once | read: each kind builds its constraints | read, at the start of the step |
+//! | integrate velocities | per substep | `v += h (g + F/m)`, `ω += h I⁻¹τ`, damped, limited | — |
+//! | warm start | per substep | the accumulated impulses applied again | — |
+//! | prepare biased passes | per substep | — | read: `Δc`, `Δθ` set the biased passes' targets |
+//! | solve (biased, ×2) | per substep | normal impulses towards the targets (soft push-out) | — |
+//! | integrate positions | per substep | — | `c += h v`, `q` turned by `h ω`, `Δc`, `Δθ` |
+//! | relax | per substep | normal impulses without push-out, then friction | read: `Δc`, `Δθ` |
+//! | restitution | once | `v_n = −e v_n,start` where a contact hit fast enough | — |
+//! | store impulses | once | — | — |
+//!
+//! The warm start applies last step's impulses in the first substep, the impulses accumulated
+//! so far in the others; the impulses stored go back to the contacts for the next step's warm
+//! start, and the bodies get their new velocities and poses.
+//!
+//! The relax pass takes back the energy the position correction added. The contacts are solved
+//! four at a time: `graph_colour.rs` groups them into lane sets of up to four that share no
+//! moving body, and `contact_lanes.rs` solves a lane set in SIMD lanes (`wide.rs`) from the
+//! constraint parts of `parts.rs`. What is left over goes into lane sets of one.
+//! `contact_model.rs` holds the contact model's constants, `softness.rs` the soft constraint,
+//! `integration.rs` the time integration of the bodies.
 
 mod contact_lanes;
-pub mod contact_solver;
+pub mod contact_model;
+mod contacts;
 mod graph_colour;
+mod integration;
+mod parts;
 mod softness;
+mod stages;
 mod wide;
 
 use crate::arena::Arena;
 use crate::body::{BodyType, RigidBody};
-use crate::collision::contact_cache::Contact;
-use crate::collision::contact_cache::ContactCache;
-use crate::integration::{
-    integrate_pose, integrate_velocities, SpeedLimits, MAX_ROTATION_PER_SUBSTEP,
-};
 use crate::math::{Mat3, Quat, Vec3, Vec3A};
-use contact_lanes::{ContactLanes, LaneContact};
-use contact_solver::{CONTACT_DAMPING_RATIO, CONTACT_HERTZ, CONTACT_HERTZ_PER_SUBSTEP_RATE};
-use graph_colour::GraphColouring;
-use softness::Softness;
-
-/// Biased passes per substep. With the contacts solved in lane sets instead of strictly one
-/// after another, one pass let the 20-box column of the tests topple at 4 substeps (0.74 m of
-/// drift); two keep it standing. With the lane sets, the three passes of a substep cost less
-/// than the two did one contact at a time (BENCHMARKS.md).
-const BIASED_ITERATIONS: usize = 2;
+use contacts::ContactConstraints;
+use integration::{integrate_pose, integrate_velocities};
+use stages::StepContext;
 
 /// What the contact solver reads and writes of one awake body, kept small and contiguous, in
 /// SIMD vectors (`Vec3A`, 16 bytes) so each vector operation of the solver is one instruction.
@@ -119,70 +128,21 @@ pub(crate) struct StepSettings {
     pub max_linear_speed: f32,
 }
 
-/// Buffers reused from step to step, so a steady scene allocates nothing.
+/// The awake dynamic and kinematic bodies of a step, in solver order, in buffers reused from step
+/// to step. Solver body 0 stands for every static or sleeping body.
 #[derive(Debug, Clone, Default)]
-pub(crate) struct Solver {
+pub(crate) struct SolverBodies {
     states: Vec<BodyState>,
     motions: Vec<BodyMotion>,
     /// Solver index of each arena slot; 0 for static, sleeping and empty slots.
     solver_index_of_slot: Vec<usize>,
     /// Arena slot of each solver body (index 0 unused).
     slot_of_solver_index: Vec<usize>,
-    /// The solver bodies of each contact to solve, for the colouring, and its index in the
-    /// contact cache.
-    pairs: Vec<(usize, usize)>,
-    pair_contacts: Vec<usize>,
-    colouring: GraphColouring,
-    /// The contacts in lane sets of up to four, in solving order.
-    lanes: Vec<ContactLanes>,
 }
 
-impl Solver {
-    /// Advances every awake, non-static body by one step, with its contacts.
-    pub fn step(
-        &mut self,
-        bodies: &mut Arena<RigidBody>,
-        contacts: &mut ContactCache,
-        settings: StepSettings,
-    ) {
-        self.gather_bodies(bodies);
-        self.colour_contacts(bodies, contacts);
-        self.prepare_contacts(bodies, contacts);
-        let h = settings.dt / settings.substeps as f32;
-        let inverse_h = 1.0 / h;
-        let softness = Softness::new(
-            CONTACT_HERTZ.min(CONTACT_HERTZ_PER_SUBSTEP_RATE * inverse_h),
-            CONTACT_DAMPING_RATIO,
-            h,
-        );
-        let limits = SpeedLimits {
-            linear: settings.max_linear_speed,
-            angular: MAX_ROTATION_PER_SUBSTEP * inverse_h,
-        };
-        for _ in 0..settings.substeps {
-            for (state, motion) in self.states.iter_mut().zip(&self.motions).skip(1) {
-                integrate_velocities(state, motion, settings.gravity, h, limits);
-            }
-            self.warm_start(&softness, inverse_h);
-            for _ in 0..BIASED_ITERATIONS {
-                self.solve_contacts::<true>(inverse_h);
-            }
-            for (state, motion) in self.states.iter_mut().zip(&mut self.motions).skip(1) {
-                integrate_pose(state, motion, h);
-            }
-            self.solve_contacts::<false>(inverse_h);
-        }
-        for lanes in &mut self.lanes {
-            lanes.apply_restitution(&mut self.states);
-        }
-        for lanes in &self.lanes {
-            lanes.store_impulses(contacts.contacts_mut());
-        }
-        self.scatter_bodies(bodies);
-    }
-
+impl SolverBodies {
     /// Copies every awake dynamic or kinematic body into the solver array (slot order).
-    fn gather_bodies(&mut self, bodies: &Arena<RigidBody>) {
+    fn gather(&mut self, bodies: &Arena<RigidBody>) {
         self.states.clear();
         self.states.push(BodyState::default());
         self.motions.clear();
@@ -209,80 +169,27 @@ impl Solver {
         }
     }
 
-    /// Colours every contact between two bodies of which at least one moves this step into lane
-    /// sets of up to four.
-    fn colour_contacts(&mut self, bodies: &Arena<RigidBody>, contacts: &ContactCache) {
-        self.pairs.clear();
-        self.pair_contacts.clear();
-        for (contact_index, contact) in contacts.contacts().iter().enumerate() {
-            if let Some((solver_a, solver_b, _)) = self.constraint_bodies(bodies, contact) {
-                self.pairs.push((solver_a, solver_b));
-                self.pair_contacts.push(contact_index);
-            }
-        }
-        self.colouring.colour(&self.pairs, self.states.len());
+    /// The solver index of the body in arena slot `slot`: 0 when it does not move this step.
+    fn solver_index(&self, slot: usize) -> usize {
+        self.solver_index_of_slot.get(slot).copied().unwrap_or(0)
     }
 
-    /// The solver bodies of `contact` and its two bodies, or `None` when neither moves this step
-    /// (or a body is gone).
-    fn constraint_bodies<'a>(
-        &self,
-        bodies: &'a Arena<RigidBody>,
-        contact: &Contact,
-    ) -> Option<(usize, usize, (&'a RigidBody, &'a RigidBody))> {
-        let solver_of = |slot: usize| self.solver_index_of_slot.get(slot).copied().unwrap_or(0);
-        let solver_a = solver_of(contact.key.body_a.slot());
-        let solver_b = solver_of(contact.key.body_b.slot());
-        if solver_a == solver_b {
-            return None;
-        }
-        let body_a = bodies.get(contact.key.body_a.0)?;
-        let body_b = bodies.get(contact.key.body_b.0)?;
-        Some((solver_a, solver_b, (body_a, body_b)))
-    }
-
-    /// Builds the lane sets straight from the contacts, lane by lane.
-    fn prepare_contacts(&mut self, bodies: &Arena<RigidBody>, contacts: &ContactCache) {
-        let mut lane_sets = std::mem::take(&mut self.lanes);
-        lane_sets.clear();
-        for lane_set in self.colouring.lane_sets() {
-            let lane_contacts = lane_set.iter().filter_map(|&pair| {
-                let index = self.pair_contacts[pair];
-                let contact = &contacts.contacts()[index];
-                let (body_a, body_b, materials) = self.constraint_bodies(bodies, contact)?;
-                Some(LaneContact {
-                    contact,
-                    index,
-                    body_a,
-                    body_b,
-                    materials,
-                })
-            });
-            let index = lane_sets.len();
-            lane_sets.push(ContactLanes::EMPTY);
-            lane_sets[index].fill(lane_contacts, &self.states, &self.motions);
-        }
-        self.lanes = lane_sets;
-    }
-
-    /// Applies last step's impulses again, and sets what the biased passes of the substep aim
-    /// at (its poses).
-    fn warm_start(&mut self, softness: &Softness, inverse_h: f32) {
-        for lanes in &mut self.lanes {
-            lanes.warm_start(&mut self.states);
-            lanes.prepare_biased_passes(&self.states, softness, inverse_h);
+    /// One substep `h` of velocity integration for every moving body.
+    fn integrate_velocities(&mut self, context: &StepContext) {
+        for (state, motion) in self.states[1..].iter_mut().zip(&self.motions[1..]) {
+            integrate_velocities(state, motion, context.gravity, context.h, context.limits);
         }
     }
 
-    /// One pass over every contact (biased with `USE_BIAS`, else relax): the lane sets in order.
-    fn solve_contacts<const USE_BIAS: bool>(&mut self, inverse_h: f32) {
-        for lanes in &mut self.lanes {
-            lanes.solve::<USE_BIAS>(&mut self.states, inverse_h);
+    /// One substep `h` of pose integration for every moving body.
+    fn integrate_positions(&mut self, context: &StepContext) {
+        for (state, motion) in self.states[1..].iter_mut().zip(&mut self.motions[1..]) {
+            integrate_pose(state, motion, context.h);
         }
     }
 
     /// Copies the solved state back into the bodies and clears their force accumulators.
-    fn scatter_bodies(&self, bodies: &mut Arena<RigidBody>) {
+    fn scatter(&self, bodies: &mut Arena<RigidBody>) {
         let solved = self.states.iter().zip(&self.motions);
         for ((state, motion), &slot) in solved.zip(&self.slot_of_solver_index).skip(1) {
             if let Some(body) = bodies.at_slot_mut(slot) {
@@ -298,4 +205,12 @@ impl Solver {
             body.torque = Vec3::ZERO;
         }
     }
+}
+
+/// Buffers reused from step to step, so a steady scene allocates nothing: the bodies, and the
+/// constraints of each kind. [`Solver::step`] (`stages.rs`) runs the stages over them.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Solver {
+    bodies: SolverBodies,
+    contacts: ContactConstraints,
 }

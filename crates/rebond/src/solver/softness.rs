@@ -9,7 +9,7 @@ use std::f32::consts::TAU;
 /// with `ω = 2π·hertz`, `a₁ = 2ζ + hω`, `a₂ = hω·a₁`, `a₃ = 1 / (1 + a₂)`:
 /// `bias_rate = ω / a₁`, `mass_scale = a₂·a₃`, `impulse_scale = a₃`.
 /// The impulse is then `−m_eff · mass_scale · (v + bias_rate · C) − impulse_scale · λ_total`.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(crate) struct Softness {
     /// Fraction of the position error fed back as velocity, 1/s.
     pub bias_rate: f32,

@@ -11,6 +11,9 @@ use glam::{BVec4A, Mat4, Vec4};
 
 use crate::math::{Mat3, Vec3, Vec3A};
 
+/// Lanes in a wide value: constraints solved at once, one per lane.
+pub const LANES: usize = 4;
+
 /// Four f32 lanes.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(crate) struct F32x4(Vec4);

@@ -1,8 +1,8 @@
 //! Time integration of body velocities and poses by semi-implicit (symplectic) Euler:
 //! velocities first from forces, then positions from the new velocities.
 
+use super::{BodyMotion, BodyState};
 use crate::math::{skew, Quat, Vec3, Vec3A};
-use crate::solver::{BodyMotion, BodyState};
 
 /// Largest rotation of a body in one substep, radians: a quarter turn.
 pub(crate) const MAX_ROTATION_PER_SUBSTEP: f32 = 0.25 * std::f32::consts::PI;

@@ -1,0 +1,137 @@
+//! The contacts as a constraint kind: each step's contacts between moving bodies, coloured into
+//! lane sets of up to four (`graph_colour.rs`) and solved a lane set at a time
+//! (`contact_lanes.rs`), the lane sets in order.
+
+use super::contact_lanes::{ContactLanes, LaneContact};
+use super::contact_model::{CONTACT_DAMPING_RATIO, CONTACT_HERTZ, CONTACT_HERTZ_PER_SUBSTEP_RATE};
+use super::graph_colour::GraphColouring;
+use super::softness::Softness;
+use super::stages::{ConstraintKind, StepContext};
+use super::{BodyState, SolverBodies};
+use crate::arena::Arena;
+use crate::body::RigidBody;
+use crate::collision::contact_cache::{Contact, ContactCache};
+
+/// This step's contact constraints, in buffers reused from step to step.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct ContactConstraints {
+    /// The solver bodies of each contact to solve, for the colouring, and its index in the
+    /// contact cache.
+    pairs: Vec<(usize, usize)>,
+    pair_contacts: Vec<usize>,
+    colouring: GraphColouring,
+    /// The contacts in lane sets of up to four, in solving order.
+    lanes: Vec<ContactLanes>,
+    /// The contacts' spring for this step's substep.
+    softness: Softness,
+}
+
+impl ContactConstraints {
+    /// Colours every contact between two bodies of which at least one moves this step into lane
+    /// sets of up to four.
+    fn colour(
+        &mut self,
+        contacts: &ContactCache,
+        bodies: &Arena<RigidBody>,
+        solver_bodies: &SolverBodies,
+    ) {
+        self.pairs.clear();
+        self.pair_contacts.clear();
+        for (contact_index, contact) in contacts.contacts().iter().enumerate() {
+            if let Some((solver_a, solver_b, _)) = constraint_bodies(bodies, solver_bodies, contact)
+            {
+                self.pairs.push((solver_a, solver_b));
+                self.pair_contacts.push(contact_index);
+            }
+        }
+        self.colouring
+            .colour(&self.pairs, solver_bodies.states.len());
+    }
+}
+
+/// The solver bodies of `contact` and its two bodies, or `None` when neither moves this step (or
+/// a body is gone).
+fn constraint_bodies<'a>(
+    bodies: &'a Arena<RigidBody>,
+    solver_bodies: &SolverBodies,
+    contact: &Contact,
+) -> Option<(usize, usize, (&'a RigidBody, &'a RigidBody))> {
+    let solver_a = solver_bodies.solver_index(contact.key.body_a.slot());
+    let solver_b = solver_bodies.solver_index(contact.key.body_b.slot());
+    if solver_a == solver_b {
+        return None;
+    }
+    let body_a = bodies.get(contact.key.body_a.0)?;
+    let body_b = bodies.get(contact.key.body_b.0)?;
+    Some((solver_a, solver_b, (body_a, body_b)))
+}
+
+impl ConstraintKind for ContactConstraints {
+    type Source = ContactCache;
+
+    /// Colours the contacts and builds the lane sets straight from them, lane by lane; sets the
+    /// contacts' spring, at most [`CONTACT_HERTZ_PER_SUBSTEP_RATE`] of the substep rate.
+    fn prepare(
+        &mut self,
+        contacts: &ContactCache,
+        bodies: &Arena<RigidBody>,
+        solver_bodies: &SolverBodies,
+        context: &StepContext,
+    ) {
+        self.colour(contacts, bodies, solver_bodies);
+        self.lanes.clear();
+        for lane_set in self.colouring.lane_sets() {
+            let lane_contacts = lane_set.iter().filter_map(|&pair| {
+                let index = self.pair_contacts[pair];
+                let contact = &contacts.contacts()[index];
+                let (body_a, body_b, materials) =
+                    constraint_bodies(bodies, solver_bodies, contact)?;
+                Some(LaneContact {
+                    contact,
+                    index,
+                    body_a,
+                    body_b,
+                    materials,
+                })
+            });
+            let index = self.lanes.len();
+            self.lanes.push(ContactLanes::EMPTY);
+            self.lanes[index].fill(lane_contacts, &solver_bodies.states, &solver_bodies.motions);
+        }
+        self.softness = Softness::new(
+            CONTACT_HERTZ.min(CONTACT_HERTZ_PER_SUBSTEP_RATE * context.inverse_h),
+            CONTACT_DAMPING_RATIO,
+            context.h,
+        );
+    }
+
+    fn warm_start(&mut self, states: &mut [BodyState]) {
+        for lanes in &self.lanes {
+            lanes.warm_start(states);
+        }
+    }
+
+    fn prepare_biased_passes(&mut self, states: &[BodyState], context: &StepContext) {
+        for lanes in &mut self.lanes {
+            lanes.prepare_biased_passes(states, &self.softness, context.inverse_h);
+        }
+    }
+
+    fn solve<const USE_BIAS: bool>(&mut self, states: &mut [BodyState], context: &StepContext) {
+        for lanes in &mut self.lanes {
+            lanes.solve::<USE_BIAS>(states, context.inverse_h);
+        }
+    }
+
+    fn apply_restitution(&mut self, states: &mut [BodyState]) {
+        for lanes in &mut self.lanes {
+            lanes.apply_restitution(states);
+        }
+    }
+
+    fn store_impulses(&self, contacts: &mut ContactCache) {
+        for lanes in &self.lanes {
+            lanes.store_impulses(contacts.contacts_mut());
+        }
+    }
+}
