@@ -11,6 +11,7 @@ use crate::error::{
 };
 use crate::filter::InteractionGroups;
 use crate::mass::MassProperties;
+use crate::material::Material;
 use crate::math::{normalize_rotation, rotate_tensor, skew, Aabb, Mat3, Pose, Quat, Vec3};
 use crate::shape::Shape;
 
@@ -698,6 +699,23 @@ impl RigidBody {
         self.user_data = data;
     }
 
+    /// The surface material of compound child `child` (its own where it has one, else the
+    /// body's), or the body's for any other shape.
+    pub(crate) fn material_of_child(&self, child: u32) -> Material {
+        let own = match &self.shape {
+            Shape::Compound(compound) => compound.children().get(child as usize),
+            _ => None,
+        };
+        Material {
+            friction: own
+                .and_then(|child| child.friction)
+                .unwrap_or(self.friction),
+            restitution: own
+                .and_then(|child| child.restitution)
+                .unwrap_or(self.restitution),
+        }
+    }
+
     /// The force and torque this step applies: what the user applied since the last step plus
     /// the constant ones, with `r × F` of a constant force off the centre of mass
     /// (`r = R (p − c_local)`), N and N·m.
@@ -803,18 +821,27 @@ fn dynamic_mass_properties(desc: &BodyDesc) -> Result<(MassProperties, Mat3)> {
     Err(Error::new(field, ErrorKind::InvalidMass))
 }
 
-/// The inverse inertia, when the mass and the inertia are positive, finite and invertible. The
-/// inverse is taken in `f64`, whose determinant neither overflows for a large body nor underflows
-/// for a small one where the `f32` inertia and its inverse are both fine.
+/// The inverse inertia, when the mass and the inertia are positive, finite and invertible. Where
+/// the `f32` determinant overflows (a large body) or underflows (a small one) while the inertia
+/// and its inverse are both fine in `f32`, the inverse is taken in `f64`.
 fn inverse_inertia(properties: &MassProperties) -> Option<Mat3> {
     if !(properties.mass.is_finite() && properties.mass > 0.0 && properties.inertia.is_finite()) {
         return None;
+    }
+    let usable = |inverse: &Mat3| {
+        let diagonal = Vec3::new(inverse.x_axis.x, inverse.y_axis.y, inverse.z_axis.z);
+        inverse.is_finite() && diagonal.min_element() > 0.0
+    };
+    let determinant = properties.inertia.determinant();
+    if determinant.is_finite() && determinant > 0.0 {
+        let inverse = properties.inertia.inverse();
+        if usable(&inverse) {
+            return Some(inverse);
+        }
     }
     let inertia = properties.inertia.as_dmat3();
     if inertia.determinant() <= 0.0 {
         return None;
     }
-    let inverse = inertia.inverse().as_mat3();
-    let diagonal = Vec3::new(inverse.x_axis.x, inverse.y_axis.y, inverse.z_axis.z);
-    (inverse.is_finite() && diagonal.min_element() > 0.0).then_some(inverse)
+    Some(inertia.inverse().as_mat3()).filter(usable)
 }

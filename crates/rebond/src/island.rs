@@ -2,8 +2,9 @@
 //!
 //! After each step, awake dynamic bodies linked by contacts form islands (union–find over the
 //! contact list, roots the lowest slot, so the result never depends on anything but the input).
-//! A body is still while `|v| + r_max |ω|` stays below [`SLEEP_SPEED`]; an island all of whose
-//! bodies have been still for [`TIME_TO_SLEEP`] falls asleep as one group. Sleeping bodies are
+//! A body is still while `|v| + r_max |ω|` stays below the sleep speed; an island all of whose
+//! bodies have been still for the sleep time falls asleep as one group (both are settings,
+//! [`crate::WorldSettings::sleep_speed`] and [`crate::WorldSettings::sleep_time`]). Sleeping bodies are
 //! left out of the step; a group wakes whole when any member is touched by an awake body, pushed
 //! by the user, or loses a body it rested on.
 
@@ -11,13 +12,6 @@ use crate::arena::Arena;
 use crate::body::{BodyType, RigidBody};
 use crate::collision::contact_cache::Contact;
 use crate::math::Vec3;
-
-/// Speed below which a body counts as still, m/s: `|v| + r_max |ω|` with `r_max` the distance
-/// from its centre of mass to the farthest point of its bounding box.
-pub const SLEEP_SPEED: f32 = 0.05;
-
-/// How long an island must stay still before it sleeps, seconds.
-pub const TIME_TO_SLEEP: f32 = 0.5;
 
 /// Reused buffers of the island pass.
 #[derive(Debug, Clone, Default)]
@@ -82,9 +76,18 @@ impl Islands {
         }
     }
 
-    /// Builds this step's islands from `contacts`, advances every awake dynamic body's still time
-    /// by `dt`, and puts to sleep each island that has been still long enough.
-    pub fn update_sleep(&mut self, bodies: &mut Arena<RigidBody>, contacts: &[Contact], dt: f32) {
+    /// Builds this step's islands from `contacts`, advances by `dt` the still time of every
+    /// awake dynamic body slower than `sleep_speed` (m/s, `|v| + r_max |ω|` with `r_max` the
+    /// distance from its centre of mass to the farthest point of its bounding box), and puts to
+    /// sleep each island still for `sleep_time` seconds.
+    pub fn update_sleep(
+        &mut self,
+        bodies: &mut Arena<RigidBody>,
+        contacts: &[Contact],
+        dt: f32,
+        sleep_speed: f32,
+        sleep_time: f32,
+    ) {
         let slots = bodies
             .iter()
             .map(|(index, _)| index.slot() + 1)
@@ -111,7 +114,7 @@ impl Islands {
                 .any(|handle| {
                     bodies.get(handle.0).is_some_and(|body| {
                         body.body_type == BodyType::Kinematic
-                            && body.max_point_speed() > SLEEP_SPEED
+                            && body.max_point_speed() > sleep_speed
                     })
                 })
         });
@@ -124,7 +127,7 @@ impl Islands {
             if !body.is_dynamic() || body.sleeping {
                 continue;
             }
-            if !body.can_sleep || body.max_point_speed() > SLEEP_SPEED {
+            if !body.can_sleep || body.max_point_speed() > sleep_speed {
                 body.sleep_time = 0.0;
             } else {
                 body.sleep_time += dt;
@@ -146,7 +149,7 @@ impl Islands {
         }
         self.count = 0;
         for &(slot, root) in &self.members {
-            let falls_asleep = self.island_sleep_time[root] >= TIME_TO_SLEEP;
+            let falls_asleep = self.island_sleep_time[root] >= sleep_time;
             if slot == root && !falls_asleep {
                 self.count += 1;
             }

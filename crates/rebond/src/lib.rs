@@ -43,6 +43,7 @@ pub mod events;
 mod filter;
 mod island;
 mod mass;
+mod material;
 mod math;
 pub mod prelude;
 pub mod query;
@@ -59,6 +60,7 @@ pub use error::{Error, ErrorKind, Result};
 pub use events::{ContactEvent, ContactEventKind, ContactForceEvent, SensorEvent, SensorEventKind};
 pub use filter::InteractionGroups;
 pub use mass::MassProperties;
+pub use material::CombineRule;
 pub use math::{Aabb, Mat3, Pose, Quat, Vec3};
 pub use query::{QueryFilter, Ray, RayHit, ShapeHit};
 pub use shape::{CompoundChild, Shape};
@@ -77,10 +79,6 @@ pub mod internals {
     /// Math helpers.
     pub mod math {
         pub use crate::math::*;
-    }
-    /// Islands and sleeping.
-    pub mod island {
-        pub use crate::island::*;
     }
     /// Solver constants.
     pub mod solver {

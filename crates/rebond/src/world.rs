@@ -6,12 +6,15 @@ use crate::collision::broad_phase::BroadPhase;
 use crate::collision::contact_cache::{Contact, ContactCache};
 use crate::collision::narrow_phase::NarrowPhase;
 use crate::collision::SPECULATIVE_DISTANCE;
-use crate::error::{check_finite_vector, check_positive, Error, ErrorKind, Result};
+use crate::error::{
+    check_finite_vector, check_non_negative, check_positive, Error, ErrorKind, Result,
+};
 use crate::events::{ContactEvent, ContactForceEvent, EventTracker, SensorEvent};
 use crate::filter::{ordered, IgnoredPairs, InteractionGroups};
 use crate::island::Islands;
+use crate::material::{CombineRule, Material};
 use crate::math::{Aabb, Vec3};
-use crate::solver::{Solver, StepSettings};
+use crate::solver::{ContactSettings, Solver, StepSettings};
 
 /// Default gravity, m/s²: Earth's, along −Y.
 pub const DEFAULT_GRAVITY: Vec3 = Vec3::new(0.0, -9.81, 0.0);
@@ -24,7 +27,8 @@ pub const MAX_SUBSTEPS: u32 = 64;
 /// it keeps a runaway body's position finite.
 pub const DEFAULT_MAX_LINEAR_SPEED: f32 = 1000.0;
 
-/// World-wide settings.
+/// World-wide settings: what the step does, with units and defaults. Every value is checked
+/// when the world is made or the settings replaced; an error names the field.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WorldSettings {
     /// Gravity, m/s², default `[0, −9.81, 0]`.
@@ -34,6 +38,32 @@ pub struct WorldSettings {
     /// Speed limit of every body's centre of mass, m/s, default [`DEFAULT_MAX_LINEAR_SPEED`].
     /// Angular speed is limited too, to a quarter turn per substep.
     pub max_linear_speed: f32,
+    /// Stiffness of contacts, Hz, > 0, default 120: a contact is a spring of this frequency for
+    /// the two bodies' effective mass, `k = m_eff (2π f)²`, so a load sags it by `load / k`.
+    /// Capped at a quarter of the substep rate (`ω h ≤ π/2`), where the spring stays stable:
+    /// 60 Hz at 4 substeps of a 60 Hz step, 120 Hz from 8.
+    pub contact_hertz: f32,
+    /// Damping ratio of the contact spring, ≥ 0, default 5 (over-damped: corrections do not
+    /// bounce).
+    pub contact_damping_ratio: f32,
+    /// Fastest a contact pushes overlapping bodies apart, m/s, > 0, default 3.
+    pub contact_push_speed: f32,
+    /// Bodies approaching slower than this, m/s, ≥ 0, do not bounce, default 1 (so resting
+    /// bodies do not jitter); 0 makes every approach with restitution bounce.
+    pub restitution_threshold: f32,
+    /// Contact points are made while two surfaces are still this far apart, m, ≥ 0, default
+    /// 0.02, plus the distance they can close in one step, so the solver stops approaching bodies
+    /// before they touch.
+    pub speculative_distance: f32,
+    /// A body slower than this counts as still, m/s, ≥ 0, default 0.05: the speed of its
+    /// fastest point, `|v| + r_max |ω|`.
+    pub sleep_speed: f32,
+    /// How long an island must stay still before it falls asleep, s, ≥ 0, default 0.5.
+    pub sleep_time: f32,
+    /// How two surfaces' friction coefficients combine, default [`CombineRule::GeometricMean`].
+    pub friction_combine: CombineRule,
+    /// How two surfaces' restitutions combine, default [`CombineRule::Max`].
+    pub restitution_combine: CombineRule,
 }
 
 impl Default for WorldSettings {
@@ -42,6 +72,15 @@ impl Default for WorldSettings {
             gravity: DEFAULT_GRAVITY,
             substeps: DEFAULT_SUBSTEPS,
             max_linear_speed: DEFAULT_MAX_LINEAR_SPEED,
+            contact_hertz: 120.0,
+            contact_damping_ratio: 5.0,
+            contact_push_speed: 3.0,
+            restitution_threshold: 1.0,
+            speculative_distance: SPECULATIVE_DISTANCE,
+            sleep_speed: 0.05,
+            sleep_time: 0.5,
+            friction_combine: CombineRule::GeometricMean,
+            restitution_combine: CombineRule::Max,
         }
     }
 }
@@ -60,6 +99,13 @@ impl WorldSettings {
                 },
             ));
         }
+        check_positive("contact_hertz", self.contact_hertz)?;
+        check_non_negative("contact_damping_ratio", self.contact_damping_ratio)?;
+        check_positive("contact_push_speed", self.contact_push_speed)?;
+        check_non_negative("restitution_threshold", self.restitution_threshold)?;
+        check_non_negative("speculative_distance", self.speculative_distance)?;
+        check_non_negative("sleep_speed", self.sleep_speed)?;
+        check_non_negative("sleep_time", self.sleep_time)?;
         Ok(())
     }
 }
@@ -261,7 +307,7 @@ impl World {
     }
 
     /// Number of contact points in this step's manifolds, speculative ones (bodies still apart by
-    /// less than [`SPECULATIVE_DISTANCE`]) included.
+    /// less than [`WorldSettings::speculative_distance`]) included.
     pub fn contact_count(&self) -> usize {
         self.contacts
             .contacts()
@@ -349,14 +395,25 @@ impl World {
                 substeps: self.settings.substeps,
                 gravity: self.settings.gravity,
                 max_linear_speed: self.settings.max_linear_speed,
+                contact: ContactSettings {
+                    hertz: self.settings.contact_hertz,
+                    damping_ratio: self.settings.contact_damping_ratio,
+                    push_speed: self.settings.contact_push_speed,
+                    restitution_threshold: self.settings.restitution_threshold,
+                },
             },
         );
         let substep_length = dt / self.settings.substeps as f32;
         self.events
             .update_contacts(self.contacts.contacts(), &self.bodies, substep_length);
         self.events.finish_sensor_step(&self.bodies);
-        self.islands
-            .update_sleep(&mut self.bodies, self.contacts.contacts(), dt);
+        self.islands.update_sleep(
+            &mut self.bodies,
+            self.contacts.contacts(),
+            dt,
+            self.settings.sleep_speed,
+            self.settings.sleep_time,
+        );
         Ok(())
     }
 }
@@ -370,10 +427,12 @@ impl World {
     /// rebuilds them instead ([`ContactCache::recycle`]).
     ///
     /// The contact margin of a pair grows with how fast its bodies move, so that two bodies
-    /// closing in within this step already have speculative points: [`SPECULATIVE_DISTANCE`] plus
+    /// closing in within this step already have speculative points:
+    /// [`WorldSettings::speculative_distance`] plus
     /// `dt · (|v_A − v_B| + |ω_A| r_A + |ω_B| r_B)`.
     fn update_contacts(&mut self, dt: f32) {
         let Self {
+            settings,
             bodies,
             broad_phase,
             contacts,
@@ -438,7 +497,7 @@ impl World {
             if contacts.recycle(body_a_handle, body_b_handle, &pose_a, &pose_b) {
                 continue;
             }
-            let margin = SPECULATIVE_DISTANCE + dt * closing_speed_bound(body_a, body_b);
+            let margin = settings.speculative_distance + dt * closing_speed_bound(body_a, body_b);
             if !bounds_within(
                 &bounds_of_slot[key_a as usize],
                 &bounds_of_slot[key_b as usize],
@@ -457,11 +516,19 @@ impl World {
             );
         }
         contacts.finish_step();
-        for contact in contacts.contacts() {
+        for contact in contacts.contacts_mut() {
             if contact.manifold.is_empty() {
                 continue;
             }
             let (a, b) = (contact.key.body_a, contact.key.body_b);
+            if let (Some(body_a), Some(body_b)) = (bodies.get(a.0), bodies.get(b.0)) {
+                contact.material = Material::combine(
+                    body_a.material_of_child(contact.key.child_a),
+                    body_b.material_of_child(contact.key.child_b),
+                    settings.friction_combine,
+                    settings.restitution_combine,
+                );
+            }
             for (sleeper, toucher) in [(a, b), (b, a)] {
                 let toucher_awake = bodies.get(toucher.0).is_some_and(RigidBody::is_awake_mover);
                 if let Some(body) = bodies.get_mut(sleeper.0) {

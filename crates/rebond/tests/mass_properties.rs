@@ -170,14 +170,8 @@ fn compound_of_two_boxes_follows_the_parallel_axis_theorem() {
     let density = 300.0;
     let offset = Vec3::new(1.0, 2.0, -0.5);
     let compound = Shape::compound(vec![
-        CompoundChild {
-            pose: Pose::from_position(offset),
-            shape: Shape::cuboid(half).unwrap(),
-        },
-        CompoundChild {
-            pose: Pose::from_position(-offset),
-            shape: Shape::cuboid(half).unwrap(),
-        },
+        CompoundChild::new(Shape::cuboid(half).unwrap(), Pose::from_position(offset)),
+        CompoundChild::new(Shape::cuboid(half).unwrap(), Pose::from_position(-offset)),
     ])
     .unwrap();
     let single = Shape::cuboid(half)
@@ -203,10 +197,10 @@ fn compound_of_two_boxes_follows_the_parallel_axis_theorem() {
 fn rotated_compound_child_rotates_its_inertia() {
     let half = Vec3::new(0.2, 0.6, 1.0);
     let rotation = Quat::from_axis_angle(Vec3::new(1.0, 1.0, 0.0).normalize(), 0.7);
-    let compound = Shape::compound(vec![CompoundChild {
-        pose: Pose::new(Vec3::new(0.0, 3.0, 0.0), rotation),
-        shape: Shape::cuboid(half).unwrap(),
-    }])
+    let compound = Shape::compound(vec![CompoundChild::new(
+        Shape::cuboid(half).unwrap(),
+        Pose::new(Vec3::new(0.0, 3.0, 0.0), rotation),
+    )])
     .unwrap();
     let properties = compound.mass_properties(1.0).unwrap();
     let single = Shape::cuboid(half).unwrap().mass_properties(1.0).unwrap();
@@ -240,10 +234,10 @@ fn given_mass_scales_inertia() {
 fn centre_of_mass_off_the_origin_is_integrated_and_the_origin_reported() {
     // A compound whose mass sits 1 m along +X of the body origin, spinning about its centre of
     // mass: the centre stays put while the origin circles it at 1 m.
-    let compound = Shape::compound(vec![CompoundChild {
-        pose: Pose::from_position(Vec3::new(1.0, 0.0, 0.0)),
-        shape: Shape::sphere(0.5).unwrap(),
-    }])
+    let compound = Shape::compound(vec![CompoundChild::new(
+        Shape::sphere(0.5).unwrap(),
+        Pose::from_position(Vec3::new(1.0, 0.0, 0.0)),
+    )])
     .unwrap();
     let settings = WorldSettings {
         gravity: Vec3::ZERO,

@@ -337,14 +337,14 @@ fn halfspace_against_every_shape() {
 /// centred at (0.9, 0, 0): both bottoms at y = −0.3, so both rest on the ground together.
 fn box_and_ball() -> Shape {
     Shape::compound(vec![
-        CompoundChild {
-            pose: Pose::IDENTITY,
-            shape: Shape::cuboid(Vec3::new(0.5, 0.3, 0.5)).expect("box"),
-        },
-        CompoundChild {
-            pose: Pose::from_position(Vec3::new(0.9, 0.0, 0.0)),
-            shape: Shape::sphere(0.3).expect("ball"),
-        },
+        CompoundChild::new(
+            Shape::cuboid(Vec3::new(0.5, 0.3, 0.5)).expect("box"),
+            Pose::IDENTITY,
+        ),
+        CompoundChild::new(
+            Shape::sphere(0.3).expect("ball"),
+            Pose::from_position(Vec3::new(0.9, 0.0, 0.0)),
+        ),
     ])
     .expect("compound")
 }
@@ -409,7 +409,7 @@ fn check_compound_on(ground: &Shape) {
                 .collect();
             assert_eq!(children_b, [0, 1], "{context}");
             for ((_, child, manifold), count) in below.iter().zip([4, 1]) {
-                let CompoundChild { pose, shape } = &children[*child as usize];
+                let CompoundChild { pose, shape, .. } = &children[*child as usize];
                 let stack = Stack {
                     below: ground,
                     above: shape,

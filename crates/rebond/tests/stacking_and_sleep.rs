@@ -4,8 +4,7 @@
 mod common;
 
 use common::{add_ground, run, unit_box, world, DT, G};
-use rebond::internals::solver::contact_model::{CONTACT_HERTZ, CONTACT_HERTZ_PER_SUBSTEP_RATE};
-use rebond::DEFAULT_SUBSTEPS;
+use rebond::internals::solver::contact_model::CONTACT_HERTZ_PER_SUBSTEP_RATE;
 use rebond::{BodyDesc, BodyHandle, Quat, Shape, Vec3, World, WorldSettings};
 
 /// Largest distance any body moved from its start over `seconds`.
@@ -32,7 +31,10 @@ fn add_boxes(
 
 /// The contacts' spring frequency at the default substeps of a 60 Hz step, Hz (120).
 fn default_contact_hertz() -> f32 {
-    CONTACT_HERTZ.min(CONTACT_HERTZ_PER_SUBSTEP_RATE * DEFAULT_SUBSTEPS as f32 / DT)
+    let settings = WorldSettings::default();
+    settings
+        .contact_hertz
+        .min(CONTACT_HERTZ_PER_SUBSTEP_RATE * settings.substeps as f32 / DT)
 }
 
 // Stacks: each resting contact sags by its load over the contact spring's stiffness (0.035 mm

@@ -72,7 +72,7 @@ fn degenerate_hulls_are_refused() {
 #[test]
 fn compounds_need_valid_children() {
     assert_eq!(field_of(Compound::new(Vec::new())).0, "children");
-    let child = |pose: Pose, shape: Shape| CompoundChild { pose, shape };
+    let child = |pose: Pose, shape: Shape| CompoundChild::new(shape, pose);
     let nested = Shape::compound(vec![child(Pose::IDENTITY, unit_box())]).unwrap();
     let cases = [
         (child(Pose::IDENTITY, nested), "children[1].shape"),

@@ -225,14 +225,14 @@ mod tests {
         ])
         .expect("a pyramid");
         let compound = Shape::compound(vec![
-            CompoundChild {
-                pose: Pose::from_position(Vec3::new(-1.0, 0.0, 0.0)),
-                shape: Shape::sphere(0.4).expect("a sphere"),
-            },
-            CompoundChild {
-                pose: Pose::new(Vec3::ZERO, Quat::from_rotation_z(FRAC_PI_2)),
-                shape: Shape::cylinder(0.1, 1.0).expect("a cylinder"),
-            },
+            CompoundChild::new(
+                Shape::sphere(0.4).expect("a sphere"),
+                Pose::from_position(Vec3::new(-1.0, 0.0, 0.0)),
+            ),
+            CompoundChild::new(
+                Shape::cylinder(0.1, 1.0).expect("a cylinder"),
+                Pose::new(Vec3::ZERO, Quat::from_rotation_z(FRAC_PI_2)),
+            ),
         ])
         .expect("a compound");
         vec![

@@ -234,10 +234,10 @@ mod tests {
             Vec3::new(0.0, 2.0, 0.0),
         ])
         .expect("a tetrahedron");
-        let compound = Shape::compound(vec![CompoundChild {
-            pose: Pose::from_position(Vec3::new(0.0, 1.0, 0.0)),
-            shape: Shape::sphere(0.5).expect("a sphere"),
-        }])
+        let compound = Shape::compound(vec![CompoundChild::new(
+            Shape::sphere(0.5).expect("a sphere"),
+            Pose::from_position(Vec3::new(0.0, 1.0, 0.0)),
+        )])
         .expect("a compound");
         let cases = [
             (Shape::sphere(1.0), 9.0),

@@ -306,6 +306,30 @@ fn zero_quaternions_are_refused() {
         "bodies[1].shape.children[0].rotation",
         "quaternion has zero length",
     );
+    assert_refused(
+        "negative_child_friction",
+        &scene_with(
+            r#"{"shape": {"type": "compound", "children": [
+                {"shape": {"type": "sphere", "radius": 1}, "friction": -0.5}]}}"#,
+        ),
+        "bodies[1].shape.children[0].friction",
+        "must not be negative, got -0.5",
+    );
+    assert_refused(
+        "child_restitution_above_one",
+        &scene_with(
+            r#"{"shape": {"type": "compound", "children": [
+                {"shape": {"type": "sphere", "radius": 1}, "restitution": 1.5}]}}"#,
+        ),
+        "bodies[1].shape.children[0].restitution",
+        "must lie between 0 and 1, got 1.5",
+    );
+    assert_refused(
+        "negative_restitution_threshold",
+        r#"{"restitution_threshold": -1, "bodies": []}"#,
+        "restitution_threshold",
+        "must not be negative, got -1",
+    );
 }
 
 #[test]

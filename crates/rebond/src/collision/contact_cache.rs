@@ -6,6 +6,7 @@ use std::ops::Range;
 use super::manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
 use super::narrow_phase::{PartCache, PartContacts};
 use crate::body::BodyHandle;
+use crate::material::Material;
 use crate::math::{Pose, Vec3, Vec3A};
 use glam::Mat3A;
 
@@ -126,6 +127,9 @@ pub struct Contact {
     pub(crate) friction_impulse: Vec3,
     /// Angular friction impulse about the normal, N·m·s.
     pub(crate) twist_impulse: f32,
+    /// The surfaces' friction and restitution combined by the world's rules; set by the world
+    /// each step, once the contact is made.
+    pub(crate) material: Material,
     /// Where the manifold was computed.
     pub(crate) frame: ManifoldFrame,
     /// Where the cache keeps what the query that computed the manifold left for the next one
@@ -174,6 +178,18 @@ impl Contact {
     /// The twisting friction impulse about the normal in the last step, N·m·s.
     pub fn twist_impulse(&self) -> f32 {
         self.twist_impulse
+    }
+
+    /// The contact's Coulomb friction coefficient: the two surfaces' combined by
+    /// [`WorldSettings::friction_combine`](crate::WorldSettings::friction_combine).
+    pub fn friction(&self) -> f32 {
+        self.material.friction
+    }
+
+    /// The contact's restitution: the two surfaces' combined by
+    /// [`WorldSettings::restitution_combine`](crate::WorldSettings::restitution_combine).
+    pub fn restitution(&self) -> f32 {
+        self.material.restitution
     }
 }
 
@@ -225,6 +241,7 @@ impl ContactCache {
             normal_impulses: [0.0; MAX_MANIFOLD_POINTS],
             friction_impulse: Vec3::ZERO,
             twist_impulse: 0.0,
+            material: Material::NONE,
             frame: ManifoldFrame::new(&manifold, pose_a, pose_b),
             part_cache,
             fresh: true,

@@ -226,8 +226,15 @@ fn compound_child(entry: &ChildEntry, place: &str) -> Result<CompoundChild, Scen
         Some(value) => rotation(&format!("{place}.rotation"), value)?,
         None => Quat::IDENTITY,
     };
-    Ok(CompoundChild {
-        pose: Pose::new(position, rotation),
-        shape: shape(&entry.shape, &format!("{place}.shape"))?,
-    })
+    let mut child = CompoundChild::new(
+        shape(&entry.shape, &format!("{place}.shape"))?,
+        Pose::new(position, rotation),
+    );
+    if let Some(value) = entry.friction {
+        child.friction = Some(scalar(&format!("{place}.friction"), value)?);
+    }
+    if let Some(value) = entry.restitution {
+        child.restitution = Some(scalar(&format!("{place}.restitution"), value)?);
+    }
+    Ok(child)
 }

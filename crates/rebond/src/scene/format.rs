@@ -58,6 +58,7 @@ pub(super) struct SceneFile {
     pub(super) gravity: Option<[f64; 3]>,
     pub(super) timestep: Option<f64>,
     pub(super) substeps: Option<u32>,
+    pub(super) restitution_threshold: Option<f64>,
     pub(super) bodies: Vec<JsonObject<BodyEntry>>,
 }
 
@@ -194,6 +195,8 @@ pub(super) struct ChildEntry {
     pub(super) shape: JsonObject<ShapeEntry>,
     pub(super) position: Option<[f64; 3]>,
     pub(super) rotation: Option<[f64; 4]>,
+    pub(super) friction: Option<f64>,
+    pub(super) restitution: Option<f64>,
 }
 
 #[cfg(test)]

@@ -35,7 +35,7 @@ use std::path::{Path, PathBuf};
 
 use crate::body::{BodyHandle, RigidBody};
 use crate::world::{World, WorldSettings};
-use convert::{body_desc, timestep, vector};
+use convert::{body_desc, scalar, timestep, vector};
 use format::{JsonObject, SceneFile};
 
 /// Default seconds per step when a scene leaves `timestep` out.
@@ -168,11 +168,14 @@ impl Scene {
             Some(gravity) => vector("gravity", gravity)?,
             None => crate::DEFAULT_GRAVITY,
         };
-        let settings = WorldSettings {
+        let mut settings = WorldSettings {
             gravity,
             substeps: file.substeps.unwrap_or(crate::DEFAULT_SUBSTEPS),
             ..WorldSettings::default()
         };
+        if let Some(value) = file.restitution_threshold {
+            settings.restitution_threshold = scalar("restitution_threshold", value)?;
+        }
         let mut world = World::new(settings)?;
         let mut bodies = Vec::with_capacity(file.bodies.len());
         let mut indices_by_name: HashMap<String, usize> = HashMap::new();

@@ -1,24 +1,47 @@
 //! Compound: several convex shapes rigidly attached to one body.
 
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{check_non_negative, check_range, Error, ErrorKind, Result};
 use crate::mass::MassProperties;
 use crate::math::{normalize_rotation, Aabb, Pose, Vec3};
 
 use super::Shape;
 
-/// One child of a compound: a convex shape and its pose in the body frame.
+/// One child of a compound: a convex shape, its pose in the body frame, and optionally a
+/// surface material of its own.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CompoundChild {
     /// Where the child sits in the body frame.
     pub pose: Pose,
     /// The child's shape; never a compound or a halfspace.
     pub shape: Shape,
+    /// The child's Coulomb friction coefficient, ≥ 0; `None` (the default) for the body's.
+    pub friction: Option<f32>,
+    /// The child's coefficient of restitution, 0 to 1; `None` (the default) for the body's.
+    pub restitution: Option<f32>,
 }
 
 impl CompoundChild {
-    /// `shape` placed at `pose` in the body frame ([`Compound::new`] checks both).
+    /// `shape` placed at `pose` in the body frame, with the body's material
+    /// ([`Compound::new`] checks every value).
     pub fn new(shape: Shape, pose: Pose) -> Self {
-        Self { pose, shape }
+        Self {
+            pose,
+            shape,
+            friction: None,
+            restitution: None,
+        }
+    }
+
+    /// Gives the child a friction coefficient of its own.
+    pub fn friction(mut self, friction: f32) -> Self {
+        self.friction = Some(friction);
+        self
+    }
+
+    /// Gives the child a restitution of its own.
+    pub fn restitution(mut self, restitution: f32) -> Self {
+        self.restitution = Some(restitution);
+        self
     }
 }
 
@@ -30,8 +53,9 @@ pub struct Compound {
 
 impl Compound {
     /// A compound of at least one child. Child poses must be finite (their rotations are
-    /// normalised here); a child may not be a compound or a halfspace. Errors name the field as
-    /// `children[i].position`, `children[i].rotation` or `children[i].shape`.
+    /// normalised here), their materials in range; a child may not be a compound or a
+    /// halfspace. Errors name the field as `children[i].position`, `children[i].rotation`,
+    /// `children[i].friction`, `children[i].restitution` or `children[i].shape`.
     pub fn new(mut children: Vec<CompoundChild>) -> Result<Self> {
         if children.is_empty() {
             return Err(Error::new(
@@ -49,6 +73,13 @@ impl Compound {
             }
             child.pose.rotation = normalize_rotation("rotation", child.pose.rotation)
                 .map_err(|error| error.within(&place))?;
+            if let Some(friction) = child.friction {
+                check_non_negative("friction", friction).map_err(|error| error.within(&place))?;
+            }
+            if let Some(restitution) = child.restitution {
+                check_range("restitution", restitution, 0.0, 1.0)
+                    .map_err(|error| error.within(&place))?;
+            }
             let reason = match child.shape {
                 Shape::Compound(_) => Some("a child may not be a compound"),
                 Shape::Halfspace(_) => Some("a child may not be a halfspace"),

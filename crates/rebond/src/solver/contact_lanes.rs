@@ -10,16 +10,13 @@
 //! contacts, and their impulses go straight back to the contacts. Each point's normal and the two
 //! friction directions are axis parts (`parts.rs`).
 
-use super::contact_model::{
-    combine_friction, combine_restitution, MAX_PUSH_SPEED, RESTITUTION_THRESHOLD,
-};
 use super::parts::{inverse_or_zero, BodyFrame, BodyLanes, JacobianLanes};
 use super::softness::Softness;
 use super::wide::{F32x4, Vec3x4, LANES};
 use super::{BodyMotion, BodyState};
-use crate::body::RigidBody;
 use crate::collision::contact_cache::Contact;
 use crate::collision::MAX_MANIFOLD_POINTS;
+use crate::material::Material;
 use crate::math::Vec3A;
 
 /// What a solver pass reads of its bodies: both sides' spins and rotations, but of the linear
@@ -84,14 +81,13 @@ impl PassLanes {
 }
 
 /// One contact to put into a lane: the contact, its index in the contact cache, its solver
-/// bodies and the two bodies, for their materials and poses.
+/// bodies.
 #[derive(Clone, Copy)]
 pub(crate) struct LaneContact<'a> {
     pub contact: &'a Contact,
     pub index: usize,
     pub body_a: usize,
     pub body_b: usize,
-    pub materials: (&'a RigidBody, &'a RigidBody),
 }
 
 /// Pairs of distinct points in a manifold.
@@ -293,7 +289,6 @@ impl ContactLanes {
             index,
             body_a,
             body_b,
-            materials: (material_a, material_b),
         } = *lane_contact;
         self.contacts[lane] = index;
         self.body_a[lane] = body_a;
@@ -307,8 +302,10 @@ impl ContactLanes {
         self.normal.set_lane(lane, normal);
         self.tangents[0].set_lane(lane, tangent_1);
         self.tangents[1].set_lane(lane, tangent_2);
-        let restitution = combine_restitution(material_a.restitution, material_b.restitution);
-        let friction = combine_friction(material_a.friction, material_b.friction);
+        let Material {
+            friction,
+            restitution,
+        } = contact.material;
         self.friction.set_lane(lane, friction);
         self.restitution.set_lane(lane, restitution);
         self.bounces |= restitution > 0.0;
@@ -326,10 +323,10 @@ impl ContactLanes {
         self.twist_impulse.set_lane(lane, contact.twist_impulse);
     }
 
-    /// After the substeps: points that were approaching faster than [`RESTITUTION_THRESHOLD`] and
+    /// After the substeps: points that were approaching faster than `restitution_threshold` and
     /// pushed this step leave with `v_n = −e · v_n,start`, where their lane's restitution `e` is
     /// above zero; elsewhere the impulse is zero.
-    pub fn apply_restitution(&mut self, states: &mut [BodyState]) {
+    pub fn apply_restitution(&mut self, states: &mut [BodyState], restitution_threshold: f32) {
         if !self.bounces {
             return;
         }
@@ -338,7 +335,7 @@ impl ContactLanes {
         let masses = self.inverse_masses();
         let normal = self.normal;
         let elastic = self.restitution.greater_than(F32x4::ZERO);
-        let slow = F32x4::splat(-RESTITUTION_THRESHOLD);
+        let slow = F32x4::splat(-restitution_threshold);
         for point in &mut self.points[..self.point_count] {
             let bounces = point
                 .max_normal_impulse
@@ -428,13 +425,14 @@ impl ContactLanes {
     /// separation at those poses, `s = s₀ + n·(Δc_B − Δc_A) + Δθ_B·(r_B × n) − Δθ_A·(r_A × n)`,
     /// asks of its normal impulse. Apart (`s > 0`), the point is rigid and may close by `s` this
     /// substep (speculative contact), so a touchdown is perfectly inelastic. Penetrating, it is
-    /// a soft constraint pushing out at `bias_rate · s`, at most [`MAX_PUSH_SPEED`], at every
+    /// a soft constraint pushing out at `bias_rate · s`, at most `push_speed`, at every
     /// depth: no dead zone, in which a resting contact would hold no position and stacks would
     /// wander (docs/physics.md, "Position correction").
     pub fn prepare_biased_passes(
         &mut self,
         states: &[BodyState],
         softness: &Softness,
+        push_speed: f32,
         inverse_h: f32,
     ) {
         let bodies = PassLanes::gather(states, &self.body_a, &self.body_b);
@@ -444,7 +442,7 @@ impl ContactLanes {
             let separation = point.separation(&bodies, normal_motion);
             let apart = separation.greater_than(F32x4::ZERO);
             let push =
-                (F32x4::splat(softness.bias_rate) * separation).max(F32x4::splat(-MAX_PUSH_SPEED));
+                (F32x4::splat(softness.bias_rate) * separation).max(F32x4::splat(-push_speed));
             let mass_scale = apart.select(F32x4::ONE, F32x4::splat(softness.mass_scale));
             point.target = PointTarget {
                 bias: apart.select(separation * inverse_h, push),

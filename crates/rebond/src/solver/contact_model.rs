@@ -1,48 +1,44 @@
 //! The contact model: contact constraints solved by sequential impulses with accumulated
 //! clamping, soft position correction, Coulomb friction and restitution (`contact_lanes.rs`
-//! builds and solves them), and its constants.
+//! builds and solves them), and what sets them (the world's settings, the stability cap).
 //!
-//! Friction acts on the whole manifold at once, at the centre of its points, as Box3D and Jolt
-//! do: two tangent impulses clamped together to the cone `|λ_t| ≤ μ Σλ_n`, and a twist impulse
-//! about the normal clamped to `μ Σλ_n r̄` (`r̄` the mean distance of the points from their
-//! centre). Measured against friction at each point (which Gauss–Seidel solves one point after
-//! another), a box sliding down a 35° incline with μ = 0.5 then decelerates at the closed-form
-//! rate instead of 5 % too little, and no longer starts to spin about the normal. Friction is
-//! solved in the relax pass only: friction reacting to the position correction's velocities
-//! feeds the lean of tall stacks (docs/physics.md).
+//! Friction acts on the whole manifold at once, at the centre of its points (rapier's simplified
+//! friction model): two tangent impulses clamped together to the cone `|λ_t| ≤ μ Σλ_n`, and a
+//! twist impulse about the normal clamped to `μ Σλ_n r̄` (`r̄` the mean distance of the points
+//! from their centre, an approximation that overstates the spinning friction of a uniformly
+//! pressed patch). Against friction at each point, solved by Gauss–Seidel one point after
+//! another, a box sliding down an incline decelerates at the closed-form rate and does not start
+//! to spin about the normal. Friction is solved in the relax pass only: friction reacting to the
+//! position correction's velocities feeds the lean of tall stacks (docs/physics.md). Each
+//! contact carries its combined friction and restitution (`Contact::material`).
 
-/// Bodies approaching faster than this, m/s, bounce with their restitution; slower ones stay
-/// down, so resting bodies do not jitter.
-pub const RESTITUTION_THRESHOLD: f32 = 1.0;
+use super::softness::Softness;
 
-/// Fastest a soft contact pushes overlapping bodies apart, m/s.
-pub const MAX_PUSH_SPEED: f32 = 3.0;
-
-/// Stiffness of contacts, Hz, capped at [`CONTACT_HERTZ_PER_SUBSTEP_RATE`] of the substep rate so
-/// the spring stays stable: 60 Hz at 4 substeps of a 60 Hz step, 120 Hz from 8 (the default).
-/// A contact's steady sag under a load is `load / (m_eff ω²)`: between two unit boxes, 0.14 mm
-/// per box resting on it at 60 Hz, 0.035 mm at 120 Hz. Stiffer contacts also let taller stacks
-/// stand: a stack of soft contacts leans under its own weight and buckles past a height that
-/// grows with the stiffness (docs/physics.md, "Soft stacks lean").
-pub const CONTACT_HERTZ: f32 = 120.0;
-
-/// Largest contact frequency as a fraction of the substep rate, `ω h ≤ π / 2` (Box2D's cap): 60 Hz
-/// at 4 substeps at 60 Hz. A 20-box column of unit boxes buckles below about 47 Hz
-/// (docs/physics.md); at the former cap of 1/8, 30 Hz, it toppled.
+/// Largest contact frequency as a fraction of the substep rate, `ω h ≤ π / 2` (Box2D's cap): a
+/// stiffer spring is unstable in the soft step. 60 Hz at 4 substeps of a 60 Hz step, 120 Hz at 8.
 pub const CONTACT_HERTZ_PER_SUBSTEP_RATE: f32 = 0.25;
 
-/// Damping ratio of contacts: over-damped, so corrections never bounce. At 4 substeps a 20-box
-/// column rocked at up to 0.2 m/s with 10 and stayed within 0.05 m/s with 5 (measured with the
-/// former rigid zone within a 1 mm slop; without it, both come to rest).
-pub const CONTACT_DAMPING_RATIO: f32 = 5.0;
-
-/// How two bodies' friction coefficients combine: the geometric mean `√(μ_A μ_B)` (equal values
-/// give that value; a frictionless body makes the contact frictionless).
-pub fn combine_friction(a: f32, b: f32) -> f32 {
-    (a * b).sqrt()
+/// What the world's settings say about contacts, for one step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ContactSettings {
+    /// The contact spring's frequency, Hz, before the cap.
+    pub hertz: f32,
+    /// The spring's damping ratio.
+    pub damping_ratio: f32,
+    /// Fastest push-out of overlapping bodies, m/s.
+    pub push_speed: f32,
+    /// Approach speed below which nothing bounces, m/s.
+    pub restitution_threshold: f32,
 }
 
-/// How two bodies' restitutions combine: the larger one (a bouncy ball bounces on anything).
-pub fn combine_restitution(a: f32, b: f32) -> f32 {
-    a.max(b)
+impl ContactSettings {
+    /// The contact spring for substep `h` (`1/h` = `inverse_h`), at most
+    /// [`CONTACT_HERTZ_PER_SUBSTEP_RATE`] of the substep rate.
+    pub fn softness(&self, h: f32, inverse_h: f32) -> Softness {
+        Softness::new(
+            self.hertz.min(CONTACT_HERTZ_PER_SUBSTEP_RATE * inverse_h),
+            self.damping_ratio,
+            h,
+        )
+    }
 }

@@ -3,7 +3,6 @@
 //! (`contact_lanes.rs`), the lane sets in order.
 
 use super::contact_lanes::{ContactLanes, LaneContact};
-use super::contact_model::{CONTACT_DAMPING_RATIO, CONTACT_HERTZ, CONTACT_HERTZ_PER_SUBSTEP_RATE};
 use super::graph_colour::GraphColouring;
 use super::softness::Softness;
 use super::stages::{ConstraintKind, StepContext};
@@ -24,6 +23,8 @@ pub(crate) struct ContactConstraints {
     lanes: Vec<ContactLanes>,
     /// The contacts' spring for this step's substep.
     softness: Softness,
+    /// Approach speed below which nothing bounces, m/s.
+    restitution_threshold: f32,
 }
 
 impl ContactConstraints {
@@ -38,8 +39,7 @@ impl ContactConstraints {
         self.pairs.clear();
         self.pair_contacts.clear();
         for (contact_index, contact) in contacts.contacts().iter().enumerate() {
-            if let Some((solver_a, solver_b, _)) = constraint_bodies(bodies, solver_bodies, contact)
-            {
+            if let Some((solver_a, solver_b)) = constraint_bodies(bodies, solver_bodies, contact) {
                 self.pairs.push((solver_a, solver_b));
                 self.pair_contacts.push(contact_index);
             }
@@ -49,28 +49,24 @@ impl ContactConstraints {
     }
 }
 
-/// The solver bodies of `contact` and its two bodies, or `None` when neither moves this step (or
-/// a body is gone).
-fn constraint_bodies<'a>(
-    bodies: &'a Arena<RigidBody>,
+/// The solver bodies of `contact`, or `None` when neither moves this step (or a body is gone).
+fn constraint_bodies(
+    bodies: &Arena<RigidBody>,
     solver_bodies: &SolverBodies,
     contact: &Contact,
-) -> Option<(usize, usize, (&'a RigidBody, &'a RigidBody))> {
+) -> Option<(usize, usize)> {
     let solver_a = solver_bodies.solver_index(contact.key.body_a.slot());
     let solver_b = solver_bodies.solver_index(contact.key.body_b.slot());
-    if solver_a == solver_b {
-        return None;
-    }
-    let body_a = bodies.get(contact.key.body_a.0)?;
-    let body_b = bodies.get(contact.key.body_b.0)?;
-    Some((solver_a, solver_b, (body_a, body_b)))
+    let present =
+        bodies.get(contact.key.body_a.0).is_some() && bodies.get(contact.key.body_b.0).is_some();
+    (solver_a != solver_b && present).then_some((solver_a, solver_b))
 }
 
 impl ConstraintKind for ContactConstraints {
     type Source = ContactCache;
 
     /// Colours the contacts and builds the lane sets straight from them, lane by lane; sets the
-    /// contacts' spring, at most [`CONTACT_HERTZ_PER_SUBSTEP_RATE`] of the substep rate.
+    /// contacts' spring, at most [`CONTACT_HERTZ_PER_SUBSTEP_RATE`](super::contact_model::CONTACT_HERTZ_PER_SUBSTEP_RATE) of the substep rate.
     fn prepare(
         &mut self,
         contacts: &ContactCache,
@@ -84,25 +80,20 @@ impl ConstraintKind for ContactConstraints {
             let lane_contacts = lane_set.iter().filter_map(|&pair| {
                 let index = self.pair_contacts[pair];
                 let contact = &contacts.contacts()[index];
-                let (body_a, body_b, materials) =
-                    constraint_bodies(bodies, solver_bodies, contact)?;
+                let (body_a, body_b) = constraint_bodies(bodies, solver_bodies, contact)?;
                 Some(LaneContact {
                     contact,
                     index,
                     body_a,
                     body_b,
-                    materials,
                 })
             });
             let index = self.lanes.len();
             self.lanes.push(ContactLanes::EMPTY);
             self.lanes[index].fill(lane_contacts, &solver_bodies.states, &solver_bodies.motions);
         }
-        self.softness = Softness::new(
-            CONTACT_HERTZ.min(CONTACT_HERTZ_PER_SUBSTEP_RATE * context.inverse_h),
-            CONTACT_DAMPING_RATIO,
-            context.h,
-        );
+        self.softness = context.contact.softness(context.h, context.inverse_h);
+        self.restitution_threshold = context.contact.restitution_threshold;
     }
 
     fn warm_start(&mut self, states: &mut [BodyState]) {
@@ -113,7 +104,12 @@ impl ConstraintKind for ContactConstraints {
 
     fn prepare_biased_passes(&mut self, states: &[BodyState], context: &StepContext) {
         for lanes in &mut self.lanes {
-            lanes.prepare_biased_passes(states, &self.softness, context.inverse_h);
+            lanes.prepare_biased_passes(
+                states,
+                &self.softness,
+                context.contact.push_speed,
+                context.inverse_h,
+            );
         }
     }
 
@@ -125,7 +121,7 @@ impl ConstraintKind for ContactConstraints {
 
     fn apply_restitution(&mut self, states: &mut [BodyState]) {
         for lanes in &mut self.lanes {
-            lanes.apply_restitution(states);
+            lanes.apply_restitution(states, self.restitution_threshold);
         }
     }
 

@@ -42,6 +42,7 @@ mod wide;
 use crate::arena::Arena;
 use crate::body::{BodyType, RigidBody};
 use crate::math::{Mat3, Quat, Vec3, Vec3A};
+pub(crate) use contact_model::ContactSettings;
 use contacts::ContactConstraints;
 use integration::{integrate_pose, integrate_velocities};
 use stages::StepContext;
@@ -126,6 +127,7 @@ pub(crate) struct StepSettings {
     pub substeps: u32,
     pub gravity: Vec3,
     pub max_linear_speed: f32,
+    pub contact: ContactSettings,
 }
 
 /// The awake dynamic and kinematic bodies of a step, in solver order, in buffers reused from step

@@ -4,6 +4,7 @@
 //! restitution does nothing), and [`Solver::run`] is where the order of the kinds in a stage is
 //! set.
 
+use super::contact_model::ContactSettings;
 use super::integration::{SpeedLimits, MAX_ROTATION_PER_SUBSTEP};
 use super::{BodyState, Solver, SolverBodies, StepSettings};
 use crate::arena::Arena;
@@ -25,6 +26,7 @@ pub(crate) struct StepContext {
     pub inverse_h: f32,
     pub gravity: Vec3,
     pub limits: SpeedLimits,
+    pub contact: ContactSettings,
 }
 
 impl StepContext {
@@ -40,6 +42,7 @@ impl StepContext {
                 linear: settings.max_linear_speed,
                 angular: MAX_ROTATION_PER_SUBSTEP * inverse_h,
             },
+            contact: settings.contact,
         }
     }
 }

@@ -58,10 +58,7 @@ impl Random {
         let children = (0..3)
             .map(|kind| {
                 let kind = kind * 2 + self.next_u64() as usize % 2;
-                CompoundChild {
-                    pose: self.pose(0.8),
-                    shape: self.convex_shape(kind),
-                }
+                CompoundChild::new(self.convex_shape(kind), self.pose(0.8))
             })
             .collect();
         Shape::compound(children).unwrap()

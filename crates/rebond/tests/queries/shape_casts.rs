@@ -374,14 +374,14 @@ fn shape_casts_starting_in_contact_halfspaces_and_the_nearest_body() {
 
     // A compound of two balls: its lower ball lands first.
     let dumbbell = Shape::compound(vec![
-        CompoundChild {
-            pose: Pose::from_position(Vec3::new(0.0, -1.0, 0.0)),
-            shape: Shape::sphere(0.25).unwrap(),
-        },
-        CompoundChild {
-            pose: Pose::from_position(Vec3::new(0.0, 1.0, 0.0)),
-            shape: Shape::sphere(0.5).unwrap(),
-        },
+        CompoundChild::new(
+            Shape::sphere(0.25).unwrap(),
+            Pose::from_position(Vec3::new(0.0, -1.0, 0.0)),
+        ),
+        CompoundChild::new(
+            Shape::sphere(0.5).unwrap(),
+            Pose::from_position(Vec3::new(0.0, 1.0, 0.0)),
+        ),
     ])
     .unwrap();
     let hit = world

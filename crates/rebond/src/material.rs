@@ -1,0 +1,80 @@
+//! Surface materials: how two touching surfaces' friction coefficients and restitutions combine
+//! into the one each contact uses.
+
+/// How two values, one from each surface, combine into the contact's value. Every rule gives `v`
+/// for two equal values `v`, except [`CombineRule::Multiply`] (`v²`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum CombineRule {
+    /// `√(a b)`: a frictionless surface makes the contact frictionless. The default for friction
+    /// (Box2D's and Box3D's).
+    #[default]
+    GeometricMean,
+    /// `(a + b) / 2`.
+    Average,
+    /// `min(a, b)`.
+    Min,
+    /// `max(a, b)`: a bouncy ball bounces on anything. The default for restitution.
+    Max,
+    /// `a b`.
+    Multiply,
+}
+
+impl CombineRule {
+    /// The contact's value from the two surfaces' values.
+    pub fn combine(self, a: f32, b: f32) -> f32 {
+        match self {
+            Self::GeometricMean => (a * b).sqrt(),
+            Self::Average => 0.5 * (a + b),
+            Self::Min => a.min(b),
+            Self::Max => a.max(b),
+            Self::Multiply => a * b,
+        }
+    }
+}
+
+/// The surface material of a body, or of a compound's child.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Material {
+    /// Coulomb friction coefficient, ≥ 0.
+    pub friction: f32,
+    /// Coefficient of restitution, 0 to 1.
+    pub restitution: f32,
+}
+
+impl Material {
+    /// No friction, no bounce: what a contact holds until the world gives it its material.
+    pub const NONE: Self = Self {
+        friction: 0.0,
+        restitution: 0.0,
+    };
+
+    /// The material of a contact between surfaces `a` and `b`.
+    pub fn combine(a: Self, b: Self, friction: CombineRule, restitution: CombineRule) -> Self {
+        Self {
+            friction: friction.combine(a.friction, b.friction),
+            restitution: restitution.combine(a.restitution, b.restitution),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::CombineRule;
+
+    #[test]
+    fn every_rule_combines_as_documented() {
+        let cases = [
+            (CombineRule::GeometricMean, 0.4),
+            (CombineRule::Average, 0.5),
+            (CombineRule::Min, 0.2),
+            (CombineRule::Max, 0.8),
+            (CombineRule::Multiply, 0.16),
+        ];
+        for (rule, expected) in cases {
+            assert!((rule.combine(0.2, 0.8) - expected).abs() < 1e-6, "{rule:?}");
+            if rule != CombineRule::Multiply {
+                assert_eq!(rule.combine(0.6, 0.6), 0.6, "{rule:?} of equal values");
+            }
+        }
+    }
+}
