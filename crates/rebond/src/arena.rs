@@ -107,6 +107,11 @@ impl<T> Arena<T> {
         self.slots.get_mut(slot)?.item.as_mut()
     }
 
+    /// Number of slots, live or empty: every live item's slot is below it.
+    pub fn slot_count(&self) -> usize {
+        self.slots.len()
+    }
+
     /// Number of live items.
     pub fn len(&self) -> usize {
         self.len

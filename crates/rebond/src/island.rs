@@ -16,7 +16,8 @@ use crate::math::Vec3;
 /// Reused buffers of the island pass.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Islands {
-    /// Union–find parent of each arena slot.
+    /// Union–find parent of each arena slot, reset each step for the slots of movable bodies only:
+    /// a static body never joins an island.
     parent: Vec<usize>,
     /// Shortest sleep time in the island whose root is the slot.
     island_sleep_time: Vec<f32>,
@@ -51,10 +52,15 @@ impl Islands {
     }
 
     /// Wakes every sleeping body whose group has an awake member (woken by the user or by a touch
-    /// since the group fell asleep), and forgets the group of awake bodies.
-    pub fn wake_touched_groups(&mut self, bodies: &mut Arena<RigidBody>) {
+    /// since the group fell asleep), and forgets the group of awake bodies. `movable` lists the
+    /// slots of the dynamic and kinematic bodies, the only ones that sleep.
+    pub fn wake_touched_groups(&mut self, bodies: &mut Arena<RigidBody>, movable: &[usize]) {
         self.group_awake.clear();
-        for (_, body) in bodies.iter() {
+        for body in movable
+            .iter()
+            .filter_map(|&slot| bodies.at_slot(slot))
+            .map(|(_, body)| body)
+        {
             if let (false, Some(group)) = (body.sleeping, body.sleep_group) {
                 if self.group_awake.len() <= group {
                     self.group_awake.resize(group + 1, false);
@@ -62,7 +68,10 @@ impl Islands {
                 self.group_awake[group] = true;
             }
         }
-        for body in bodies.values_mut() {
+        for &slot in movable {
+            let Some(body) = bodies.at_slot_mut(slot) else {
+                continue;
+            };
             let Some(group) = body.sleep_group else {
                 continue;
             };
@@ -83,20 +92,19 @@ impl Islands {
     pub fn update_sleep(
         &mut self,
         bodies: &mut Arena<RigidBody>,
+        movable: &[usize],
         contacts: &[Contact],
         dt: f32,
         sleep_speed: f32,
         sleep_time: f32,
     ) {
-        let slots = bodies
-            .iter()
-            .map(|(index, _)| index.slot() + 1)
-            .max()
-            .unwrap_or(0);
-        self.parent.clear();
-        self.parent.extend(0..slots);
-        self.island_sleep_time.clear();
+        let slots = bodies.slot_count();
+        self.parent.resize(slots, 0);
         self.island_sleep_time.resize(slots, f32::INFINITY);
+        for &slot in movable {
+            self.parent[slot] = slot;
+            self.island_sleep_time[slot] = f32::INFINITY;
+        }
         for contact in contacts {
             let (slot_a, slot_b) = (contact.key.body_a.slot(), contact.key.body_b.slot());
             let awake_dynamic = |slot: usize| {
@@ -123,7 +131,10 @@ impl Islands {
             self.kept_awake.push(contact.key.body_a.slot());
             self.kept_awake.push(contact.key.body_b.slot());
         }
-        for body in bodies.values_mut() {
+        for &slot in movable {
+            let Some(body) = bodies.at_slot_mut(slot) else {
+                continue;
+            };
             if !body.is_dynamic() || body.sleeping {
                 continue;
             }
@@ -139,10 +150,13 @@ impl Islands {
             }
         }
         self.members.clear();
-        for (index, body) in bodies.iter() {
+        for (slot, body) in movable
+            .iter()
+            .filter_map(|&slot| Some((slot, bodies.at_slot(slot)?.1)))
+        {
             if body.is_dynamic() && !body.sleeping {
-                let root = self.find(index.slot());
-                self.members.push((index.slot(), root));
+                let root = self.find(slot);
+                self.members.push((slot, root));
                 let time = &mut self.island_sleep_time[root];
                 *time = time.min(body.sleep_time);
             }

@@ -138,8 +138,15 @@ pub struct World {
     events: EventTracker,
     /// Pairs the narrow phase ran on in the last step (recycled and sleeping pairs excepted).
     narrow_phase_pair_tests: usize,
-    /// Each body's bounding box at the start of this step, by arena slot (scratch, reused).
+    /// Each body's bounding box, by arena slot, refreshed at the start of each step for the bodies
+    /// that may have moved.
     bounds_of_slot: Vec<Aabb>,
+    /// Arena slots of the dynamic and kinematic bodies, ascending: the bodies a step may move.
+    /// Static bodies are left out of every per-body pass of the step.
+    movable_slots: Vec<usize>,
+    /// Arena slots of static bodies lent out by [`World::body_mut`] since the last step, whose
+    /// bounding boxes the next step refreshes in case they were moved.
+    touched_static_slots: Vec<usize>,
 }
 
 impl World {
@@ -158,6 +165,8 @@ impl World {
             events: EventTracker::default(),
             narrow_phase_pair_tests: 0,
             bounds_of_slot: Vec::new(),
+            movable_slots: Vec::new(),
+            touched_static_slots: Vec::new(),
         })
     }
 
@@ -196,6 +205,15 @@ impl World {
         if let Some(body) = self.bodies.get_mut(index) {
             body.proxy = Some(proxy);
         }
+        let slot = index.slot();
+        if self.bounds_of_slot.len() <= slot {
+            self.bounds_of_slot.resize(slot + 1, aabb);
+        }
+        self.bounds_of_slot[slot] = aabb;
+        if !is_static {
+            let place = self.movable_slots.partition_point(|&other| other < slot);
+            self.movable_slots.insert(place, slot);
+        }
         Ok(BodyHandle(index))
     }
 
@@ -207,6 +225,9 @@ impl World {
         if let Some(proxy) = body.proxy.take() {
             self.broad_phase.remove(proxy);
         }
+        self.movable_slots.retain(|&slot| slot != handle.slot());
+        self.touched_static_slots
+            .retain(|&slot| slot != handle.slot());
         for contact in self.contacts.contacts() {
             let other = match (contact.key.body_a == handle, contact.key.body_b == handle) {
                 (true, _) => contact.key.body_b,
@@ -229,7 +250,11 @@ impl World {
 
     /// The body behind `handle`, to change through its validating setters.
     pub fn body_mut(&mut self, handle: BodyHandle) -> Result<&mut RigidBody> {
-        self.bodies.get_mut(handle.0).ok_or_else(stale)
+        let body = self.bodies.get_mut(handle.0).ok_or_else(stale)?;
+        if body.body_type == BodyType::Static {
+            self.touched_static_slots.push(handle.slot());
+        }
+        Ok(body)
     }
 
     /// Changes which bodies `handle` interacts with, and wakes it. Pairs that no longer interact
@@ -386,9 +411,11 @@ impl World {
     pub fn step(&mut self, dt: f32) -> Result<()> {
         check_positive("dt", dt)?;
         self.update_contacts(dt);
-        self.islands.wake_touched_groups(&mut self.bodies);
+        self.islands
+            .wake_touched_groups(&mut self.bodies, &self.movable_slots);
         self.solver.step(
             &mut self.bodies,
+            &self.movable_slots,
             &mut self.contacts,
             StepSettings {
                 dt,
@@ -409,6 +436,7 @@ impl World {
         self.events.finish_sensor_step(&self.bodies);
         self.islands.update_sleep(
             &mut self.bodies,
+            &self.movable_slots,
             self.contacts.contacts(),
             dt,
             self.settings.sleep_speed,
@@ -441,19 +469,24 @@ impl World {
             events,
             narrow_phase_pair_tests,
             bounds_of_slot,
+            movable_slots,
+            touched_static_slots,
             ..
         } = self;
-        for (index, body) in bodies.iter() {
-            let bounds = body.aabb();
-            let slot = index.slot();
-            if bounds_of_slot.len() <= slot {
-                bounds_of_slot.resize(slot + 1, bounds);
+        for &slot in movable_slots.iter().chain(touched_static_slots.iter()) {
+            let Some((_, body)) = bodies.at_slot(slot) else {
+                continue;
+            };
+            if body.sleeping {
+                continue;
             }
+            let bounds = body.aabb();
             bounds_of_slot[slot] = bounds;
             if let Some(proxy) = body.proxy {
                 broad_phase.update(proxy, body.sweep_aabb(bounds, dt));
             }
         }
+        touched_static_slots.clear();
         broad_phase.update_pairs_filtered(|key_a, key_b| {
             let (Some((index_a, body_a)), Some((index_b, body_b))) = (
                 bodies.at_slot(key_a as usize),

@@ -144,20 +144,22 @@ pub(crate) struct SolverBodies {
 
 impl SolverBodies {
     /// Copies every awake dynamic or kinematic body into the solver array (slot order).
-    fn gather(&mut self, bodies: &Arena<RigidBody>) {
+    fn gather(&mut self, bodies: &Arena<RigidBody>, movable: &[usize]) {
+        for &slot in self.slot_of_solver_index.iter().skip(1) {
+            self.solver_index_of_slot[slot] = 0;
+        }
+        self.solver_index_of_slot.resize(bodies.slot_count(), 0);
         self.states.clear();
         self.states.push(BodyState::default());
         self.motions.clear();
         self.motions.push(BodyMotion::FIXED);
         self.slot_of_solver_index.clear();
         self.slot_of_solver_index.push(0);
-        self.solver_index_of_slot.clear();
-        for (index, body) in bodies.iter() {
-            let slot = index.slot();
-            if self.solver_index_of_slot.len() <= slot {
-                self.solver_index_of_slot.resize(slot + 1, 0);
-            }
-            if body.body_type != BodyType::Static && !body.sleeping {
+        for &slot in movable {
+            let Some((_, body)) = bodies.at_slot(slot) else {
+                continue;
+            };
+            if !body.sleeping {
                 self.solver_index_of_slot[slot] = self.states.len();
                 self.slot_of_solver_index.push(slot);
                 self.states.push(BodyState {
@@ -200,11 +202,9 @@ impl SolverBodies {
                 body.center_of_mass = motion.center_of_mass;
                 body.rotation = motion.rotation;
                 body.update_world_inverse_inertia();
+                body.force = Vec3::ZERO;
+                body.torque = Vec3::ZERO;
             }
-        }
-        for body in bodies.values_mut() {
-            body.force = Vec3::ZERO;
-            body.torque = Vec3::ZERO;
         }
     }
 }

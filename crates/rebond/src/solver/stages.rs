@@ -110,16 +110,18 @@ impl ConstraintStage {
 }
 
 impl Solver {
-    /// Advances every awake, non-static body by one step, with its contacts: the stages in
-    /// order (`solver/mod.rs` lists what each does).
+    /// Advances every awake body of `movable` (the slots of the dynamic and kinematic bodies,
+    /// ascending) by one step, with its contacts: the stages in order (`solver/mod.rs` lists what
+    /// each does).
     pub fn step(
         &mut self,
         bodies: &mut Arena<RigidBody>,
+        movable: &[usize],
         contacts: &mut ContactCache,
         settings: StepSettings,
     ) {
         let context = StepContext::new(&settings);
-        self.bodies.gather(bodies);
+        self.bodies.gather(bodies, movable);
         self.contacts
             .prepare(contacts, bodies, &self.bodies, &context);
         for _ in 0..context.substeps {
