@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{add_ground, add_incline, run, unit_box, world, DT, G};
+use common::{add_ground, add_incline, apex_after_bounce, run, unit_box, world, DT, G};
 use rebond::{BodyDesc, Quat, Shape, Vec3};
 
 /// Drops a ball of radius 0.5 from `height` (gap between its bottom and the ground) and returns
@@ -17,22 +17,11 @@ fn rebound_height(restitution: f32, height: f32) -> f32 {
                 .restitution(restitution),
         )
         .unwrap();
-    let mut bounced = false;
-    let mut highest = 0.0f32;
-    for _ in 0..(4.0 / DT) as usize {
+    apex_after_bounce((4.0 / DT) as usize, || {
         world.step(DT).unwrap();
         let body = world.body(ball).unwrap();
-        if body.linear_velocity().y > 0.0 {
-            bounced = true;
-        }
-        if bounced {
-            highest = highest.max(body.position().y - 0.5);
-            if body.linear_velocity().y < 0.0 {
-                break;
-            }
-        }
-    }
-    highest
+        (body.position().y - 0.5, body.linear_velocity().y)
+    })
 }
 
 #[test]

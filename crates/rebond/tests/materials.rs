@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{add_ground, add_incline, run, unit_box, world, DT, G};
+use common::{add_ground, add_incline, apex_after_bounce, run, unit_box, world, DT, G};
 use rebond::scene::Scene;
 use rebond::{BodyDesc, CombineRule, CompoundChild, Pose, Quat, Shape, Vec3, World, WorldSettings};
 
@@ -85,19 +85,11 @@ fn rebound_height(height: f32, threshold: Option<f32>) -> f32 {
     );
     let mut scene = Scene::from_json(json.as_bytes()).unwrap();
     let ball = scene.body_handle("ball").unwrap();
-    let (mut bounced, mut highest) = (false, 0.0f32);
-    for _ in 0..1200 {
+    apex_after_bounce(1200, || {
         scene.step().unwrap();
         let body = scene.world().body(ball).unwrap();
-        bounced |= body.linear_velocity().y > 0.0;
-        if bounced {
-            highest = highest.max(body.position().y - 0.5);
-            if body.linear_velocity().y < 0.0 {
-                break;
-            }
-        }
-    }
-    highest
+        (body.position().y - 0.5, body.linear_velocity().y)
+    })
 }
 
 #[test]

@@ -1,5 +1,7 @@
 //! The command line itself: summaries, bench reports, defaults and usage errors.
 
+use std::ffi::OsStr;
+
 use crate::common::{rebond, TestDir};
 
 /// A small scene file: a ground and two unnamed balls.
@@ -89,18 +91,21 @@ const RESTING_SCENE: &str = r#"{"bodies": [
 /// The note `rebond bench` prints when every dynamic body sleeps at the end.
 const ASLEEP_NOTE: &str = "note             every dynamic body is asleep at the end";
 
+/// Runs `rebond bench` on `scene`, written in a test folder `name`, with `arguments` after it;
+/// checks that it succeeds and returns what it printed.
+fn bench_stdout(name: &str, scene: &str, arguments: &[&str]) -> String {
+    let dir = TestDir::new(name);
+    let scene = dir.write("scene.json", scene);
+    let mut all = vec!["bench".as_ref(), scene.as_os_str()];
+    all.extend(arguments.iter().map(OsStr::new));
+    let outcome = rebond(all);
+    assert_eq!(outcome.status, 0, "{}", outcome.stderr);
+    outcome.stdout
+}
+
 #[test]
 fn bench_says_when_it_timed_a_sleeping_scene() {
-    let dir = TestDir::new("bench_asleep");
-    let scene = dir.write("scene.json", RESTING_SCENE);
-    let outcome = rebond([
-        "bench".as_ref(),
-        scene.as_os_str(),
-        "--steps".as_ref(),
-        "60".as_ref(),
-    ]);
-    assert_eq!(outcome.status, 0, "{}", outcome.stderr);
-    let stdout = &outcome.stdout;
+    let stdout = bench_stdout("bench_asleep", RESTING_SCENE, &["--steps", "60"]);
     assert!(stdout.contains("sleep            allowed\n"), "{stdout}");
     // The static ground neither sleeps nor counts as awake.
     assert!(stdout.contains("awake bodies     0\n"), "{stdout}");
@@ -114,17 +119,11 @@ fn bench_says_when_it_timed_a_sleeping_scene() {
 
 #[test]
 fn bench_no_sleep_keeps_every_body_awake() {
-    let dir = TestDir::new("bench_no_sleep");
-    let scene = dir.write("scene.json", RESTING_SCENE);
-    let outcome = rebond([
-        "bench".as_ref(),
-        scene.as_os_str(),
-        "--steps".as_ref(),
-        "60".as_ref(),
-        "--no-sleep".as_ref(),
-    ]);
-    assert_eq!(outcome.status, 0, "{}", outcome.stderr);
-    let stdout = &outcome.stdout;
+    let stdout = bench_stdout(
+        "bench_no_sleep",
+        RESTING_SCENE,
+        &["--steps", "60", "--no-sleep"],
+    );
     assert!(stdout.contains("measured steps   60\n"), "{stdout}");
     assert!(
         stdout.contains("sleep            off (--no-sleep)\n"),
@@ -137,16 +136,7 @@ fn bench_no_sleep_keeps_every_body_awake() {
 
 #[test]
 fn bench_of_moving_bodies_has_no_sleeping_note() {
-    let dir = TestDir::new("bench_awake");
-    let scene = dir.write("scene.json", SCENE);
-    let outcome = rebond([
-        "bench".as_ref(),
-        scene.as_os_str(),
-        "--steps".as_ref(),
-        "5".as_ref(),
-    ]);
-    assert_eq!(outcome.status, 0, "{}", outcome.stderr);
-    let stdout = &outcome.stdout;
+    let stdout = bench_stdout("bench_awake", SCENE, &["--steps", "5"]);
     // The balls are still falling after 35 steps.
     assert!(stdout.contains("awake bodies     2\n"), "{stdout}");
     assert!(stdout.contains("sleeping bodies  0\n"), "{stdout}");

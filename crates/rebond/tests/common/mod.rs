@@ -46,6 +46,24 @@ pub fn add_incline(world: &mut World, angle: f32, friction: f32) -> BodyHandle {
         .unwrap()
 }
 
+/// The highest a bouncing body rises after it first moves up, stopping as it comes down again:
+/// `step` advances its world by one step and returns the body's height and vertical velocity.
+/// At most `steps` steps.
+pub fn apex_after_bounce(steps: usize, mut step: impl FnMut() -> (f32, f32)) -> f32 {
+    let (mut bounced, mut highest) = (false, 0.0f32);
+    for _ in 0..steps {
+        let (height, vertical_velocity) = step();
+        bounced |= vertical_velocity > 0.0;
+        if bounced {
+            highest = highest.max(height);
+            if vertical_velocity < 0.0 {
+                break;
+            }
+        }
+    }
+    highest
+}
+
 /// Steps the world `steps` times.
 pub fn run(world: &mut World, steps: usize) {
     for _ in 0..steps {
