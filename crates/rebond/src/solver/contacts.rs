@@ -7,8 +7,6 @@ use super::graph_colour::GraphColouring;
 use super::softness::Softness;
 use super::stages::{ConstraintKind, StepContext};
 use super::{BodyState, SolverBodies};
-use crate::arena::Arena;
-use crate::body::RigidBody;
 use crate::collision::contact_cache::{Contact, ContactCache};
 
 /// This step's contact constraints, in buffers reused from step to step.
@@ -30,16 +28,11 @@ pub(crate) struct ContactConstraints {
 impl ContactConstraints {
     /// Colours every contact between two bodies of which at least one moves this step into lane
     /// sets of up to four.
-    fn colour(
-        &mut self,
-        contacts: &ContactCache,
-        bodies: &Arena<RigidBody>,
-        solver_bodies: &SolverBodies,
-    ) {
+    fn colour(&mut self, contacts: &ContactCache, solver_bodies: &SolverBodies) {
         self.pairs.clear();
         self.pair_contacts.clear();
         for (contact_index, contact) in contacts.contacts().iter().enumerate() {
-            if let Some((solver_a, solver_b)) = constraint_bodies(bodies, solver_bodies, contact) {
+            if let Some((solver_a, solver_b)) = constraint_bodies(solver_bodies, contact) {
                 self.pairs.push((solver_a, solver_b));
                 self.pair_contacts.push(contact_index);
             }
@@ -49,17 +42,12 @@ impl ContactConstraints {
     }
 }
 
-/// The solver bodies of `contact`, or `None` when neither moves this step (or a body is gone).
-fn constraint_bodies(
-    bodies: &Arena<RigidBody>,
-    solver_bodies: &SolverBodies,
-    contact: &Contact,
-) -> Option<(usize, usize)> {
+/// The solver bodies of `contact`, or `None` when neither moves this step. Every contact's
+/// bodies are in the world: removing a body removes its contacts.
+fn constraint_bodies(solver_bodies: &SolverBodies, contact: &Contact) -> Option<(usize, usize)> {
     let solver_a = solver_bodies.solver_index(contact.key.body_a.slot());
     let solver_b = solver_bodies.solver_index(contact.key.body_b.slot());
-    let present =
-        bodies.get(contact.key.body_a.0).is_some() && bodies.get(contact.key.body_b.0).is_some();
-    (solver_a != solver_b && present).then_some((solver_a, solver_b))
+    (solver_a != solver_b).then_some((solver_a, solver_b))
 }
 
 impl ConstraintKind for ContactConstraints {
@@ -70,17 +58,16 @@ impl ConstraintKind for ContactConstraints {
     fn prepare(
         &mut self,
         contacts: &ContactCache,
-        bodies: &Arena<RigidBody>,
         solver_bodies: &SolverBodies,
         context: &StepContext,
     ) {
-        self.colour(contacts, bodies, solver_bodies);
+        self.colour(contacts, solver_bodies);
         self.lanes.clear();
         for lane_set in self.colouring.lane_sets() {
             let lane_contacts = lane_set.iter().filter_map(|&pair| {
                 let index = self.pair_contacts[pair];
                 let contact = &contacts.contacts()[index];
-                let (body_a, body_b) = constraint_bodies(bodies, solver_bodies, contact)?;
+                let (body_a, body_b) = constraint_bodies(solver_bodies, contact)?;
                 Some(LaneContact {
                     contact,
                     index,

@@ -55,12 +55,11 @@ pub(crate) trait ConstraintKind {
     /// What the constraints are built from and store their impulses in between steps.
     type Source;
 
-    /// Builds this step's constraints from `source` and the bodies at the start of the step,
-    /// warm-started from the impulses `source` kept.
+    /// Builds this step's constraints from `source` and the solver bodies at the start of the
+    /// step, warm-started from the impulses `source` kept.
     fn prepare(
         &mut self,
         source: &Self::Source,
-        bodies: &Arena<RigidBody>,
         solver_bodies: &SolverBodies,
         context: &StepContext,
     );
@@ -122,8 +121,7 @@ impl Solver {
     ) {
         let context = StepContext::new(&settings);
         self.bodies.gather(bodies, movable);
-        self.contacts
-            .prepare(contacts, bodies, &self.bodies, &context);
+        self.contacts.prepare(contacts, &self.bodies, &context);
         for _ in 0..context.substeps {
             self.bodies.integrate_velocities(&context);
             self.run(ConstraintStage::WarmStart, &context);
