@@ -131,11 +131,6 @@ impl<T> Arena<T> {
             })
         })
     }
-
-    /// Live items, mutably, in slot order.
-    pub fn values_mut(&mut self) -> impl Iterator<Item = &mut T> {
-        self.slots.iter_mut().filter_map(|slot| slot.item.as_mut())
-    }
 }
 
 #[cfg(test)]

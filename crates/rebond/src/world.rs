@@ -188,8 +188,10 @@ impl World {
 
     /// Wakes every sleeping body.
     pub fn wake_all(&mut self) {
-        for body in self.bodies.values_mut() {
-            body.wake();
+        for &slot in &self.movable_slots {
+            if let Some(body) = self.bodies.at_slot_mut(slot) {
+                body.wake();
+            }
         }
     }
 

@@ -221,7 +221,7 @@ fn a_settling_pile_never_gains_energy() {
             .unwrap();
     }
     // Energy may be added only by the soft push-out of overlaps, bounded by the work of the push
-    // against gravity: at most MAX_PUSH_SPEED · dt of lift per step for a box. 0.1 % of the
+    // against gravity: at most contact_push_speed · dt of lift per step for a box. 0.1 % of the
     // pile's mass·g·height budget (27 boxes × 1000 kg × 9.81 × 1 m ≈ 265 kJ) is 265 J.
     let tolerance = 1.0e-3 * 27.0 * 1000.0 * G;
     let mut previous = world.total_energy();
