@@ -600,7 +600,6 @@ impl World {
     }
 }
 
-/// `|v_A − v_B| + |ω_A| r_A + |ω_B| r_B`: no two points of the bodies close in faster, m/s.
 /// Whether two bounding boxes come within `margin` of each other on every axis: a necessary
 /// condition for their shapes to come within `margin`, so a pair that fails it has no contact.
 fn bounds_within(a: &Aabb, b: &Aabb, margin: f32) -> bool {
@@ -608,6 +607,7 @@ fn bounds_within(a: &Aabb, b: &Aabb, margin: f32) -> bool {
     gap.cmple(Vec3::splat(margin)).all()
 }
 
+/// `|v_A − v_B| + |ω_A| r_A + |ω_B| r_B`: no two points of the bodies close in faster, m/s.
 fn closing_speed_bound(a: &RigidBody, b: &RigidBody) -> f32 {
     (a.linear_velocity - b.linear_velocity).length()
         + a.max_extent * a.angular_velocity.length()
