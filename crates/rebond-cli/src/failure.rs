@@ -11,7 +11,6 @@ pub const EXIT_INVALID_SCENE: u8 = 2;
 /// Exit status for a file that cannot be read or written.
 pub const EXIT_IO: u8 = 1;
 /// Exit status for bad arguments, which is also clap's for usage errors.
-#[cfg(not(feature = "viewer"))]
 pub const EXIT_USAGE: u8 = 2;
 
 /// A failed command; printed as one `error:` line on stderr.
@@ -47,6 +46,11 @@ pub enum Failure {
         /// The engine's reason.
         error: rebond::Error,
     },
+    /// `--record` names the scene file itself, which the record would overwrite.
+    RecordIsScene {
+        /// The record file as given.
+        path: PathBuf,
+    },
     /// `rebond view` in a build without the cargo feature `viewer`.
     #[cfg(not(feature = "viewer"))]
     NoViewer,
@@ -67,6 +71,7 @@ impl Failure {
         match self {
             Self::InvalidScene { .. } => EXIT_INVALID_SCENE,
             Self::Io { .. } | Self::UnknownScene { .. } | Self::Step { .. } => EXIT_IO,
+            Self::RecordIsScene { .. } => EXIT_USAGE,
             #[cfg(not(feature = "viewer"))]
             Self::NoViewer => EXIT_USAGE,
         }
@@ -92,6 +97,12 @@ impl fmt::Display for Failure {
                 step,
                 error,
             } => write!(formatter, "{source}: step {step} failed: {error}"),
+            Self::RecordIsScene { path } => write!(
+                formatter,
+                "{}: --record names the scene file itself, which the record would overwrite; \
+                 choose another file",
+                path.display()
+            ),
             #[cfg(not(feature = "viewer"))]
             Self::NoViewer => write!(
                 formatter,

@@ -1,7 +1,8 @@
 //! Records: the state of every body, one JSON line per recorded step.
 
-use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::ffi::OsString;
+use std::fs::{self, File};
+use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
@@ -28,20 +29,34 @@ struct BodyState<'a> {
     sleeping: bool,
 }
 
-/// Writes record lines to a file through a buffer.
+/// Writes record lines through a buffer to a hidden file beside the record's path, renamed to
+/// that path when the run ends well: a run that fails or is killed never leaves a partial record
+/// under the name the user gave (one that fails removes its hidden file too).
 #[derive(Debug)]
 pub struct Recorder {
     path: PathBuf,
+    partial: PathBuf,
     writer: BufWriter<File>,
 }
 
 impl Recorder {
-    /// Creates (or truncates) the record file.
+    /// Starts a record to be written to `path` (an existing file there is replaced at the end).
     pub fn create(path: &Path) -> Result<Self, Failure> {
-        let file = File::create(path)
-            .map_err(|error| Failure::io(path, "cannot create record file", error))?;
+        let cannot_create = |error| Failure::io(path, "cannot create record file", error);
+        if path.is_dir() {
+            return Err(cannot_create(io::Error::from(io::ErrorKind::IsADirectory)));
+        }
+        let Some(name) = path.file_name() else {
+            return Err(cannot_create(io::Error::from(io::ErrorKind::InvalidInput)));
+        };
+        let mut partial_name = OsString::from(".");
+        partial_name.push(name);
+        partial_name.push(format!(".partial-{}", std::process::id()));
+        let partial = path.with_file_name(partial_name);
+        let file = File::create(&partial).map_err(cannot_create)?;
         Ok(Self {
             path: path.to_owned(),
+            partial,
             writer: BufWriter::new(file),
         })
     }
@@ -74,11 +89,20 @@ impl Recorder {
             .map_err(|error| Failure::io(&self.path, "cannot write record", error))
     }
 
-    /// Flushes the buffer to the file.
+    /// Flushes the buffer and gives the record its name.
     pub fn finish(mut self) -> Result<(), Failure> {
         self.writer
             .flush()
+            .and_then(|()| fs::rename(&self.partial, &self.path))
             .map_err(|error| Failure::io(&self.path, "cannot write record", error))
+    }
+}
+
+impl Drop for Recorder {
+    /// Removes the hidden file of a record that did not finish (after [`Recorder::finish`] it
+    /// has been renamed, and there is nothing to remove).
+    fn drop(&mut self) {
+        let _ = fs::remove_file(&self.partial);
     }
 }
 

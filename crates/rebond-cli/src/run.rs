@@ -1,8 +1,9 @@
 //! `rebond run`: steps a scene headless, optionally recording it, and summarises the run.
 
 use std::fmt;
+use std::fs;
 use std::io::{self, IsTerminal};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
@@ -86,8 +87,16 @@ impl fmt::Display for RunSummary {
     }
 }
 
-/// Loads the scene, creates the record file once the scene is valid, runs, and summarises.
+/// Loads the scene, starts the record once the scene is valid, runs, and summarises. A record
+/// that would overwrite the scene file is refused before anything runs.
 pub fn run(source: &SceneSource, options: &RunOptions) -> Result<RunSummary, Failure> {
+    if let (SceneSource::File(scene_path), Some(record)) = (source, &options.record) {
+        if same_file(scene_path, record) {
+            return Err(Failure::RecordIsScene {
+                path: record.clone(),
+            });
+        }
+    }
     let mut scene = source.load()?;
     let timestep = scene.timestep().seconds;
     let steps = options.length.steps(timestep);
@@ -138,6 +147,14 @@ pub fn run(source: &SceneSource, options: &RunOptions) -> Result<RunSummary, Fai
         energy_start,
         energy_end: world.total_energy(),
     })
+}
+
+/// Whether `a` and `b` name the same existing file, however spelt.
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (fs::canonicalize(a), fs::canonicalize(b)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    }
 }
 
 /// A progress bar on stderr counting steps.

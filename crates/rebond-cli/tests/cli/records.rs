@@ -4,10 +4,13 @@
 use std::ffi::OsString;
 use std::fs;
 use std::path::Path;
+use std::process::{Command, Stdio};
+use std::thread;
+use std::time::Duration;
 
 use serde_json::Value;
 
-use crate::common::{rebond, Outcome, TestDir};
+use crate::common::{assert_one_error_line, rebond, Outcome, TestDir};
 
 /// A static ground, a named falling ball, an unnamed spinning box and a kinematic paddle.
 const SCENE: &str = r#"{
@@ -269,4 +272,48 @@ fn an_existing_record_file_is_replaced() {
     );
     let (_, lines) = record(&dir, &scene, &["--steps", "2"]);
     assert_eq!(steps(&lines), [0, 1, 2]);
+}
+
+#[test]
+fn a_record_naming_the_scene_file_is_refused_and_the_scene_kept() {
+    let dir = TestDir::new("record_is_scene");
+    let scene = dir.write("scene.json", SCENE);
+    let roundabout = dir
+        .root()
+        .join("..")
+        .join(dir.root().file_name().expect("the test folder has a name"));
+    for record_path in [scene.clone(), roundabout.join("scene.json")] {
+        let outcome = rebond([
+            "run".as_ref(),
+            scene.as_os_str(),
+            "--steps".as_ref(),
+            "2".as_ref(),
+            "--record".as_ref(),
+            record_path.as_os_str(),
+        ]);
+        let line = assert_one_error_line(&outcome, 2, &record_path);
+        assert!(line.contains("names the scene file itself"), "{line}");
+        assert_eq!(fs::read_to_string(&scene).unwrap(), SCENE);
+    }
+}
+
+#[test]
+fn a_killed_run_leaves_no_record_under_its_name() {
+    let dir = TestDir::new("record_killed");
+    let record_path = dir.path("record.jsonl");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rebond"))
+        .args(["run", "rain", "--steps", "1000000", "--record"])
+        .arg(&record_path)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("rebond starts");
+    // Long enough to load the scene and record some steps of the 4,096 falling boxes.
+    thread::sleep(Duration::from_millis(1500));
+    child.kill().expect("the run is still going");
+    child.wait().expect("the run ends");
+    assert!(
+        !record_path.exists(),
+        "a partial record took the record's name"
+    );
 }
