@@ -1,5 +1,7 @@
 //! Motion of free bodies against closed forms and conservation laws.
 
+use std::f32::consts::FRAC_PI_4;
+
 use rebond::{BodyDesc, BodyHandle, Quat, Shape, Vec3, World, WorldSettings};
 
 const DT: f32 = 1.0 / 60.0;
@@ -142,6 +144,32 @@ fn a_constant_force_at_a_body_point_gives_r_cross_f_on_a_turned_anisotropic_box(
         expected_spin
     );
     assert_eq!(state.constant_force_point(), Some(point));
+}
+
+#[test]
+fn a_body_thrown_faster_than_the_limit_flies_at_the_limit() {
+    // 1e30 m/s squares past f32's range: the limit must still hold the direction and the speed.
+    let mut world = world_with_gravity(Vec3::ZERO);
+    let limit = world.settings().max_linear_speed;
+    let direction = Vec3::new(3.0, -4.0, 0.0) / 5.0;
+    let body = add(
+        &mut world,
+        BodyDesc::dynamic(Shape::sphere(0.5).unwrap())
+            .linear_velocity(1.0e30 * direction)
+            .angular_velocity(Vec3::new(0.0, 1.0e30, 0.0)),
+    );
+    world.step(DT).unwrap();
+    let state = world.body(body).unwrap();
+    let velocity = state.linear_velocity();
+    assert!(
+        (velocity - limit * direction).length() <= 1.0e-6 * limit,
+        "{velocity}"
+    );
+    assert!((state.position() - limit * DT * direction).length() <= 1.0e-6 * limit * DT);
+    // A quarter turn per substep at most, about the axis it was given.
+    let substep = DT / world.settings().substeps as f32;
+    let spin = state.angular_velocity();
+    assert!((spin - Vec3::Y * FRAC_PI_4 / substep).length() <= 1.0e-6 * spin.length());
 }
 
 #[test]

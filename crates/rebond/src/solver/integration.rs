@@ -40,10 +40,20 @@ pub(crate) fn integrate_velocities(
     } else {
         implicit_gyroscopic_step(motion, angular.into(), h).into()
     };
-    state.linear_velocity =
-        (linear / (1.0 + h * motion.linear_damping)).clamp_length_max(limits.linear);
+    state.linear_velocity = clamp_length(linear / (1.0 + h * motion.linear_damping), limits.linear);
     state.angular_velocity =
-        (angular / (1.0 + h * motion.angular_damping)).clamp_length_max(limits.angular);
+        clamp_length(angular / (1.0 + h * motion.angular_damping), limits.angular);
+}
+
+/// `v` held to length `max`. A finite vector longer than about 1.8e19 has a squared length that
+/// overflows `f32`, where `clamp_length_max` would return zero: it is scaled down first, so a
+/// body thrown at 1e30 m/s flies at the speed limit instead of stopping dead.
+fn clamp_length(v: Vec3A, max: f32) -> Vec3A {
+    if v.length_squared().is_finite() {
+        v.clamp_length_max(max)
+    } else {
+        (v / v.abs().max_element()).normalize_or_zero() * max
+    }
 }
 
 /// Below this relative size the gyroscopic change `h ω × I ω` is lost in f32 rounding of `I ω`
