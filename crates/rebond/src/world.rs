@@ -556,20 +556,24 @@ impl World {
                 continue;
             }
             let (a, b) = (contact.key.body_a, contact.key.body_b);
-            if let (Some(body_a), Some(body_b)) = (bodies.get(a.0), bodies.get(b.0)) {
-                contact.material = Material::combine(
-                    body_a.material_of_child(contact.key.child_a),
-                    body_b.material_of_child(contact.key.child_b),
-                    settings.friction_combine,
-                    settings.restitution_combine,
-                );
-            }
-            for (sleeper, toucher) in [(a, b), (b, a)] {
-                let toucher_awake = bodies.get(toucher.0).is_some_and(RigidBody::is_awake_mover);
+            let (Some(body_a), Some(body_b)) = (bodies.get(a.0), bodies.get(b.0)) else {
+                continue;
+            };
+            contact.material = Material::combine(
+                body_a.material_of_child(contact.key.child_a),
+                body_b.material_of_child(contact.key.child_b),
+                settings.friction_combine,
+                settings.restitution_combine,
+            );
+            // A sleeper touched by an awake mover wakes (a body woken here was asleep, so it
+            // cannot be the other one's awake toucher).
+            let wakes = [
+                (a, body_a.sleeping && body_b.is_awake_mover()),
+                (b, body_b.sleeping && body_a.is_awake_mover()),
+            ];
+            for (sleeper, _) in wakes.into_iter().filter(|&(_, wakes)| wakes) {
                 if let Some(body) = bodies.get_mut(sleeper.0) {
-                    if body.sleeping && toucher_awake {
-                        body.wake();
-                    }
+                    body.wake();
                 }
             }
         }
