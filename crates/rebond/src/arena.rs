@@ -131,6 +131,25 @@ impl<T> Arena<T> {
             })
         })
     }
+
+    /// Live items with their handles, mutably, in slot order.
+    pub fn iter_mut(&mut self) -> impl Iterator<Item = (ArenaIndex, &mut T)> {
+        self.slots
+            .iter_mut()
+            .enumerate()
+            .filter_map(|(index, slot)| {
+                let generation = slot.generation;
+                slot.item.as_mut().map(|item| {
+                    (
+                        ArenaIndex {
+                            index: index as u32,
+                            generation,
+                        },
+                        item,
+                    )
+                })
+            })
+    }
 }
 
 #[cfg(test)]

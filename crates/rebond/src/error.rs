@@ -30,6 +30,16 @@ pub enum ErrorKind {
     UnrepresentableSize,
     /// A handle to a body that was removed, or that never belonged to this world.
     StaleHandle,
+    /// A handle to a joint that was removed, or that never belonged to this world.
+    StaleJointHandle,
+    /// A required value is absent (a revolute or prismatic joint's axis).
+    Missing,
+    /// A field set on a joint type it does not belong to (the type's name).
+    NotForJointType(&'static str),
+    /// A joint joining a body to itself.
+    JointToItself,
+    /// `[min, max]` limits with `min > max`.
+    InvertedLimits { min: f32, max: f32 },
 }
 
 /// An invalid input, with the place it was found.
@@ -95,6 +105,13 @@ impl fmt::Display for ErrorKind {
                  cannot be represented in 32-bit floats"
             ),
             Self::StaleHandle => write!(f, "body handle is stale or unknown"),
+            Self::StaleJointHandle => write!(f, "joint handle is stale or unknown"),
+            Self::Missing => write!(f, "required"),
+            Self::NotForJointType(name) => write!(f, "does not apply to a {name} joint"),
+            Self::JointToItself => write!(f, "a joint cannot join a body to itself"),
+            Self::InvertedLimits { min, max } => {
+                write!(f, "min must not exceed max, got [{min}, {max}]")
+            }
         }
     }
 }

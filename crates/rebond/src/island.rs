@@ -1,12 +1,14 @@
 //! Islands and sleeping.
 //!
-//! After each step, awake dynamic bodies linked by contacts form islands (union–find over the
-//! contact list, roots the lowest slot, so the result never depends on anything but the input).
+//! After each step, awake dynamic bodies linked by contacts or joints form islands (union–find
+//! over the contact list and the joints, roots the lowest slot, so the result never depends on
+//! anything but the input).
 //! A body is still while `|v| + r_max |ω|` stays below the sleep speed; an island all of whose
 //! bodies have been still for the sleep time falls asleep as one group (both are settings,
 //! [`crate::WorldSettings::sleep_speed`] and [`crate::WorldSettings::sleep_time`]). Sleeping bodies are
 //! left out of the step; a group wakes whole when any member is touched by an awake body, pushed
-//! by the user, or loses a body it rested on.
+//! by the user, or loses a body it rested on. A group holds its jointed bodies together, so a
+//! ragdoll sleeps and wakes whole.
 
 use crate::arena::Arena;
 use crate::body::{BodyType, RigidBody};
@@ -23,7 +25,7 @@ pub(crate) struct Islands {
     island_sleep_time: Vec<f32>,
     /// Groups that have an awake member, indexed by the group's root slot.
     group_awake: Vec<bool>,
-    /// Slots of bodies touching a moving kinematic body this step.
+    /// Slots of bodies touching or jointed to a moving kinematic body this step.
     kept_awake: Vec<usize>,
     /// Each awake dynamic body's slot with its island's root slot.
     members: Vec<(usize, usize)>,
@@ -85,7 +87,8 @@ impl Islands {
         }
     }
 
-    /// Builds this step's islands from `contacts`, advances by `dt` the still time of every
+    /// Builds this step's islands from `contacts` and the joints' `links` (pairs of body slots),
+    /// advances by `dt` the still time of every
     /// awake dynamic body slower than `sleep_speed` (m/s, `|v| + r_max |ω|` with `r_max` the
     /// distance from its centre of mass to the farthest point of its bounding box), and puts to
     /// sleep each island still for `sleep_time` seconds.
@@ -93,7 +96,7 @@ impl Islands {
         &mut self,
         bodies: &mut Arena<RigidBody>,
         movable: &[usize],
-        contacts: &[Contact],
+        (contacts, links): (&[Contact], impl Iterator<Item = (usize, usize)>),
         dt: f32,
         sleep_speed: f32,
         sleep_time: f32,
@@ -105,28 +108,35 @@ impl Islands {
             self.parent[slot] = slot;
             self.island_sleep_time[slot] = f32::INFINITY;
         }
+        let awake_dynamic = |slot: usize| {
+            bodies
+                .at_slot(slot)
+                .is_some_and(|(_, body)| body.is_dynamic() && !body.sleeping)
+        };
         for contact in contacts {
             let (slot_a, slot_b) = (contact.key.body_a.slot(), contact.key.body_b.slot());
-            let awake_dynamic = |slot: usize| {
-                bodies
-                    .at_slot(slot)
-                    .is_some_and(|(_, body)| body.is_dynamic() && !body.sleeping)
-            };
             if !contact.manifold.is_empty() && awake_dynamic(slot_a) && awake_dynamic(slot_b) {
                 self.union(slot_a, slot_b);
             }
         }
-        let moving_kinematic_contacts = contacts.iter().filter(|contact| {
-            [contact.key.body_a, contact.key.body_b]
-                .iter()
-                .any(|handle| {
-                    bodies.get(handle.0).is_some_and(|body| {
-                        body.body_type == BodyType::Kinematic
-                            && body.max_point_speed() > sleep_speed
-                    })
-                })
-        });
         self.kept_awake.clear();
+        let moving_kinematic = |slot: usize| {
+            bodies.at_slot(slot).is_some_and(|(_, body)| {
+                body.body_type == BodyType::Kinematic && body.max_point_speed() > sleep_speed
+            })
+        };
+        for (slot_a, slot_b) in links {
+            if awake_dynamic(slot_a) && awake_dynamic(slot_b) {
+                self.union(slot_a, slot_b);
+            }
+            if moving_kinematic(slot_a) || moving_kinematic(slot_b) {
+                self.kept_awake.extend([slot_a, slot_b]);
+            }
+        }
+        let moving_kinematic_contacts = contacts.iter().filter(|contact| {
+            moving_kinematic(contact.key.body_a.slot())
+                || moving_kinematic(contact.key.body_b.slot())
+        });
         for contact in moving_kinematic_contacts {
             self.kept_awake.push(contact.key.body_a.slot());
             self.kept_awake.push(contact.key.body_b.slot());

@@ -42,6 +42,7 @@ mod error;
 pub mod events;
 mod filter;
 mod island;
+pub mod joint;
 mod mass;
 mod material;
 mod math;
@@ -59,6 +60,9 @@ pub use collision::{ContactPoint, MAX_MANIFOLD_POINTS};
 pub use error::{Error, ErrorKind, Result};
 pub use events::{ContactEvent, ContactEventKind, ContactForceEvent, SensorEvent, SensorEventKind};
 pub use filter::InteractionGroups;
+pub use joint::{
+    Joint, JointBreakEvent, JointDesc, JointHandle, JointPlacement, JointType, Motor, Spring,
+};
 pub use mass::MassProperties;
 pub use material::CombineRule;
 pub use math::{Aabb, Mat3, Pose, Quat, Vec3};

@@ -12,9 +12,12 @@ use crate::error::{
 use crate::events::{ContactEvent, ContactForceEvent, EventTracker, SensorEvent};
 use crate::filter::{ordered, IgnoredPairs, InteractionGroups};
 use crate::island::Islands;
+use crate::joint::{
+    Joint, JointBreakEvent, JointDesc, JointHandle, JointPlacement, JointSet, Motor,
+};
 use crate::material::{CombineRule, Material};
 use crate::math::{Aabb, Vec3};
-use crate::solver::{ContactSettings, Solver, StepSettings};
+use crate::solver::{ContactSettings, JointSettings, Solver, StepSettings};
 
 /// Default gravity, m/s²: Earth's, along −Y.
 pub const DEFAULT_GRAVITY: Vec3 = Vec3::new(0.0, -9.81, 0.0);
@@ -60,6 +63,13 @@ pub struct WorldSettings {
     pub sleep_speed: f32,
     /// How long an island must stay still before it falls asleep, s, ≥ 0, default 0.5.
     pub sleep_time: f32,
+    /// How fast joints correct their position errors, Hz, > 0, default 60: a joint pulls its
+    /// bodies back together like a spring of this frequency for their effective mass. Its
+    /// velocity rows are rigid, so a joint only drifts apart as far as this spring lets a step's
+    /// error through. Capped at a quarter of the substep rate, as `contact_hertz`.
+    pub joint_hertz: f32,
+    /// Damping ratio of the joints' position correction, ≥ 0, default 2 (over-damped).
+    pub joint_damping_ratio: f32,
     /// How two surfaces' friction coefficients combine, default [`CombineRule::GeometricMean`].
     pub friction_combine: CombineRule,
     /// How two surfaces' restitutions combine, default [`CombineRule::Max`].
@@ -79,6 +89,8 @@ impl Default for WorldSettings {
             speculative_distance: SPECULATIVE_DISTANCE,
             sleep_speed: 0.05,
             sleep_time: 0.5,
+            joint_hertz: 60.0,
+            joint_damping_ratio: 2.0,
             friction_combine: CombineRule::GeometricMean,
             restitution_combine: CombineRule::Max,
         }
@@ -106,6 +118,8 @@ impl WorldSettings {
         check_non_negative("speculative_distance", self.speculative_distance)?;
         check_non_negative("sleep_speed", self.sleep_speed)?;
         check_non_negative("sleep_time", self.sleep_time)?;
+        check_positive("joint_hertz", self.joint_hertz)?;
+        check_non_negative("joint_damping_ratio", self.joint_damping_ratio)?;
         Ok(())
     }
 }
@@ -129,6 +143,7 @@ impl WorldSettings {
 pub struct World {
     settings: WorldSettings,
     bodies: Arena<RigidBody>,
+    joints: JointSet,
     broad_phase: BroadPhase,
     contacts: ContactCache,
     narrow_phase: NarrowPhase,
@@ -156,6 +171,7 @@ impl World {
         Ok(Self {
             settings,
             bodies: Arena::default(),
+            joints: JointSet::default(),
             broad_phase: BroadPhase::new(),
             contacts: ContactCache::default(),
             narrow_phase: NarrowPhase::default(),
@@ -219,10 +235,15 @@ impl World {
         Ok(BodyHandle(index))
     }
 
-    /// Removes the body and returns it; its handle becomes stale, and its contacts go with it.
+    /// Removes the body and returns it; its handle becomes stale, and its joints and contacts go
+    /// with it.
     /// Its touching pairs and sensor overlaps end at the next step (a stop or exit event naming
     /// the stale handle).
     pub fn remove_body(&mut self, handle: BodyHandle) -> Result<RigidBody> {
+        let joints: Vec<JointHandle> = self.joints.joints_of(handle).collect();
+        for joint in joints {
+            self.remove_joint(joint)?;
+        }
         let mut body = self.bodies.remove(handle.0).ok_or_else(stale)?;
         if let Some(proxy) = body.proxy.take() {
             self.broad_phase.remove(proxy);
@@ -309,6 +330,116 @@ impl World {
     /// Whether bodies `a` and `b` were told to ignore each other.
     pub fn is_pair_ignored(&self, a: BodyHandle, b: BodyHandle) -> bool {
         self.ignored_pairs.contains(a, b)
+    }
+
+    /// Checks `desc` and adds the joint, fixing its anchors and axes to the bodies as they stand
+    /// now; wakes both bodies. Unless `collide_connected`, the two bodies stop colliding with
+    /// each other at once (their contacts are dropped). On error the world is unchanged.
+    pub fn add_joint(&mut self, desc: JointDesc) -> Result<JointHandle> {
+        let axis = desc.validate()?;
+        let body_a = match desc.body_a {
+            Some(handle) => Some(
+                self.bodies
+                    .get(handle.0)
+                    .ok_or_else(|| stale().within("body_a"))?,
+            ),
+            None => None,
+        };
+        let body_b = self
+            .bodies
+            .get(desc.body_b.0)
+            .ok_or_else(|| stale().within("body_b"))?;
+        let (body_a_handle, body_b_handle) = (desc.body_a, desc.body_b);
+        let excludes = !desc.collide_connected;
+        let handle = self.joints.insert(desc, axis, body_a, body_b);
+        self.joint_bodies_changed(body_a_handle, body_b_handle, excludes);
+        Ok(handle)
+    }
+
+    /// Removes the joint and returns it; its handle becomes stale. Wakes both bodies, which
+    /// collide with each other again at the next step if the joint kept them apart.
+    pub fn remove_joint(&mut self, handle: JointHandle) -> Result<Joint> {
+        let joint = self.joints.remove(handle).ok_or_else(stale_joint)?;
+        let (body_a, body_b) = joint.bodies();
+        self.joint_bodies_changed(body_a, body_b, !joint.desc.collide_connected);
+        Ok(joint)
+    }
+
+    /// The joint behind `handle`.
+    pub fn joint(&self, handle: JointHandle) -> Result<&Joint> {
+        self.joints.get(handle).ok_or_else(stale_joint)
+    }
+
+    /// All joints with their handles, in a deterministic order (storage slots).
+    pub fn joints(&self) -> impl Iterator<Item = (JointHandle, &Joint)> {
+        self.joints.iter()
+    }
+
+    /// Where the joint's anchors and axes stand now, world frame: for drawing it and for
+    /// measuring how far it has come apart.
+    pub fn joint_placement(&self, handle: JointHandle) -> Result<JointPlacement> {
+        let joint = self.joints.get(handle).ok_or_else(stale_joint)?;
+        let pose = |handle: BodyHandle| {
+            self.bodies
+                .get(handle.0)
+                .map(|body| (body.center_of_mass(), body.rotation()))
+                .ok_or_else(stale)
+        };
+        let (body_a, body_b) = joint.bodies();
+        let pose_a = body_a.map(pose).transpose()?;
+        Ok(joint.world_frames(pose_a, pose(body_b)?))
+    }
+
+    /// Number of joints, broken ones included.
+    pub fn joint_count(&self) -> usize {
+        self.joints.len()
+    }
+
+    /// Replaces a revolute or prismatic joint's motor (`None` removes it) and wakes its bodies.
+    pub fn set_joint_motor(&mut self, handle: JointHandle, motor: Option<Motor>) -> Result<()> {
+        let joint = self.joints.get_mut(handle).ok_or_else(stale_joint)?;
+        let mut desc = joint.desc.clone();
+        desc.motor = motor;
+        desc.validate()?;
+        joint.desc = desc;
+        let (body_a, body_b) = joint.bodies();
+        for body in body_a.into_iter().chain([body_b]) {
+            if let Some(body) = self.bodies.get_mut(body.0) {
+                body.wake();
+            }
+        }
+        Ok(())
+    }
+
+    /// Joints that broke during the last step, in slot order. Valid until the next step.
+    pub fn joint_break_events(&self) -> &[JointBreakEvent] {
+        self.joints.break_events()
+    }
+
+    /// After a joint between `body_a` and `body_b` came or went: wakes both, and when it keeps
+    /// them from colliding (`excludes`), drops their contacts and has the broad phase look at
+    /// their pair again.
+    fn joint_bodies_changed(
+        &mut self,
+        body_a: Option<BodyHandle>,
+        body_b: BodyHandle,
+        excludes: bool,
+    ) {
+        for handle in body_a.into_iter().chain([body_b]) {
+            if let Some(body) = self.bodies.get_mut(handle.0) {
+                body.wake();
+            }
+        }
+        let Some(body_a) = body_a.filter(|_| excludes) else {
+            return;
+        };
+        if let Some(proxy) = self.bodies.get(body_b.0).and_then(|body| body.proxy) {
+            self.broad_phase.refilter(proxy);
+        }
+        let pair = ordered(body_a, body_b);
+        if self.joints.excludes(body_a, body_b) {
+            self.drop_contacts(|_, a, b| (a, b) == pair);
+        }
     }
 
     /// All bodies with their handles, in a deterministic order (storage slots).
@@ -415,10 +546,11 @@ impl World {
         self.update_contacts(dt);
         self.islands
             .wake_touched_groups(&mut self.bodies, &self.movable_slots);
+        self.joints.refresh_poses(&self.bodies);
         self.solver.step(
             &mut self.bodies,
             &self.movable_slots,
-            &mut self.contacts,
+            (&mut self.joints, &mut self.contacts),
             StepSettings {
                 dt,
                 substeps: self.settings.substeps,
@@ -430,8 +562,13 @@ impl World {
                     push_speed: self.settings.contact_push_speed,
                     restitution_threshold: self.settings.restitution_threshold,
                 },
+                joint: JointSettings {
+                    hertz: self.settings.joint_hertz,
+                    damping_ratio: self.settings.joint_damping_ratio,
+                },
             },
         );
+        self.joints.finish_step(dt);
         let substep_length = dt / self.settings.substeps as f32;
         self.events
             .update_contacts(self.contacts.contacts(), &self.bodies, substep_length);
@@ -439,7 +576,7 @@ impl World {
         self.islands.update_sleep(
             &mut self.bodies,
             &self.movable_slots,
-            self.contacts.contacts(),
+            (self.contacts.contacts(), self.joints.body_links()),
             dt,
             self.settings.sleep_speed,
             self.settings.sleep_time,
@@ -464,6 +601,7 @@ impl World {
         let Self {
             settings,
             bodies,
+            joints,
             broad_phase,
             contacts,
             narrow_phase,
@@ -500,7 +638,8 @@ impl World {
                 && body_a
                     .collision_groups
                     .interacts_with(body_b.collision_groups)
-                && !ignored_pairs.contains(BodyHandle(index_a), BodyHandle(index_b))
+                && !(ignored_pairs.contains(BodyHandle(index_a), BodyHandle(index_b))
+                    || joints.excludes(BodyHandle(index_a), BodyHandle(index_b)))
         });
         contacts.begin_step();
         events.begin_sensor_step();
@@ -620,6 +759,10 @@ fn closing_speed_bound(a: &RigidBody, b: &RigidBody) -> f32 {
 
 fn stale() -> Error {
     Error::new("", ErrorKind::StaleHandle)
+}
+
+fn stale_joint() -> Error {
+    Error::new("", ErrorKind::StaleJointHandle)
 }
 
 /// Read access for the scene queries in [`crate::query`].

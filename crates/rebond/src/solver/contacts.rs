@@ -6,7 +6,7 @@ use super::contact_lanes::{ContactLanes, LaneContact};
 use super::graph_colour::GraphColouring;
 use super::softness::Softness;
 use super::stages::{ConstraintKind, StepContext};
-use super::{BodyState, SolverBodies};
+use super::{BodyMotion, BodyState, SolverBodies};
 use crate::collision::contact_cache::{Contact, ContactCache};
 
 /// This step's contact constraints, in buffers reused from step to step.
@@ -83,7 +83,7 @@ impl ConstraintKind for ContactConstraints {
         self.restitution_threshold = context.contact.restitution_threshold;
     }
 
-    fn warm_start(&mut self, states: &mut [BodyState]) {
+    fn warm_start(&mut self, states: &mut [BodyState], _motions: &[BodyMotion]) {
         for lanes in &self.lanes {
             lanes.warm_start(states);
         }

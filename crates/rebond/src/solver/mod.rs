@@ -1,6 +1,6 @@
 //! The solver: one step of the soft-step scheme (Box2D v3 / Box3D "solver2d" soft step), run as
-//! a pipeline of stages over the kinds of constraint (`stages.rs`; contacts are the one kind so
-//! far, `contacts.rs`).
+//! a pipeline of stages over the kinds of constraint (`stages.rs`): joints (`joints.rs`) and
+//! contacts (`contacts.rs`).
 //!
 //! The stages of a step, and what each does to the velocities `v`, `ω` and the positions `c`, `q`
 //! of the moving bodies (`h = dt / n` for `n` substeps; `Δc`, `Δθ` the motion since the step
@@ -10,11 +10,11 @@
 //! |---|---|---|---|
 //! | prepare | once | read: each kind builds its constraints | read, at the start of the step |
 //! | integrate velocities | per substep | `v += h (g + F/m)`, `ω += h I⁻¹τ`, damped, limited | — |
-//! | warm start | per substep | the accumulated impulses applied again | — |
+//! | warm start | per substep | the accumulated impulses applied again | read: joints follow the poses |
 //! | prepare biased passes | per substep | — | read: `Δc`, `Δθ` set the biased passes' targets |
-//! | solve (biased, ×2) | per substep | normal impulses towards the targets (soft push-out) | — |
+//! | solve (biased, ×2) | per substep | joint rows, then normal impulses, towards the targets (soft push-out) | — |
 //! | integrate positions | per substep | — | `c += h v`, `q` turned by `h ω`, `Δc`, `Δθ` |
-//! | relax | per substep | normal impulses without push-out, then friction | read: `Δc`, `Δθ` |
+//! | relax | per substep | joint rows rigid; normal impulses without push-out, then friction | read: `Δc`, `Δθ` |
 //! | restitution | once | `v_n = −e v_n,start` where a contact hit fast enough | — |
 //! | store impulses | once | — | — |
 //!
@@ -26,6 +26,7 @@
 //! four at a time: `graph_colour.rs` groups them into lane sets of up to four that share no
 //! moving body, and `contact_lanes.rs` solves a lane set in SIMD lanes (`wide.rs`) from the
 //! constraint parts of `parts.rs`. What is left over goes into lane sets of one.
+//! Joints are solved one at a time, in slot order, from the scalar parts of `joint_parts.rs`.
 //! `contact_model.rs` holds the contact model's constants, `softness.rs` the soft constraint,
 //! `integration.rs` the time integration of the bodies.
 
@@ -34,6 +35,8 @@ pub mod contact_model;
 mod contacts;
 mod graph_colour;
 mod integration;
+mod joint_parts;
+mod joints;
 mod parts;
 mod softness;
 mod stages;
@@ -45,6 +48,8 @@ use crate::math::{Mat3, Quat, Vec3, Vec3A};
 pub(crate) use contact_model::ContactSettings;
 use contacts::ContactConstraints;
 use integration::{integrate_pose, integrate_velocities};
+use joints::JointConstraints;
+pub(crate) use joints::JointSettings;
 use stages::StepContext;
 
 /// What the contact solver reads and writes of one awake body, kept small and contiguous, in
@@ -128,6 +133,7 @@ pub(crate) struct StepSettings {
     pub gravity: Vec3,
     pub max_linear_speed: f32,
     pub contact: ContactSettings,
+    pub joint: JointSettings,
 }
 
 /// The awake dynamic and kinematic bodies of a step, in solver order, in buffers reused from step
@@ -214,5 +220,6 @@ impl SolverBodies {
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Solver {
     bodies: SolverBodies,
+    joints: JointConstraints,
     contacts: ContactConstraints,
 }

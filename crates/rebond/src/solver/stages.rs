@@ -1,15 +1,17 @@
 //! The step as a pipeline of stages (Box3D's solver stages): the body stages integrate, the
 //! constraint stages run over every kind of constraint through one interface,
-//! [`ConstraintKind`]. Contacts are the one kind so far; joints fit the same interface (their
-//! restitution does nothing), and [`Solver::run`] is where the order of the kinds in a stage is
-//! set.
+//! [`ConstraintKind`]: joints (`joints.rs`, their restitution does nothing) and contacts
+//! (`contacts.rs`). [`Solver::run`] is where the order of the kinds in a stage is set: joints
+//! first, so the contacts, solved last, are the most nearly met when a pass ends.
 
 use super::contact_model::ContactSettings;
 use super::integration::{SpeedLimits, MAX_ROTATION_PER_SUBSTEP};
-use super::{BodyState, Solver, SolverBodies, StepSettings};
+use super::joints::JointSettings;
+use super::{BodyMotion, BodyState, Solver, SolverBodies, StepSettings};
 use crate::arena::Arena;
 use crate::body::RigidBody;
 use crate::collision::contact_cache::ContactCache;
+use crate::joint::JointSet;
 use crate::math::Vec3;
 
 /// Biased passes per substep. Lane sets converge more slowly than solving the contacts strictly
@@ -27,6 +29,7 @@ pub(crate) struct StepContext {
     pub gravity: Vec3,
     pub limits: SpeedLimits,
     pub contact: ContactSettings,
+    pub joint: JointSettings,
 }
 
 impl StepContext {
@@ -43,6 +46,7 @@ impl StepContext {
                 angular: MAX_ROTATION_PER_SUBSTEP * inverse_h,
             },
             contact: settings.contact,
+            joint: settings.joint,
         }
     }
 }
@@ -64,8 +68,8 @@ pub(crate) trait ConstraintKind {
         context: &StepContext,
     );
 
-    /// Applies the accumulated impulses again.
-    fn warm_start(&mut self, states: &mut [BodyState]);
+    /// Applies the accumulated impulses again, at the substep's poses (`motions`).
+    fn warm_start(&mut self, states: &mut [BodyState], motions: &[BodyMotion]);
 
     /// Sets what the biased passes of the substep aim at, from its poses.
     fn prepare_biased_passes(&mut self, states: &[BodyState], context: &StepContext);
@@ -97,9 +101,15 @@ impl ConstraintStage {
     /// Runs this stage over the constraints of one kind. Inlined, as is [`Solver::run`], so the
     /// `match` folds away where the stage is a constant.
     #[inline(always)]
-    fn run<K: ConstraintKind>(self, kind: &mut K, states: &mut [BodyState], context: &StepContext) {
+    fn run<K: ConstraintKind>(
+        self,
+        kind: &mut K,
+        bodies: &mut SolverBodies,
+        context: &StepContext,
+    ) {
+        let states = &mut bodies.states;
         match self {
-            Self::WarmStart => kind.warm_start(states),
+            Self::WarmStart => kind.warm_start(states, &bodies.motions),
             Self::PrepareBiasedPasses => kind.prepare_biased_passes(states, context),
             Self::Solve => kind.solve::<true>(states, context),
             Self::Relax => kind.solve::<false>(states, context),
@@ -110,17 +120,18 @@ impl ConstraintStage {
 
 impl Solver {
     /// Advances every awake body of `movable` (the slots of the dynamic and kinematic bodies,
-    /// ascending) by one step, with its contacts: the stages in order (`solver/mod.rs` lists what
-    /// each does).
+    /// ascending) by one step, with its joints and contacts: the stages in order
+    /// (`solver/mod.rs` lists what each does).
     pub fn step(
         &mut self,
         bodies: &mut Arena<RigidBody>,
         movable: &[usize],
-        contacts: &mut ContactCache,
+        (joints, contacts): (&mut JointSet, &mut ContactCache),
         settings: StepSettings,
     ) {
         let context = StepContext::new(&settings);
         self.bodies.gather(bodies, movable);
+        self.joints.prepare(joints, &self.bodies, &context);
         self.contacts.prepare(contacts, &self.bodies, &context);
         for _ in 0..context.substeps {
             self.bodies.integrate_velocities(&context);
@@ -133,6 +144,7 @@ impl Solver {
             self.run(ConstraintStage::Relax, &context);
         }
         self.run(ConstraintStage::Restitution, &context);
+        self.joints.store_impulses(joints);
         self.contacts.store_impulses(contacts);
         self.bodies.scatter(bodies);
     }
@@ -140,6 +152,7 @@ impl Solver {
     /// Runs `stage` over every kind of constraint, one kind after another.
     #[inline(always)]
     fn run(&mut self, stage: ConstraintStage, context: &StepContext) {
-        stage.run(&mut self.contacts, &mut self.bodies.states, context);
+        stage.run(&mut self.joints, &mut self.bodies, context);
+        stage.run(&mut self.contacts, &mut self.bodies, context);
     }
 }

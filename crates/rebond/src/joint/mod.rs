@@ -1,0 +1,502 @@
+//! Joints: constraints that hold two bodies (or a body and the world) together.
+//!
+//! A joint is described by a [`JointDesc`] with anchors and axes in world coordinates as the
+//! bodies stand when it is added; [`crate::World::add_joint`] fixes them to each body then.
+//! Angles and slides are measured from that pose: an angle is `body_b`'s rotation relative to
+//! `body_a` about the axis, right-handed; a slide is `body_b`'s displacement relative to
+//! `body_a` along the axis.
+//!
+//! | type | holds | leaves free |
+//! |---|---|---|
+//! | [`JointType::Fixed`] | the whole relative pose | nothing |
+//! | [`JointType::Ball`] | the anchor point | rotation (optionally within a swing cone and twist limits) |
+//! | [`JointType::Revolute`] | the anchor point and the axis direction | rotation about the axis |
+//! | [`JointType::Prismatic`] | the relative rotation and the line of the axis | sliding along the axis |
+//! | [`JointType::Distance`] | the distance between two anchors | everything else |
+//!
+//! Joints are solved in the same soft step as contacts (`docs/joints.md` gives each one's
+//! equations): their velocity constraints are rigid, and their position errors are corrected by a
+//! stiff spring ([`crate::WorldSettings::joint_hertz`]). Springs and position motors are soft by
+//! design, with the stiffness and damping given.
+
+mod set;
+
+pub(crate) use set::{JointFrames, JointImpulses, JointSet};
+
+use crate::arena::ArenaIndex;
+use crate::body::BodyHandle;
+use crate::error::{check_finite, check_finite_vector, check_non_negative, Error, ErrorKind};
+use crate::error::{check_non_negative_or_infinite, check_range, Result};
+use crate::math::{Quat, Vec3};
+use std::f32::consts::PI;
+
+/// Names one joint of a [`crate::World`]. A handle to a removed joint stays invalid forever, even
+/// after another joint takes its slot.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct JointHandle(pub(crate) ArenaIndex);
+
+impl JointHandle {
+    /// The storage slot of the joint; unique among living joints.
+    pub fn slot(&self) -> usize {
+        self.0.slot()
+    }
+}
+
+/// What a joint holds; see the [module documentation](self).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum JointType {
+    /// Holds the whole relative pose.
+    Fixed,
+    /// Holds one point; rotation is free.
+    Ball,
+    /// Holds one point and an axis; rotation about the axis is free (a hinge).
+    Revolute,
+    /// Holds the relative rotation and a line; sliding along it is free.
+    Prismatic,
+    /// Holds the distance between two anchor points.
+    Distance,
+}
+
+impl JointType {
+    /// The name the scene format uses: `"fixed"`, `"ball"`, `"revolute"`, `"prismatic"`,
+    /// `"distance"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Fixed => "fixed",
+            Self::Ball => "ball",
+            Self::Revolute => "revolute",
+            Self::Prismatic => "prismatic",
+            Self::Distance => "distance",
+        }
+    }
+}
+
+/// A motor on a revolute joint's angle or a prismatic joint's slide.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Motor {
+    /// Drives the speed towards `target_velocity` (rad/s or m/s) with at most `max_force`
+    /// (N·m or N, ≥ 0; infinity allowed).
+    Velocity {
+        /// rad/s (revolute) or m/s (prismatic).
+        target_velocity: f32,
+        /// N·m or N, ≥ 0.
+        max_force: f32,
+    },
+    /// A spring towards `target_position` (rad or m): torque or force
+    /// `−stiffness (x − target) − damping ẋ`, at most `max_force`.
+    Position {
+        /// rad (revolute) or m (prismatic).
+        target_position: f32,
+        /// N·m/rad or N/m, ≥ 0.
+        stiffness: f32,
+        /// N·m·s/rad or N·s/m, ≥ 0.
+        damping: f32,
+        /// N·m or N, ≥ 0; infinity allowed.
+        max_force: f32,
+    },
+}
+
+impl Motor {
+    /// A velocity motor: drives the speed to `target_velocity` with at most `max_force`.
+    pub fn velocity(target_velocity: f32, max_force: f32) -> Self {
+        Self::Velocity {
+            target_velocity,
+            max_force,
+        }
+    }
+
+    /// A position motor: a spring of `stiffness` and `damping` towards `target_position`, with at
+    /// most `max_force`.
+    pub fn position(target_position: f32, stiffness: f32, damping: f32, max_force: f32) -> Self {
+        Self::Position {
+            target_position,
+            stiffness,
+            damping,
+            max_force,
+        }
+    }
+
+    fn validate(&self) -> Result<()> {
+        match *self {
+            Self::Velocity {
+                target_velocity,
+                max_force,
+            } => {
+                check_finite("target_velocity", target_velocity)?;
+                check_non_negative_or_infinite("max_force", max_force)?;
+            }
+            Self::Position {
+                target_position,
+                stiffness,
+                damping,
+                max_force,
+            } => {
+                check_finite("target_position", target_position)?;
+                check_non_negative("stiffness", stiffness)?;
+                check_non_negative("damping", damping)?;
+                check_non_negative_or_infinite("max_force", max_force)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A distance joint's spring: force `−stiffness (d − length) − damping ḋ` along the line of the
+/// anchors.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Spring {
+    /// N/m, ≥ 0.
+    pub stiffness: f32,
+    /// N·s/m, ≥ 0.
+    pub damping: f32,
+}
+
+/// Everything needed to create a joint. Values are checked when the joint is added to a world;
+/// an error names the field (`axis`, `motor.max_force`, ...).
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointDesc {
+    /// What the joint holds.
+    pub joint_type: JointType,
+    /// The first body, or `None` for a fixed point of the world.
+    pub body_a: Option<BodyHandle>,
+    /// The second body; forces and torques are reported as applied to it.
+    pub body_b: BodyHandle,
+    /// World point where the joint holds the bodies together, metres (for a distance joint: the
+    /// point on `body_a`).
+    pub anchor: Vec3,
+    /// Distance joints: the world point on `body_b`, metres; `None` for `anchor`.
+    pub anchor_b: Option<Vec3>,
+    /// Unit world direction (normalised when added): the hinge axis (revolute), the slide axis
+    /// (prismatic), the twist axis (ball with a swing or twist limit).
+    pub axis: Option<Vec3>,
+    /// `[min, max]`: radians about the axis (revolute, within ±π), metres along it (prismatic),
+    /// metres of length (distance; `[0, L]` is a rope).
+    pub limits: Option<[f32; 2]>,
+    /// Ball joints: largest angle between the twist axis fixed in `body_a` and the one fixed in
+    /// `body_b`, radians, 0 to π.
+    pub swing_limit: Option<f32>,
+    /// Ball joints: `[min, max]` radians of twist about the axis, within ±π.
+    pub twist_limits: Option<[f32; 2]>,
+    /// Revolute and prismatic joints: a motor on the angle or slide.
+    pub motor: Option<Motor>,
+    /// Distance joints: rest length, m, ≥ 0; `None` for the anchors' distance when added.
+    pub length: Option<f32>,
+    /// Distance joints: a spring instead of a rigid length.
+    pub spring: Option<Spring>,
+    /// Whether the two bodies still collide with each other, default false.
+    pub collide_connected: bool,
+    /// The joint breaks for good in the step its force on `body_b` exceeds this, N, ≥ 0;
+    /// default infinity (unbreakable).
+    pub break_force: f32,
+    /// The same for its torque, N·m.
+    pub break_torque: f32,
+}
+
+impl JointDesc {
+    /// A joint of `joint_type` between `body_a` (a body, or `None` for the world) and `body_b`,
+    /// holding at `anchor` (world point, m), with nothing else set.
+    pub fn new(
+        joint_type: JointType,
+        body_a: impl Into<Option<BodyHandle>>,
+        body_b: BodyHandle,
+        anchor: Vec3,
+    ) -> Self {
+        Self {
+            joint_type,
+            body_a: body_a.into(),
+            body_b,
+            anchor,
+            anchor_b: None,
+            axis: None,
+            limits: None,
+            swing_limit: None,
+            twist_limits: None,
+            motor: None,
+            length: None,
+            spring: None,
+            collide_connected: false,
+            break_force: f32::INFINITY,
+            break_torque: f32::INFINITY,
+        }
+    }
+
+    /// Holds the whole relative pose of the bodies as it is when added.
+    pub fn fixed(body_a: impl Into<Option<BodyHandle>>, body_b: BodyHandle, anchor: Vec3) -> Self {
+        Self::new(JointType::Fixed, body_a, body_b, anchor)
+    }
+
+    /// Holds the bodies together at `anchor`; rotation is free.
+    pub fn ball(body_a: impl Into<Option<BodyHandle>>, body_b: BodyHandle, anchor: Vec3) -> Self {
+        Self::new(JointType::Ball, body_a, body_b, anchor)
+    }
+
+    /// A hinge at `anchor` about `axis` (world direction).
+    pub fn revolute(
+        body_a: impl Into<Option<BodyHandle>>,
+        body_b: BodyHandle,
+        anchor: Vec3,
+        axis: Vec3,
+    ) -> Self {
+        Self::new(JointType::Revolute, body_a, body_b, anchor).axis(axis)
+    }
+
+    /// A slider along `axis` (world direction) through `anchor`.
+    pub fn prismatic(
+        body_a: impl Into<Option<BodyHandle>>,
+        body_b: BodyHandle,
+        anchor: Vec3,
+        axis: Vec3,
+    ) -> Self {
+        Self::new(JointType::Prismatic, body_a, body_b, anchor).axis(axis)
+    }
+
+    /// Holds the distance between `anchor_a` on `body_a` and `anchor_b` on `body_b` (world
+    /// points), rigid at their distance when added unless [`length`](Self::length),
+    /// [`limits`](Self::limits) or [`spring`](Self::spring) say otherwise.
+    pub fn distance(
+        body_a: impl Into<Option<BodyHandle>>,
+        body_b: BodyHandle,
+        anchor_a: Vec3,
+        anchor_b: Vec3,
+    ) -> Self {
+        let mut desc = Self::new(JointType::Distance, body_a, body_b, anchor_a);
+        desc.anchor_b = Some(anchor_b);
+        desc
+    }
+
+    /// Sets [`axis`](Self::axis).
+    pub fn axis(mut self, axis: Vec3) -> Self {
+        self.axis = Some(axis);
+        self
+    }
+
+    /// Sets [`limits`](Self::limits).
+    pub fn limits(mut self, min: f32, max: f32) -> Self {
+        self.limits = Some([min, max]);
+        self
+    }
+
+    /// Sets [`swing_limit`](Self::swing_limit).
+    pub fn swing_limit(mut self, angle: f32) -> Self {
+        self.swing_limit = Some(angle);
+        self
+    }
+
+    /// Sets [`twist_limits`](Self::twist_limits).
+    pub fn twist_limits(mut self, min: f32, max: f32) -> Self {
+        self.twist_limits = Some([min, max]);
+        self
+    }
+
+    /// Sets [`motor`](Self::motor).
+    pub fn motor(mut self, motor: Motor) -> Self {
+        self.motor = Some(motor);
+        self
+    }
+
+    /// Sets [`length`](Self::length).
+    pub fn length(mut self, length: f32) -> Self {
+        self.length = Some(length);
+        self
+    }
+
+    /// Sets [`spring`](Self::spring).
+    pub fn spring(mut self, stiffness: f32, damping: f32) -> Self {
+        self.spring = Some(Spring { stiffness, damping });
+        self
+    }
+
+    /// Sets [`collide_connected`](Self::collide_connected).
+    pub fn collide_connected(mut self, collide: bool) -> Self {
+        self.collide_connected = collide;
+        self
+    }
+
+    /// Sets [`break_force`](Self::break_force).
+    pub fn break_force(mut self, force: f32) -> Self {
+        self.break_force = force;
+        self
+    }
+
+    /// Sets [`break_torque`](Self::break_torque).
+    pub fn break_torque(mut self, torque: f32) -> Self {
+        self.break_torque = torque;
+        self
+    }
+
+    /// Checks every value and that each field set belongs to the joint type; returns the unit
+    /// axis.
+    pub(crate) fn validate(&self) -> Result<Option<Vec3>> {
+        let kind = self.joint_type;
+        let only = |field: &str, set: bool, allowed: &[JointType]| {
+            if set && !allowed.contains(&kind) {
+                Err(Error::new(field, ErrorKind::NotForJointType(kind.name())))
+            } else {
+                Ok(())
+            }
+        };
+        use JointType::{Ball, Distance, Prismatic, Revolute};
+        only("anchor_b", self.anchor_b.is_some(), &[Distance])?;
+        only("axis", self.axis.is_some(), &[Ball, Revolute, Prismatic])?;
+        only(
+            "limits",
+            self.limits.is_some(),
+            &[Revolute, Prismatic, Distance],
+        )?;
+        only("swing_limit", self.swing_limit.is_some(), &[Ball])?;
+        only("twist_limits", self.twist_limits.is_some(), &[Ball])?;
+        only("motor", self.motor.is_some(), &[Revolute, Prismatic])?;
+        only("length", self.length.is_some(), &[Distance])?;
+        only("spring", self.spring.is_some(), &[Distance])?;
+        check_finite_vector("anchor", self.anchor)?;
+        if let Some(anchor_b) = self.anchor_b {
+            check_finite_vector("anchor_b", anchor_b)?;
+        }
+        let needs_axis = matches!(kind, Revolute | Prismatic)
+            || self.swing_limit.is_some()
+            || self.twist_limits.is_some();
+        let axis = match self.axis {
+            Some(axis) => {
+                check_finite_vector("axis", axis)?;
+                let unit = axis.normalize_or_zero();
+                if unit == Vec3::ZERO || !unit.is_finite() {
+                    return Err(Error::new("axis", ErrorKind::ZeroVector));
+                }
+                Some(unit)
+            }
+            None if needs_axis => return Err(Error::new("axis", ErrorKind::Missing)),
+            None => None,
+        };
+        if let Some(limits) = self.limits {
+            let (min, max) = match kind {
+                Revolute => (-PI, PI),
+                Distance => (0.0, f32::MAX),
+                _ => (f32::MIN, f32::MAX),
+            };
+            check_interval("limits", limits, min, max)?;
+        }
+        if let Some(angle) = self.swing_limit {
+            check_range("swing_limit", angle, 0.0, PI)?;
+        }
+        if let Some(limits) = self.twist_limits {
+            check_interval("twist_limits", limits, -PI, PI)?;
+        }
+        if let Some(motor) = &self.motor {
+            motor.validate().map_err(|error| error.within("motor"))?;
+        }
+        if let Some(length) = self.length {
+            check_non_negative("length", length)?;
+        }
+        if let Some(spring) = &self.spring {
+            check_non_negative("spring.stiffness", spring.stiffness)?;
+            check_non_negative("spring.damping", spring.damping)?;
+        }
+        check_non_negative_or_infinite("break_force", self.break_force)?;
+        check_non_negative_or_infinite("break_torque", self.break_torque)?;
+        if self.body_a == Some(self.body_b) {
+            return Err(Error::new("body_b", ErrorKind::JointToItself));
+        }
+        Ok(axis)
+    }
+}
+
+/// Checks a `[min, max]` pair: both finite, within `[low, high]`, and `min ≤ max`.
+fn check_interval(field: &str, [min, max]: [f32; 2], low: f32, high: f32) -> Result<()> {
+    check_range(&format!("{field}[0]"), min, low, high)?;
+    check_range(&format!("{field}[1]"), max, low, high)?;
+    if min > max {
+        return Err(Error::new(field, ErrorKind::InvertedLimits { min, max }));
+    }
+    Ok(())
+}
+
+/// A joint in a world: its description, the frames it holds fixed to each body, and what it did
+/// in the last step.
+#[derive(Debug, Clone)]
+pub struct Joint {
+    pub(crate) desc: JointDesc,
+    pub(crate) frames: JointFrames,
+    /// Mean force and torque (about the anchor on `body_b`) on `body_b` over the last step,
+    /// world frame, N and N·m.
+    pub(crate) force: Vec3,
+    pub(crate) torque: Vec3,
+    pub(crate) broken: bool,
+}
+
+impl Joint {
+    /// What the joint holds.
+    pub fn joint_type(&self) -> JointType {
+        self.desc.joint_type
+    }
+
+    /// The joined bodies: `body_a` (`None` for the world) and `body_b`.
+    pub fn bodies(&self) -> (Option<BodyHandle>, BodyHandle) {
+        (self.desc.body_a, self.desc.body_b)
+    }
+
+    /// The description the joint was made from (anchors and axes in the world frame of the
+    /// moment it was added), with its current motor.
+    pub fn desc(&self) -> &JointDesc {
+        &self.desc
+    }
+
+    /// Mean force the joint applied to `body_b` over the last step, world frame, N; zero once
+    /// broken.
+    pub fn force(&self) -> Vec3 {
+        self.force
+    }
+
+    /// Mean torque the joint applied to `body_b` over the last step about its anchor on
+    /// `body_b`, world frame, N·m; zero once broken.
+    pub fn torque(&self) -> Vec3 {
+        self.torque
+    }
+
+    /// Whether the joint broke (its force or torque went past its break value); a broken joint
+    /// no longer acts.
+    pub fn is_broken(&self) -> bool {
+        self.broken
+    }
+
+    /// The anchors on `body_a` and `body_b` and the joint axis as fixed in each, world frame, for
+    /// the bodies' poses `(centre of mass, rotation)` (`None` for the world).
+    pub(crate) fn world_frames(
+        &self,
+        pose_a: Option<(Vec3, Quat)>,
+        (center_b, rotation_b): (Vec3, Quat),
+    ) -> JointPlacement {
+        let (center_a, rotation_a) = pose_a.unwrap_or((Vec3::ZERO, Quat::IDENTITY));
+        let frames = &self.frames;
+        JointPlacement {
+            anchor_a: center_a + rotation_a * frames.local_anchor_a,
+            anchor_b: center_b + rotation_b * frames.local_anchor_b,
+            axis_a: rotation_a * frames.local_axis_a,
+            axis_b: rotation_b * frames.local_axis_b,
+        }
+    }
+}
+
+/// Where a joint stands now, world frame: what [`crate::World::joint_placement`] returns.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointPlacement {
+    /// The anchor fixed to `body_a` (or the world point), m.
+    pub anchor_a: Vec3,
+    /// The anchor fixed to `body_b`, m; for every joint type but distance, the joint holds it on
+    /// `anchor_a`, so `|anchor_b − anchor_a|` is how far the joint has come apart.
+    pub anchor_b: Vec3,
+    /// The joint axis as fixed to `body_a` and to `body_b` (unit; +X for a joint without an
+    /// axis). A revolute joint keeps them equal.
+    pub axis_a: Vec3,
+    pub axis_b: Vec3,
+}
+
+/// A joint that broke during the last step, with the force and torque that broke it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointBreakEvent {
+    /// The joint; it stays in the world, broken, until removed.
+    pub joint: JointHandle,
+    /// Mean force on `body_b` over the step it broke in, N.
+    pub force: Vec3,
+    /// Mean torque on `body_b` about its anchor over that step, N·m.
+    pub torque: Vec3,
+}

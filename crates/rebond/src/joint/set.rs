@@ -1,0 +1,281 @@
+//! The joints of a world: storage, the frames each joint fixes to its bodies, and what the
+//! solver keeps of a joint from one step to the next.
+
+use super::{Joint, JointBreakEvent, JointDesc, JointHandle, JointType};
+use crate::arena::Arena;
+use crate::body::{BodyHandle, RigidBody};
+use crate::filter::ordered;
+use crate::math::{Quat, Vec3};
+
+/// What a joint fixes to each body when it is added: anchors and axes in each body's frame, and
+/// the relative rotation the angles are measured from. The world side (no `body_a`) has the
+/// identity pose, so its local values are world values.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct JointFrames {
+    /// Anchor on `body_a` from its centre of mass, in its axes, m.
+    pub local_anchor_a: Vec3,
+    /// Anchor on `body_b` from its centre of mass, in its axes, m.
+    pub local_anchor_b: Vec3,
+    /// The joint axis in `body_a`'s and in `body_b`'s axes (unit; +X when the joint has none).
+    pub local_axis_a: Vec3,
+    pub local_axis_b: Vec3,
+    /// `q_A⁻¹ q_B` when added: the relative rotation of zero angle.
+    pub reference_rotation: Quat,
+    /// Distance joints: the rest length, m.
+    pub length: f32,
+}
+
+/// What the solver keeps of a joint between steps to warm-start it: the impulses of the last
+/// substep, world frame, on `body_b` (`body_a` gets the opposite).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct JointImpulses {
+    /// Point constraint (fixed, ball, revolute) or the prismatic's perpendicular one, N·s.
+    pub linear: Vec3,
+    /// Rotation lock (fixed, prismatic) or the hinge's axis alignment, N·m·s.
+    pub angular: Vec3,
+    /// The distance joint's rigid length or spring, N·s.
+    pub axial: f32,
+    /// Lower and upper limit (revolute angle, prismatic slide, distance length), N·s or N·m·s.
+    pub lower: f32,
+    pub upper: f32,
+    pub motor: f32,
+    /// Ball joints: swing cone and twist limits, N·m·s.
+    pub swing: f32,
+    pub twist_lower: f32,
+    pub twist_upper: f32,
+}
+
+/// A body side of a joint as the step starts: its handle, and its centre of mass and rotation
+/// (what the solver uses for a side that does not move this step).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct SidePose {
+    pub slot: Option<usize>,
+    pub center_of_mass: Vec3,
+    pub rotation: Quat,
+}
+
+impl SidePose {
+    const WORLD: Self = Self {
+        slot: None,
+        center_of_mass: Vec3::ZERO,
+        rotation: Quat::IDENTITY,
+    };
+}
+
+/// Solver data of one joint, beside the joint.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct JointSolverData {
+    pub impulses: JointImpulses,
+    pub poses: [SidePose; 2],
+    /// Impulse on `body_b` summed over the substeps of the last step (linear at its anchor, and
+    /// the pure couple), N·s and N·m·s.
+    pub step_linear: Vec3,
+    pub step_angular: Vec3,
+    /// Whether the solver took the joint in the last step (a joint whose bodies are asleep or
+    /// static is left out, and keeps reporting its last force).
+    pub solved: bool,
+}
+
+/// Every joint of a world, with the pairs of bodies that joints keep from colliding.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct JointSet {
+    joints: Arena<(Joint, JointSolverData)>,
+    /// Pairs of bodies joined by at least one joint without `collide_connected`, smaller handle
+    /// first, sorted, with how many such joints join them.
+    excluded: Vec<((BodyHandle, BodyHandle), u32)>,
+    break_events: Vec<JointBreakEvent>,
+}
+
+impl JointSet {
+    /// Adds a checked joint whose bodies stand at `pose_a` (`None` for the world) and `pose_b`
+    /// (origin position, rotation, centre of mass); `axis` is the unit axis.
+    pub fn insert(
+        &mut self,
+        desc: JointDesc,
+        axis: Option<Vec3>,
+        body_a: Option<&RigidBody>,
+        body_b: &RigidBody,
+    ) -> JointHandle {
+        let frame = |body: Option<&RigidBody>| match body {
+            Some(body) => (body.center_of_mass(), body.rotation()),
+            None => (Vec3::ZERO, Quat::IDENTITY),
+        };
+        let (com_a, rotation_a) = frame(body_a);
+        let (com_b, rotation_b) = frame(Some(body_b));
+        let anchor_b = desc.anchor_b.unwrap_or(desc.anchor);
+        let axis = axis.unwrap_or(Vec3::X);
+        let frames = JointFrames {
+            local_anchor_a: rotation_a.inverse() * (desc.anchor - com_a),
+            local_anchor_b: rotation_b.inverse() * (anchor_b - com_b),
+            local_axis_a: rotation_a.inverse() * axis,
+            local_axis_b: rotation_b.inverse() * axis,
+            reference_rotation: rotation_a.inverse() * rotation_b,
+            length: desc
+                .length
+                .unwrap_or_else(|| (anchor_b - desc.anchor).length()),
+        };
+        if !desc.collide_connected {
+            if let Some(body_a) = desc.body_a {
+                let pair = ordered(body_a, desc.body_b);
+                match self.excluded.binary_search_by_key(&pair, |&(pair, _)| pair) {
+                    Ok(index) => self.excluded[index].1 += 1,
+                    Err(index) => self.excluded.insert(index, (pair, 1)),
+                }
+            }
+        }
+        let data = JointSolverData {
+            impulses: JointImpulses::default(),
+            poses: [SidePose::WORLD; 2],
+            step_linear: Vec3::ZERO,
+            step_angular: Vec3::ZERO,
+            solved: false,
+        };
+        let joint = Joint {
+            desc,
+            frames,
+            force: Vec3::ZERO,
+            torque: Vec3::ZERO,
+            broken: false,
+        };
+        JointHandle(self.joints.insert((joint, data)))
+    }
+
+    /// Removes a joint and returns it.
+    pub fn remove(&mut self, handle: JointHandle) -> Option<Joint> {
+        let (joint, _) = self.joints.remove(handle.0)?;
+        if let (false, Some(body_a)) = (joint.desc.collide_connected, joint.desc.body_a) {
+            let pair = ordered(body_a, joint.desc.body_b);
+            if let Ok(index) = self.excluded.binary_search_by_key(&pair, |&(pair, _)| pair) {
+                self.excluded[index].1 -= 1;
+                if self.excluded[index].1 == 0 {
+                    self.excluded.remove(index);
+                }
+            }
+        }
+        Some(joint)
+    }
+
+    /// The handles of the joints of `body`, in slot order.
+    pub fn joints_of(&self, body: BodyHandle) -> impl Iterator<Item = JointHandle> + '_ {
+        self.joints.iter().filter_map(move |(index, (joint, _))| {
+            let (a, b) = (joint.desc.body_a, joint.desc.body_b);
+            (a == Some(body) || b == body).then_some(JointHandle(index))
+        })
+    }
+
+    pub fn get(&self, handle: JointHandle) -> Option<&Joint> {
+        self.joints.get(handle.0).map(|(joint, _)| joint)
+    }
+
+    pub fn get_mut(&mut self, handle: JointHandle) -> Option<&mut Joint> {
+        self.joints.get_mut(handle.0).map(|(joint, _)| joint)
+    }
+
+    /// Every joint with its handle, in slot order.
+    pub fn iter(&self) -> impl Iterator<Item = (JointHandle, &Joint)> {
+        self.joints
+            .iter()
+            .map(|(index, (joint, _))| (JointHandle(index), joint))
+    }
+
+    pub fn len(&self) -> usize {
+        self.joints.len()
+    }
+
+    /// Whether a joint keeps bodies `a` and `b` from colliding.
+    pub fn excludes(&self, a: BodyHandle, b: BodyHandle) -> bool {
+        !self.excluded.is_empty()
+            && self
+                .excluded
+                .binary_search_by_key(&ordered(a, b), |&(pair, _)| pair)
+                .is_ok()
+    }
+
+    /// The pairs of body slots each joint that still acts links (both sides bodies), for the
+    /// islands.
+    pub fn body_links(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        self.joints.iter().filter_map(|(_, (joint, _))| {
+            let body_a = joint.desc.body_a?;
+            (!joint.broken).then(|| (body_a.slot(), joint.desc.body_b.slot()))
+        })
+    }
+
+    /// Reads the pose of each side of every joint that still acts, for the sides the solver
+    /// does not move.
+    pub fn refresh_poses(&mut self, bodies: &Arena<RigidBody>) {
+        for (_, (joint, data)) in self.joints.iter_mut() {
+            if joint.broken {
+                continue;
+            }
+            let side = |handle: Option<BodyHandle>| {
+                handle
+                    .and_then(|handle| bodies.get(handle.0))
+                    .map_or(SidePose::WORLD, |body| SidePose {
+                        slot: handle.map(|handle| handle.slot()),
+                        center_of_mass: body.center_of_mass(),
+                        rotation: body.rotation(),
+                    })
+            };
+            data.poses = [side(joint.desc.body_a), side(Some(joint.desc.body_b))];
+        }
+    }
+
+    /// The joints that still act, with their slots and solver data, in slot order.
+    pub fn acting(&self) -> impl Iterator<Item = (usize, &Joint, &JointSolverData)> {
+        self.joints
+            .iter()
+            .filter(|(_, (joint, _))| !joint.broken)
+            .map(|(index, (joint, data))| (index.slot(), joint, data))
+    }
+
+    /// The solver data of the joint in slot `slot`.
+    pub fn solver_data_mut(&mut self, slot: usize) -> Option<&mut JointSolverData> {
+        self.joints.at_slot_mut(slot).map(|(_, data)| data)
+    }
+
+    /// After the solve: each acting joint's mean force and torque over the step `dt`, and the
+    /// joints that break under them.
+    pub fn finish_step(&mut self, dt: f32) {
+        self.break_events.clear();
+        for (index, (joint, data)) in self.joints.iter_mut() {
+            if joint.broken || !data.solved {
+                continue;
+            }
+            data.solved = false;
+            joint.force = data.step_linear / dt;
+            joint.torque = data.step_angular / dt;
+            data.step_linear = Vec3::ZERO;
+            data.step_angular = Vec3::ZERO;
+            if joint.force.length() > joint.desc.break_force
+                || joint.torque.length() > joint.desc.break_torque
+            {
+                self.break_events.push(JointBreakEvent {
+                    joint: JointHandle(index),
+                    force: joint.force,
+                    torque: joint.torque,
+                });
+                joint.broken = true;
+                joint.force = Vec3::ZERO;
+                joint.torque = Vec3::ZERO;
+                data.impulses = JointImpulses::default();
+            }
+        }
+    }
+
+    /// The joints that broke in the last step.
+    pub fn break_events(&self) -> &[JointBreakEvent] {
+        &self.break_events
+    }
+}
+
+impl JointType {
+    /// Whether the joint holds its anchor point together (three linear rows).
+    pub(crate) fn holds_point(self) -> bool {
+        matches!(self, Self::Fixed | Self::Ball | Self::Revolute)
+    }
+
+    /// Whether the joint locks the relative rotation (three angular rows).
+    pub(crate) fn locks_rotation(self) -> bool {
+        matches!(self, Self::Fixed | Self::Prismatic)
+    }
+}

@@ -1,0 +1,392 @@
+//! Joint constraint parts, one joint at a time (joints are few beside contacts, so their parts
+//! are scalar), after Jolt's `Constraints/ConstraintPart/`. `parts.rs` gives the notation: a
+//! constraint `C = 0` (or `≥ 0`) is solved on `Ċ = J V`, `V = (v_A, ω_A, v_B, ω_B)`, with the
+//! effective mass `K⁻¹`, `K = J M⁻¹ Jᵀ`; an impulse `λ` changes the velocities by `M⁻¹ Jᵀ λ`.
+//! Every impulse here is the one on body B; body A gets the opposite.
+//!
+//! Each part is solved softly in the biased passes and rigidly in the relax pass
+//! ([`RowSoftness`]): `λ = −s_m K⁻¹ (Ċ + b) − s_i λ_acc`, with `b = bias_rate · C`, the soft
+//! constraint's mass scale `s_m` and impulse scale `s_i` (`softness.rs`).
+
+use super::softness::Softness;
+use crate::math::{skew, Mat3, Vec3};
+
+/// The two bodies of a joint as its parts see them: inverse masses (kg⁻¹) and world inverse
+/// inertias at the start of the step.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct JointBodies {
+    pub inverse_mass: [f32; 2],
+    pub inverse_inertia: [Mat3; 2],
+}
+
+/// The two bodies' velocities while a joint is solved (`[A, B]`), m/s and rad/s.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Velocities {
+    pub linear: [Vec3; 2],
+    pub angular: [Vec3; 2],
+}
+
+/// How hard one solve of a part pushes towards `C = 0`: the soft spring's coefficients, or
+/// rigid and without position correction (the relax pass).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct RowSoftness {
+    pub bias_rate: f32,
+    pub mass_scale: f32,
+    pub impulse_scale: f32,
+}
+
+impl RowSoftness {
+    /// Rigid, no position correction.
+    pub const RIGID: Self = Self {
+        bias_rate: 0.0,
+        mass_scale: 1.0,
+        impulse_scale: 0.0,
+    };
+
+    /// The soft spring in biased passes, rigid otherwise.
+    pub fn of_pass(softness: &Softness, use_bias: bool) -> Self {
+        if use_bias {
+            Self {
+                bias_rate: softness.bias_rate,
+                mass_scale: softness.mass_scale,
+                impulse_scale: softness.impulse_scale,
+            }
+        } else {
+            Self::RIGID
+        }
+    }
+}
+
+/// `K⁻¹` of a symmetric 3×3 `K`, or zero where `K` is singular (nothing can move).
+fn inverse_or_zero(k: Mat3) -> Mat3 {
+    let determinant = k.determinant();
+    if determinant.is_finite() && determinant.abs() > f32::MIN_POSITIVE {
+        k.inverse()
+    } else {
+        Mat3::ZERO
+    }
+}
+
+/// The point part: three rows holding the anchor `p_B` on the anchor `p_A`, `C = p_B − p_A`.
+///
+/// - Jacobian: `Ċ = v_B + ω_B × r_B − v_A − ω_A × r_A` (`r` from each centre of mass to its
+///   anchor).
+/// - Effective mass: `K = (m_A⁻¹ + m_B⁻¹) 1 + [r_A]ₓ I_A⁻¹ [r_A]ₓᵀ + [r_B]ₓ I_B⁻¹ [r_B]ₓᵀ`, a 3×3
+///   matrix kept inverted.
+/// - Impulse `λ` (a vector, N·s, at the anchor): `Δv_B = λ / m_B`, `Δω_B = I_B⁻¹ (r_B × λ)`, and
+///   the opposite on A.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct PointPart {
+    arm_a: Vec3,
+    arm_b: Vec3,
+    mass: Mat3,
+}
+
+impl PointPart {
+    pub fn new(bodies: &JointBodies, arm_a: Vec3, arm_b: Vec3) -> Self {
+        let (skew_a, skew_b) = (skew(arm_a), skew(arm_b));
+        let [mass_a, mass_b] = bodies.inverse_mass;
+        let [inertia_a, inertia_b] = bodies.inverse_inertia;
+        let k = Mat3::from_diagonal(Vec3::splat(mass_a + mass_b))
+            + skew_a * inertia_a * skew_a.transpose()
+            + skew_b * inertia_b * skew_b.transpose();
+        Self {
+            arm_a,
+            arm_b,
+            mass: inverse_or_zero(k),
+        }
+    }
+
+    pub fn velocity(&self, v: &Velocities) -> Vec3 {
+        v.linear[1] + v.angular[1].cross(self.arm_b) - v.linear[0] - v.angular[0].cross(self.arm_a)
+    }
+
+    pub fn apply(&self, bodies: &JointBodies, v: &mut Velocities, impulse: Vec3) {
+        v.linear[0] -= bodies.inverse_mass[0] * impulse;
+        v.angular[0] -= bodies.inverse_inertia[0] * self.arm_a.cross(impulse);
+        v.linear[1] += bodies.inverse_mass[1] * impulse;
+        v.angular[1] += bodies.inverse_inertia[1] * self.arm_b.cross(impulse);
+    }
+
+    /// One solve towards `C = error` (m) with `softness`, adding to `accumulated`.
+    pub fn solve(
+        &self,
+        bodies: &JointBodies,
+        v: &mut Velocities,
+        error: Vec3,
+        softness: RowSoftness,
+        accumulated: &mut Vec3,
+    ) {
+        let target = self.velocity(v) + softness.bias_rate * error;
+        let impulse =
+            -softness.mass_scale * (self.mass * target) - softness.impulse_scale * *accumulated;
+        *accumulated += impulse;
+        self.apply(bodies, v, impulse);
+    }
+}
+
+/// The rotation part: three rows locking the relative rotation, `C` = the rotation vector of
+/// B's rotation relative to A since the joint was made (world axes).
+///
+/// - Jacobian: `Ċ = ω_B − ω_A`.
+/// - Effective mass: `K = I_A⁻¹ + I_B⁻¹`, kept inverted.
+/// - Impulse `λ` (a couple, N·m·s): `Δω_B = I_B⁻¹ λ`, `Δω_A = −I_A⁻¹ λ`.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct RotationPart {
+    mass: Mat3,
+}
+
+impl RotationPart {
+    pub fn new(bodies: &JointBodies) -> Self {
+        let [inertia_a, inertia_b] = bodies.inverse_inertia;
+        Self {
+            mass: inverse_or_zero(inertia_a + inertia_b),
+        }
+    }
+
+    pub fn apply(bodies: &JointBodies, v: &mut Velocities, impulse: Vec3) {
+        v.angular[0] -= bodies.inverse_inertia[0] * impulse;
+        v.angular[1] += bodies.inverse_inertia[1] * impulse;
+    }
+
+    /// One solve towards `C = error` (rad) with `softness`, adding to `accumulated`.
+    pub fn solve(
+        &self,
+        bodies: &JointBodies,
+        v: &mut Velocities,
+        error: Vec3,
+        softness: RowSoftness,
+        accumulated: &mut Vec3,
+    ) {
+        let target = v.angular[1] - v.angular[0] + softness.bias_rate * error;
+        let impulse =
+            -softness.mass_scale * (self.mass * target) - softness.impulse_scale * *accumulated;
+        *accumulated += impulse;
+        Self::apply(bodies, v, impulse);
+    }
+}
+
+/// The axis part: one row, the relative velocity along a direction `d` of two anchors, plus
+/// turning: `Ċ = d·(v_B − v_A) + ω_B·a_B − ω_A·a_A`.
+///
+/// - A linear row (a slide, a distance) has `a_A = r_A × d`, `a_B = r_B × d`; an angular row
+///   (an angle about `e`) has `d = 0`, `a_A = a_B = e`.
+/// - Effective mass: `K = (m_A⁻¹ + m_B⁻¹) |d|² + a_A·I_A⁻¹ a_A + a_B·I_B⁻¹ a_B`, kept as `K⁻¹`.
+/// - Impulse `λ`: `Δv_B = λ d / m_B`, `Δω_B = λ I_B⁻¹ a_B`, the opposite on A.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct AxisPart {
+    direction: Vec3,
+    arm_a: Vec3,
+    arm_b: Vec3,
+    spin_a: Vec3,
+    spin_b: Vec3,
+    /// `K`, kg (or kg·m²), and `K⁻¹`; both zero where nothing can move along the row.
+    k: f32,
+    mass: f32,
+}
+
+impl AxisPart {
+    pub fn linear(bodies: &JointBodies, arms: (Vec3, Vec3), direction: Vec3) -> Self {
+        Self::new(
+            bodies,
+            direction,
+            arms.0.cross(direction),
+            arms.1.cross(direction),
+        )
+    }
+
+    pub fn angular(bodies: &JointBodies, axis: Vec3) -> Self {
+        Self::new(bodies, Vec3::ZERO, axis, axis)
+    }
+
+    fn new(bodies: &JointBodies, direction: Vec3, arm_a: Vec3, arm_b: Vec3) -> Self {
+        let spin_a = bodies.inverse_inertia[0] * arm_a;
+        let spin_b = bodies.inverse_inertia[1] * arm_b;
+        let k = (bodies.inverse_mass[0] + bodies.inverse_mass[1]) * direction.length_squared()
+            + arm_a.dot(spin_a)
+            + arm_b.dot(spin_b);
+        let (k, mass) = if k > 0.0 && k.is_finite() {
+            (k, 1.0 / k)
+        } else {
+            (0.0, 0.0)
+        };
+        Self {
+            direction,
+            arm_a,
+            arm_b,
+            spin_a,
+            spin_b,
+            k,
+            mass,
+        }
+    }
+
+    pub fn velocity(&self, v: &Velocities) -> f32 {
+        self.direction.dot(v.linear[1] - v.linear[0]) + v.angular[1].dot(self.arm_b)
+            - v.angular[0].dot(self.arm_a)
+    }
+
+    pub fn apply(&self, bodies: &JointBodies, v: &mut Velocities, impulse: f32) {
+        v.linear[0] -= (bodies.inverse_mass[0] * impulse) * self.direction;
+        v.linear[1] += (bodies.inverse_mass[1] * impulse) * self.direction;
+        v.angular[0] -= impulse * self.spin_a;
+        v.angular[1] += impulse * self.spin_b;
+    }
+
+    /// An equality row towards `C = error` with `softness`.
+    pub fn solve_equality(
+        &self,
+        bodies: &JointBodies,
+        v: &mut Velocities,
+        error: f32,
+        softness: RowSoftness,
+        accumulated: &mut f32,
+    ) {
+        let target = self.velocity(v) + softness.bias_rate * error;
+        let impulse =
+            -softness.mass_scale * self.mass * target - softness.impulse_scale * *accumulated;
+        *accumulated += impulse;
+        self.apply(bodies, v, impulse);
+    }
+
+    /// A one-sided row keeping `gap ≥ 0`, where the gap grows along `sign · J` (`sign` is +1
+    /// for a lower limit, −1 for an upper one): the accumulated impulse only pushes
+    /// (`λ_acc ≥ 0`, applied along `sign · J`). A limit not yet reached (`gap > 0`)
+    /// lets the bodies close the gap within the substep `1/inverse_h` and no faster
+    /// (speculative); a violated one is pushed back softly.
+    pub fn solve_limit(
+        &self,
+        bodies: &JointBodies,
+        v: &mut Velocities,
+        (gap, sign): (f32, f32),
+        (softness, inverse_h): (RowSoftness, f32),
+        accumulated: &mut f32,
+    ) {
+        let (bias, mass_scale, impulse_scale) = if gap > 0.0 {
+            (gap * inverse_h, 1.0, 0.0)
+        } else {
+            (
+                softness.bias_rate * gap,
+                softness.mass_scale,
+                softness.impulse_scale,
+            )
+        };
+        let target = sign * self.velocity(v) + bias;
+        let impulse = -mass_scale * self.mass * target - impulse_scale * *accumulated;
+        let total = (*accumulated + impulse).max(0.0);
+        let applied = total - *accumulated;
+        *accumulated = total;
+        self.apply(bodies, v, sign * applied);
+    }
+
+    /// A velocity motor: drives `Ċ` to `target_velocity` with an accumulated impulse within
+    /// `±max_impulse` (the force cap times the substep).
+    pub fn solve_velocity_motor(
+        &self,
+        bodies: &JointBodies,
+        v: &mut Velocities,
+        target_velocity: f32,
+        max_impulse: f32,
+        accumulated: &mut f32,
+    ) {
+        let impulse = -self.mass * (self.velocity(v) - target_velocity);
+        let total = (*accumulated + impulse).clamp(-max_impulse, max_impulse);
+        let applied = total - *accumulated;
+        *accumulated = total;
+        self.apply(bodies, v, applied);
+    }
+
+    /// A spring and damper on `C` (`F = −k C − c Ċ`), integrated implicitly over the substep
+    /// `h`: `λ = −(Ċ + β C + γ λ_acc) / (K + γ)` with `β = k / (c + h k)` and
+    /// `γ = 1 / (h (c + h k))`, the accumulated impulse kept within `±max_impulse`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve_spring(
+        &self,
+        bodies: &JointBodies,
+        v: &mut Velocities,
+        error: f32,
+        (stiffness, damping, h): (f32, f32, f32),
+        max_impulse: f32,
+        accumulated: &mut f32,
+    ) {
+        let softness = damping + h * stiffness;
+        if softness <= 0.0 || self.k == 0.0 {
+            return;
+        }
+        let bias_rate = stiffness / softness;
+        let gamma = 1.0 / (h * softness);
+        let impulse =
+            -(self.velocity(v) + bias_rate * error + gamma * *accumulated) / (self.k + gamma);
+        let total = (*accumulated + impulse).clamp(-max_impulse, max_impulse);
+        let applied = total - *accumulated;
+        *accumulated = total;
+        self.apply(bodies, v, applied);
+    }
+}
+
+/// Two axis parts solved together (a 2×2 block): the hinge's axis alignment, the prismatic's
+/// perpendicular slide. The accumulated impulse is kept as the world vector `λ₁ d₁ + λ₂ d₂`
+/// (its rows' unit directions or axes), so it survives the rows turning from one substep to
+/// the next.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct PlanePart {
+    rows: [AxisPart; 2],
+    /// The rows' unit directions (linear rows) or axes (angular rows).
+    axes: [Vec3; 2],
+    /// `K⁻¹` of the block, `K_ij = J_i M⁻¹ J_jᵀ`.
+    mass: [[f32; 2]; 2],
+}
+
+impl PlanePart {
+    pub fn new(bodies: &JointBodies, rows: [AxisPart; 2], axes: [Vec3; 2]) -> Self {
+        let coupling = |i: &AxisPart, j: &AxisPart| {
+            (bodies.inverse_mass[0] + bodies.inverse_mass[1]) * i.direction.dot(j.direction)
+                + i.arm_a.dot(j.spin_a)
+                + i.arm_b.dot(j.spin_b)
+        };
+        let (k11, k22) = (rows[0].k, rows[1].k);
+        let k12 = coupling(&rows[0], &rows[1]);
+        let determinant = k11 * k22 - k12 * k12;
+        let mass = if determinant > f32::MIN_POSITIVE && determinant.is_finite() {
+            let inverse = 1.0 / determinant;
+            [
+                [k22 * inverse, -k12 * inverse],
+                [-k12 * inverse, k11 * inverse],
+            ]
+        } else {
+            [[rows[0].mass, 0.0], [0.0, rows[1].mass]]
+        };
+        Self { rows, axes, mass }
+    }
+
+    /// The world vector of the row impulses `λ₁`, `λ₂`.
+    pub fn vector(&self, impulses: [f32; 2]) -> Vec3 {
+        impulses[0] * self.axes[0] + impulses[1] * self.axes[1]
+    }
+
+    pub fn apply(&self, bodies: &JointBodies, v: &mut Velocities, impulse: Vec3) {
+        for (row, axis) in self.rows.iter().zip(self.axes) {
+            row.apply(bodies, v, impulse.dot(axis));
+        }
+    }
+
+    /// One solve towards `C = errors` with `softness`, adding to `accumulated` (world vector).
+    pub fn solve(
+        &self,
+        bodies: &JointBodies,
+        v: &mut Velocities,
+        errors: [f32; 2],
+        softness: RowSoftness,
+        accumulated: &mut Vec3,
+    ) {
+        let target = [0, 1].map(|i| self.rows[i].velocity(v) + softness.bias_rate * errors[i]);
+        let previous = [0, 1].map(|i| accumulated.dot(self.axes[i]));
+        let impulses = [0, 1].map(|i| {
+            -softness.mass_scale * (self.mass[i][0] * target[0] + self.mass[i][1] * target[1])
+                - softness.impulse_scale * previous[i]
+        });
+        let impulse = self.vector(impulses);
+        *accumulated += impulse;
+        self.apply(bodies, v, impulse);
+    }
+}

@@ -1,0 +1,461 @@
+//! The joints as a constraint kind: every acting joint with a moving body, solved one after
+//! another in slot order from the parts of `joint_parts.rs`. `docs/joints.md` gives each joint
+//! type's rows.
+//!
+//! A joint's geometry (anchors, axes, angles and the parts built on them) follows the bodies:
+//! it is refreshed from the poses of each substep when the warm start runs, so the rows and
+//! their position errors are exact for the substep's poses, not only to first order.
+
+use super::joint_parts::{
+    AxisPart, JointBodies, PlanePart, PointPart, RotationPart, RowSoftness, Velocities,
+};
+use super::softness::Softness;
+use super::stages::{ConstraintKind, StepContext};
+use super::{BodyMotion, BodyState, SolverBodies};
+use crate::joint::{JointFrames, JointImpulses, JointSet, JointType, Motor, Spring};
+use crate::math::{Quat, Vec3};
+
+/// Largest joint frequency as a fraction of the substep rate (as for contacts,
+/// `CONTACT_HERTZ_PER_SUBSTEP_RATE`): a stiffer spring is unstable in the soft step.
+const JOINT_HERTZ_PER_SUBSTEP_RATE: f32 = 0.25;
+
+/// Below this distance between a distance joint's anchors, m, the line between them has no
+/// direction and the joint's rows wait until it has one.
+const SHORTEST_DIRECTION: f32 = 1.0e-6;
+
+/// What the world's settings say about joints, for one step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct JointSettings {
+    /// The position correction's frequency, Hz, before the cap.
+    pub hertz: f32,
+    /// Its damping ratio.
+    pub damping_ratio: f32,
+}
+
+impl JointSettings {
+    fn softness(&self, h: f32, inverse_h: f32) -> Softness {
+        Softness::new(
+            self.hertz.min(JOINT_HERTZ_PER_SUBSTEP_RATE * inverse_h),
+            self.damping_ratio,
+            h,
+        )
+    }
+}
+
+/// This step's joint constraints, in a buffer reused from step to step.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct JointConstraints {
+    constraints: Vec<JointConstraint>,
+    softness: Softness,
+}
+
+/// What of a joint's description the solve reads.
+#[derive(Debug, Clone, Copy)]
+struct JointOptions {
+    joint_type: JointType,
+    limits: Option<[f32; 2]>,
+    swing_limit: Option<f32>,
+    twist_limits: Option<[f32; 2]>,
+    motor: Option<Motor>,
+    spring: Option<Spring>,
+}
+
+/// One joint for this step.
+#[derive(Debug, Clone)]
+struct JointConstraint {
+    /// The joint's slot in the [`JointSet`].
+    slot: usize,
+    options: JointOptions,
+    frames: JointFrames,
+    /// Solver indices of bodies A and B (0 for a side that does not move this step).
+    solver: [usize; 2],
+    bodies: JointBodies,
+    /// Centre of mass and rotation of each side as the step starts (read for a side that does
+    /// not move).
+    start_poses: [(Vec3, Quat); 2],
+    impulses: JointImpulses,
+    /// Impulses on B summed over the substeps, N·s and N·m·s.
+    step_linear: Vec3,
+    step_angular: Vec3,
+    geometry: Geometry,
+}
+
+/// A joint at the poses of the current substep.
+#[derive(Debug, Clone, Copy, Default)]
+struct Geometry {
+    /// `p_B − p_A`, m.
+    separation: Vec3,
+    /// The rotation vector of B relative to A since the joint was made, world axes, rad.
+    rotation_error: Vec3,
+    /// The joint axis fixed in A (world), or the distance joint's direction from A to B.
+    axis: Vec3,
+    /// Angle (revolute, ball twist, rad), slide (prismatic, m) or length (distance, m).
+    position: f32,
+    /// Ball joints: the angle between the twist axes fixed in A and in B, rad, and the axis it
+    /// grows about.
+    swing_angle: f32,
+    swing_axis: Vec3,
+    /// Errors of the two rows of `plane` (hinge axis misalignment, rad; prismatic offset, m).
+    plane_errors: [f32; 2],
+    point: Option<PointPart>,
+    rotation: Option<RotationPart>,
+    plane: Option<PlanePart>,
+    axis_part: Option<AxisPart>,
+    swing: Option<AxisPart>,
+}
+
+/// The rotation vector (axis times angle, rad) of a unit quaternion with `w ≥ 0`.
+fn rotation_vector(rotation: Quat) -> Vec3 {
+    let vector = Vec3::new(rotation.x, rotation.y, rotation.z);
+    let sine = vector.length();
+    if sine < 1.0e-6 {
+        2.0 * vector
+    } else {
+        vector * (2.0 * sine.atan2(rotation.w) / sine)
+    }
+}
+
+impl JointConstraint {
+    /// The pose (centre of mass, rotation) of side `side` in this substep.
+    fn pose(&self, side: usize, motions: &[BodyMotion]) -> (Vec3, Quat) {
+        match self.solver[side] {
+            0 => self.start_poses[side],
+            index => (motions[index].center_of_mass, motions[index].rotation),
+        }
+    }
+
+    /// Rebuilds the geometry and parts for this substep's poses.
+    fn refresh(&mut self, motions: &[BodyMotion]) {
+        let (center_a, rotation_a) = self.pose(0, motions);
+        let (center_b, rotation_b) = self.pose(1, motions);
+        let frames = &self.frames;
+        let bodies = &self.bodies;
+        let arm_a = rotation_a * frames.local_anchor_a;
+        let arm_b = rotation_b * frames.local_anchor_b;
+        let separation = center_b + arm_b - (center_a + arm_a);
+        let axis = rotation_a * frames.local_axis_a;
+        let relative = rotation_a.inverse() * rotation_b * frames.reference_rotation.inverse();
+        let relative = if relative.w < 0.0 {
+            -relative
+        } else {
+            relative
+        };
+        let twist = 2.0
+            * Vec3::new(relative.x, relative.y, relative.z)
+                .dot(frames.local_axis_a)
+                .atan2(relative.w);
+        let mut geometry = Geometry {
+            separation,
+            rotation_error: rotation_a * rotation_vector(relative),
+            axis,
+            position: twist,
+            ..Geometry::default()
+        };
+        let options = &self.options;
+        if options.joint_type.holds_point() {
+            geometry.point = Some(PointPart::new(bodies, arm_a, arm_b));
+        }
+        if options.joint_type.locks_rotation() {
+            geometry.rotation = Some(RotationPart::new(bodies));
+        }
+        match options.joint_type {
+            JointType::Fixed => {}
+            JointType::Ball => {
+                if options.swing_limit.is_some() {
+                    let axis_b = rotation_b * frames.local_axis_b;
+                    let cross = axis.cross(axis_b);
+                    let sine = cross.length();
+                    geometry.swing_angle = sine.atan2(axis.dot(axis_b));
+                    geometry.swing_axis = if sine > 1.0e-6 {
+                        cross / sine
+                    } else {
+                        axis.any_orthonormal_vector()
+                    };
+                    geometry.swing = Some(AxisPart::angular(bodies, geometry.swing_axis));
+                }
+                if options.twist_limits.is_some() {
+                    geometry.axis_part = Some(AxisPart::angular(bodies, axis));
+                }
+            }
+            JointType::Revolute => {
+                let axis_b = rotation_b * frames.local_axis_b;
+                let misalignment = axis.cross(axis_b);
+                let (first, second) = axis.any_orthonormal_pair();
+                let rows = [first, second].map(|row| AxisPart::angular(bodies, row));
+                geometry.plane = Some(PlanePart::new(bodies, rows, [first, second]));
+                geometry.plane_errors = [misalignment.dot(first), misalignment.dot(second)];
+                geometry.axis_part = Some(AxisPart::angular(bodies, axis));
+            }
+            JointType::Prismatic => {
+                let arms = (arm_a + separation, arm_b);
+                let (first, second) = axis.any_orthonormal_pair();
+                let rows = [first, second].map(|row| AxisPart::linear(bodies, arms, row));
+                geometry.plane = Some(PlanePart::new(bodies, rows, [first, second]));
+                geometry.plane_errors = [separation.dot(first), separation.dot(second)];
+                geometry.axis_part = Some(AxisPart::linear(bodies, arms, axis));
+                geometry.position = separation.dot(axis);
+            }
+            JointType::Distance => {
+                let length = separation.length();
+                geometry.position = length;
+                if length > SHORTEST_DIRECTION {
+                    geometry.axis = separation / length;
+                    geometry.axis_part =
+                        Some(AxisPart::linear(bodies, (arm_a, arm_b), geometry.axis));
+                }
+            }
+        }
+        self.geometry = geometry;
+    }
+
+    /// The impulse on B these accumulated impulses make: linear at B's anchor, and the couple.
+    fn impulse_on_b(&self) -> (Vec3, Vec3) {
+        let impulses = &self.impulses;
+        let axis = self.geometry.axis;
+        let along_axis = impulses.lower - impulses.upper + impulses.motor;
+        match self.options.joint_type {
+            JointType::Fixed => (impulses.linear, impulses.angular),
+            JointType::Ball => (
+                impulses.linear,
+                axis * (impulses.twist_lower - impulses.twist_upper)
+                    - self.geometry.swing_axis * impulses.swing,
+            ),
+            JointType::Revolute => (impulses.linear, impulses.angular + axis * along_axis),
+            JointType::Prismatic => (impulses.linear + axis * along_axis, impulses.angular),
+            JointType::Distance => (
+                axis * (impulses.axial + impulses.lower - impulses.upper),
+                Vec3::ZERO,
+            ),
+        }
+    }
+
+    /// Applies the accumulated impulses again.
+    fn warm_start(&self, v: &mut Velocities) {
+        let (geometry, impulses, bodies) = (&self.geometry, &self.impulses, &self.bodies);
+        if let Some(point) = &geometry.point {
+            point.apply(bodies, v, impulses.linear);
+        }
+        if geometry.rotation.is_some() {
+            RotationPart::apply(bodies, v, impulses.angular);
+        }
+        if let Some(plane) = &geometry.plane {
+            let vector = match self.options.joint_type {
+                JointType::Revolute => impulses.angular,
+                _ => impulses.linear,
+            };
+            plane.apply(bodies, v, vector);
+        }
+        if let Some(axis) = &geometry.axis_part {
+            let scalar = match self.options.joint_type {
+                JointType::Ball => impulses.twist_lower - impulses.twist_upper,
+                _ => impulses.axial + impulses.lower - impulses.upper + impulses.motor,
+            };
+            axis.apply(bodies, v, scalar);
+        }
+        if let Some(swing) = &geometry.swing {
+            swing.apply(bodies, v, -impulses.swing);
+        }
+    }
+
+    /// One pass over the joint's rows: motor and limits first, what holds the joint together
+    /// last, so it is the most nearly met when the pass ends.
+    fn solve(&mut self, v: &mut Velocities, softness: RowSoftness, (h, inverse_h): (f32, f32)) {
+        let (geometry, impulses, bodies) = (&self.geometry, &mut self.impulses, &self.bodies);
+        let options = &self.options;
+        if let Some(axis) = &geometry.axis_part {
+            let position = geometry.position;
+            match options.motor {
+                Some(Motor::Velocity {
+                    target_velocity,
+                    max_force,
+                }) => axis.solve_velocity_motor(
+                    bodies,
+                    v,
+                    target_velocity,
+                    max_force * h,
+                    &mut impulses.motor,
+                ),
+                Some(Motor::Position {
+                    target_position,
+                    stiffness,
+                    damping,
+                    max_force,
+                }) => axis.solve_spring(
+                    bodies,
+                    v,
+                    position - target_position,
+                    (stiffness, damping, h),
+                    max_force * h,
+                    &mut impulses.motor,
+                ),
+                None => {}
+            }
+            if let Some(spring) = options.spring {
+                axis.solve_spring(
+                    bodies,
+                    v,
+                    position - self.frames.length,
+                    (spring.stiffness, spring.damping, h),
+                    f32::INFINITY,
+                    &mut impulses.axial,
+                );
+            }
+            let limits = match options.joint_type {
+                JointType::Ball => options.twist_limits,
+                _ => options.limits,
+            };
+            let (lower, upper) = match options.joint_type {
+                JointType::Ball => (&mut impulses.twist_lower, &mut impulses.twist_upper),
+                _ => (&mut impulses.lower, &mut impulses.upper),
+            };
+            if let Some([min, max]) = limits {
+                let pass = (softness, inverse_h);
+                axis.solve_limit(bodies, v, (position - min, 1.0), pass, lower);
+                axis.solve_limit(bodies, v, (max - position, -1.0), pass, upper);
+            }
+            let rigid_length = options.joint_type == JointType::Distance
+                && options.spring.is_none()
+                && options.limits.is_none();
+            if rigid_length {
+                let error = position - self.frames.length;
+                axis.solve_equality(bodies, v, error, softness, &mut impulses.axial);
+            }
+        }
+        if let (Some(swing), Some(limit)) = (&geometry.swing, options.swing_limit) {
+            let gap = (limit - geometry.swing_angle, -1.0);
+            swing.solve_limit(bodies, v, gap, (softness, inverse_h), &mut impulses.swing);
+        }
+        if let Some(rotation) = &geometry.rotation {
+            let error = geometry.rotation_error;
+            rotation.solve(bodies, v, error, softness, &mut impulses.angular);
+        }
+        if let Some(plane) = &geometry.plane {
+            let accumulated = match options.joint_type {
+                JointType::Revolute => &mut impulses.angular,
+                _ => &mut impulses.linear,
+            };
+            plane.solve(bodies, v, geometry.plane_errors, softness, accumulated);
+        }
+        if let Some(point) = &geometry.point {
+            point.solve(
+                bodies,
+                v,
+                geometry.separation,
+                softness,
+                &mut impulses.linear,
+            );
+        }
+    }
+}
+
+impl JointConstraints {
+    /// Runs `each` on every joint with the velocities of its two bodies, then writes them back
+    /// (solver body 0 never changes).
+    fn for_each_joint(
+        &mut self,
+        states: &mut [BodyState],
+        mut each: impl FnMut(&mut JointConstraint, &mut Velocities),
+    ) {
+        for constraint in &mut self.constraints {
+            let [a, b] = constraint.solver;
+            let mut v = Velocities {
+                linear: [
+                    states[a].linear_velocity.into(),
+                    states[b].linear_velocity.into(),
+                ],
+                angular: [
+                    states[a].angular_velocity.into(),
+                    states[b].angular_velocity.into(),
+                ],
+            };
+            each(constraint, &mut v);
+            for (side, index) in [a, b].into_iter().enumerate() {
+                if index != 0 {
+                    states[index].linear_velocity = v.linear[side].into();
+                    states[index].angular_velocity = v.angular[side].into();
+                }
+            }
+        }
+    }
+}
+
+impl ConstraintKind for JointConstraints {
+    type Source = JointSet;
+
+    /// Takes every acting joint with a body that moves this step, with last step's impulses.
+    fn prepare(&mut self, joints: &JointSet, solver_bodies: &SolverBodies, context: &StepContext) {
+        self.constraints.clear();
+        self.softness = context.joint.softness(context.h, context.inverse_h);
+        for (slot, joint, data) in joints.acting() {
+            let solver = data
+                .poses
+                .map(|pose| pose.slot.map_or(0, |slot| solver_bodies.solver_index(slot)));
+            if solver == [0, 0] {
+                continue;
+            }
+            let motions = solver.map(|index| &solver_bodies.motions[index]);
+            let desc = &joint.desc;
+            self.constraints.push(JointConstraint {
+                slot,
+                options: JointOptions {
+                    joint_type: desc.joint_type,
+                    limits: desc.limits,
+                    swing_limit: desc.swing_limit,
+                    twist_limits: desc.twist_limits,
+                    motor: desc.motor,
+                    spring: desc.spring,
+                },
+                frames: joint.frames,
+                solver,
+                bodies: JointBodies {
+                    inverse_mass: motions.map(|motion| motion.inverse_mass),
+                    inverse_inertia: motions.map(|motion| motion.world_inverse_inertia),
+                },
+                start_poses: data.poses.map(|pose| (pose.center_of_mass, pose.rotation)),
+                impulses: data.impulses,
+                step_linear: Vec3::ZERO,
+                step_angular: Vec3::ZERO,
+                geometry: Geometry::default(),
+            });
+        }
+    }
+
+    /// Refreshes each joint's geometry for the substep's poses, then applies its accumulated
+    /// impulses.
+    fn warm_start(&mut self, states: &mut [BodyState], motions: &[BodyMotion]) {
+        self.for_each_joint(states, |constraint, v| {
+            constraint.refresh(motions);
+            constraint.warm_start(v);
+        });
+    }
+
+    fn prepare_biased_passes(&mut self, _states: &[BodyState], _context: &StepContext) {}
+
+    /// One pass; the relax pass (no bias) ends the substep, so it also adds the substep's
+    /// impulses to the step's sums.
+    fn solve<const USE_BIAS: bool>(&mut self, states: &mut [BodyState], context: &StepContext) {
+        let softness = RowSoftness::of_pass(&self.softness, USE_BIAS);
+        let times = (context.h, context.inverse_h);
+        self.for_each_joint(states, |constraint, v| {
+            constraint.solve(v, softness, times);
+            if !USE_BIAS {
+                let (linear, angular) = constraint.impulse_on_b();
+                constraint.step_linear += linear;
+                constraint.step_angular += angular;
+            }
+        });
+    }
+
+    fn apply_restitution(&mut self, _states: &mut [BodyState]) {}
+
+    fn store_impulses(&self, joints: &mut JointSet) {
+        for constraint in &self.constraints {
+            if let Some(data) = joints.solver_data_mut(constraint.slot) {
+                data.impulses = constraint.impulses;
+                data.step_linear = constraint.step_linear;
+                data.step_angular = constraint.step_angular;
+                data.solved = true;
+            }
+        }
+    }
+}
