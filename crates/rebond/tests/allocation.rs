@@ -11,7 +11,7 @@ use std::cell::Cell;
 use common::{add_ground, unit_box, world, DT, G};
 use rebond::internals::collision::epa;
 use rebond::internals::collision::PosedCore;
-use rebond::{BodyDesc, BodyHandle, Pose, Quat, Shape, Vec3, World};
+use rebond::{BodyDesc, BodyHandle, JointDesc, Motor, Pose, Quat, Shape, Vec3, World};
 
 /// Counts the allocations of the calling thread, so a test can prove a step allocates nothing
 /// while other tests run on other threads.
@@ -215,5 +215,49 @@ fn a_steady_step_of_cylinders_hulls_and_capsules_allocates_nothing() {
     allocations_of(|| {
         sweep(&mut world, &sweepers, 3.0, |_| {});
         sweep(&mut world, &sweepers, 3.0, |_| {});
+    });
+}
+
+/// A chain of boxes on ball joints hanging from the world, and a swinging rod on a hinge with a
+/// motor and limits: the joints' grouping, direct solve and limit rows reuse their buffers.
+#[test]
+fn a_steady_step_with_joints_allocates_nothing() {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    let mut previous = None;
+    for index in 0..8 {
+        let top = Vec3::new(0.3 * index as f32, 4.0, 0.0);
+        let link = world
+            .add_body(
+                BodyDesc::dynamic(Shape::cuboid(Vec3::new(0.15, 0.05, 0.05)).unwrap())
+                    .position(top + Vec3::new(0.15, 0.0, 0.0))
+                    .can_sleep(false),
+            )
+            .unwrap();
+        world
+            .add_joint(JointDesc::ball(previous, link, top))
+            .unwrap();
+        previous = Some(link);
+    }
+    let rod = world
+        .add_body(
+            BodyDesc::dynamic(Shape::cuboid(Vec3::new(0.5, 0.05, 0.05)).unwrap())
+                .position(Vec3::new(0.5, 8.0, 0.0))
+                .can_sleep(false),
+        )
+        .unwrap();
+    world
+        .add_joint(
+            JointDesc::revolute(None, rod, Vec3::new(0.0, 8.0, 0.0), Vec3::Z)
+                .limits(-1.0, 1.0)
+                .motor(Motor::velocity(2.0, 5.0)),
+        )
+        .unwrap();
+    for _ in 0..240 {
+        world.step(DT).unwrap();
+    }
+    allocations_of(|| {
+        for _ in 0..240 {
+            world.step(DT).unwrap();
+        }
     });
 }

@@ -100,7 +100,12 @@ impl ConstraintKind for ContactConstraints {
         }
     }
 
-    fn solve<const USE_BIAS: bool>(&mut self, states: &mut [BodyState], context: &StepContext) {
+    fn solve<const USE_BIAS: bool>(
+        &mut self,
+        states: &mut [BodyState],
+        _motions: &[BodyMotion],
+        context: &StepContext,
+    ) {
         for lanes in &mut self.lanes {
             lanes.solve::<USE_BIAS>(states, context.inverse_h);
         }

@@ -43,6 +43,15 @@ impl RowSoftness {
         impulse_scale: 0.0,
     };
 
+    /// Rigid, with the soft spring's position correction in biased passes: for rows solved
+    /// exactly together, where the spring's softness would only let the joints sag.
+    pub fn rigid_of_pass(softness: &Softness, use_bias: bool) -> Self {
+        Self {
+            bias_rate: if use_bias { softness.bias_rate } else { 0.0 },
+            ..Self::RIGID
+        }
+    }
+
     /// The soft spring in biased passes, rigid otherwise.
     pub fn of_pass(softness: &Softness, use_bias: bool) -> Self {
         if use_bias {
@@ -56,6 +65,17 @@ impl RowSoftness {
         }
     }
 }
+
+/// One row of a joint's Jacobian, `Ċ = l_A·v_A + a_A·ω_A + l_B·v_B + a_B·ω_B` (signs included),
+/// as the direct solve of `joint_groups.rs` takes it.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct RowJacobian {
+    pub linear: [Vec3; 2],
+    pub angular: [Vec3; 2],
+}
+
+/// The world axes, the directions of the point and rotation parts' rows.
+const WORLD_AXES: [Vec3; 3] = [Vec3::X, Vec3::Y, Vec3::Z];
 
 /// `K⁻¹` of a symmetric 3×3 `K`, or zero where `K` is singular (nothing can move).
 fn inverse_or_zero(k: Mat3) -> Mat3 {
@@ -101,6 +121,14 @@ impl PointPart {
         v.linear[1] + v.angular[1].cross(self.arm_b) - v.linear[0] - v.angular[0].cross(self.arm_a)
     }
 
+    /// Its three rows, along the world axes (`ω × r · e = ω · (r × e)`).
+    pub fn rows(&self) -> [RowJacobian; 3] {
+        WORLD_AXES.map(|axis| RowJacobian {
+            linear: [-axis, axis],
+            angular: [-self.arm_a.cross(axis), self.arm_b.cross(axis)],
+        })
+    }
+
     pub fn apply(&self, bodies: &JointBodies, v: &mut Velocities, impulse: Vec3) {
         v.linear[0] -= bodies.inverse_mass[0] * impulse;
         v.angular[0] -= bodies.inverse_inertia[0] * self.arm_a.cross(impulse);
@@ -142,6 +170,14 @@ impl RotationPart {
         Self {
             mass: inverse_or_zero(inertia_a + inertia_b),
         }
+    }
+
+    /// Its three rows, about the world axes.
+    pub fn rows() -> [RowJacobian; 3] {
+        WORLD_AXES.map(|axis| RowJacobian {
+            linear: [Vec3::ZERO; 2],
+            angular: [-axis, axis],
+        })
     }
 
     pub fn apply(bodies: &JointBodies, v: &mut Velocities, impulse: Vec3) {
@@ -226,6 +262,13 @@ impl AxisPart {
             - v.angular[0].dot(self.arm_a)
     }
 
+    pub fn row(&self) -> RowJacobian {
+        RowJacobian {
+            linear: [-self.direction, self.direction],
+            angular: [-self.arm_a, self.arm_b],
+        }
+    }
+
     pub fn apply(&self, bodies: &JointBodies, v: &mut Velocities, impulse: f32) {
         v.linear[0] -= (bodies.inverse_mass[0] * impulse) * self.direction;
         v.linear[1] += (bodies.inverse_mass[1] * impulse) * self.direction;
@@ -296,9 +339,17 @@ impl AxisPart {
         self.apply(bodies, v, applied);
     }
 
-    /// A spring and damper on `C` (`F = −k C − c Ċ`), integrated implicitly over the substep
-    /// `h`: `λ = −(Ċ + β C + γ λ_acc) / (K + γ)` with `β = k / (c + h k)` and
-    /// `γ = 1 / (h (c + h k))`, the accumulated impulse kept within `±max_impulse`.
+    /// A spring and damper on `C` (`F = −k C − c Ċ`) over the substep `h`, its accumulated
+    /// impulse kept within `±max_impulse`.
+    ///
+    /// A spring slow for the substep (`ω h ≤ ½`, `ω² = k K`) pulls with the force of the
+    /// substep's starting position, damping taken at the end velocity: the impulse of the
+    /// substep is `λ = −h (k C + c Ċ')`, `Ċ' = Ċ + K (λ − λ_acc)`, so
+    /// `Δλ = −(h k C + h c Ċ + λ_acc) / (1 + h c K)`. With the position update after it this is
+    /// symplectic Euler: an undamped spring keeps its energy and swings at `ω` to `(ω h)²/24`.
+    /// A stiffer spring would go unstable that way (`ω h ≥ 2`), so it is integrated implicitly,
+    /// which is stable at any stiffness but damps it:
+    /// `Δλ = −(Ċ + β C + γ λ_acc) / (K + γ)`, `β = k / (c + h k)`, `γ = 1 / (h (c + h k))`.
     #[allow(clippy::too_many_arguments)]
     pub fn solve_spring(
         &self,
@@ -309,20 +360,29 @@ impl AxisPart {
         max_impulse: f32,
         accumulated: &mut f32,
     ) {
-        let softness = damping + h * stiffness;
-        if softness <= 0.0 || self.k == 0.0 {
+        if self.k == 0.0 {
             return;
         }
-        let bias_rate = stiffness / softness;
-        let gamma = 1.0 / (h * softness);
-        let impulse =
-            -(self.velocity(v) + bias_rate * error + gamma * *accumulated) / (self.k + gamma);
+        let velocity = self.velocity(v);
+        let impulse = if h * h * stiffness * self.k <= SYMPLECTIC_SPRING_LIMIT {
+            -(h * stiffness * error + h * damping * velocity + *accumulated)
+                / (1.0 + h * damping * self.k)
+        } else {
+            let softness = damping + h * stiffness;
+            let bias_rate = stiffness / softness;
+            let gamma = 1.0 / (h * softness);
+            -(velocity + bias_rate * error + gamma * *accumulated) / (self.k + gamma)
+        };
         let total = (*accumulated + impulse).clamp(-max_impulse, max_impulse);
         let applied = total - *accumulated;
         *accumulated = total;
         self.apply(bodies, v, applied);
     }
 }
+
+/// Largest `(ω h)²` of a spring integrated symplectically ([`AxisPart::solve_spring`]): well
+/// inside symplectic Euler's stability bound `ω h < 2`.
+const SYMPLECTIC_SPRING_LIMIT: f32 = 0.25;
 
 /// Two axis parts solved together (a 2×2 block): the hinge's axis alignment, the prismatic's
 /// perpendicular slide. The accumulated impulse is kept as the world vector `λ₁ d₁ + λ₂ d₂`
@@ -357,6 +417,11 @@ impl PlanePart {
             [[rows[0].mass, 0.0], [0.0, rows[1].mass]]
         };
         Self { rows, axes, mass }
+    }
+
+    /// Its two rows and their unit directions or axes.
+    pub fn rows(&self) -> [(RowJacobian, Vec3); 2] {
+        [0, 1].map(|i| (self.rows[i].row(), self.axes[i]))
     }
 
     /// The world vector of the row impulses `λ₁`, `λ₂`.

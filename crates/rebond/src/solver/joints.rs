@@ -3,9 +3,17 @@
 //! type's rows.
 //!
 //! A joint's geometry (anchors, axes, angles and the parts built on them) follows the bodies:
-//! it is refreshed from the poses of each substep when the warm start runs, so the rows and
-//! their position errors are exact for the substep's poses, not only to first order.
+//! it is refreshed from the poses of each substep when the warm start runs, and again for the
+//! relax pass after the poses moved, so the rows and their position errors are exact for the
+//! poses, not only to first order. The relax pass's refresh matters: with the rows of the
+//! substep's start, the velocity it leaves is tangent to where the body was, and a pendulum
+//! loses its energy at a rate proportional to the substep.
+//!
+//! The rows that hold bodies together (points, rotation locks, hinge axes, slide lines, rigid
+//! lengths) of joints sharing moving bodies are solved together and exactly
+//! (`joint_groups.rs`); limits, motors and springs one row at a time.
 
+use super::joint_groups::{Accumulator, GroupRow, GroupSystem, MAX_GROUP_ROWS};
 use super::joint_parts::{
     AxisPart, JointBodies, PlanePart, PointPart, RotationPart, RowSoftness, Velocities,
 };
@@ -22,6 +30,10 @@ const JOINT_HERTZ_PER_SUBSTEP_RATE: f32 = 0.25;
 /// Below this distance between a distance joint's anchors, m, the line between them has no
 /// direction and the joint's rows wait until it has one.
 const SHORTEST_DIRECTION: f32 = 1.0e-6;
+
+/// Least `1 + a·b` of a ball joint's twist rate `(a + b) / (1 + a·b)`: past a swing of about
+/// 160° the twist is hardly defined, and its rate is held at most ten times the unit one.
+const TWIST_RATE_FLOOR: f32 = 0.1;
 
 /// What the world's settings say about joints, for one step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -47,6 +59,15 @@ impl JointSettings {
 pub(crate) struct JointConstraints {
     constraints: Vec<JointConstraint>,
     softness: Softness,
+    /// The groups of joints linked by moving bodies whose holding rows are solved directly;
+    /// only the first `group_count` are this step's (the rest keep their buffers).
+    groups: Vec<GroupSystem>,
+    group_count: usize,
+    /// Scratch for grouping: union–find parent of each solver body, and the group of each root.
+    parent: Vec<usize>,
+    group_of_root: Vec<usize>,
+    /// Scratch: how many holding rows each group has.
+    rows_of_group: Vec<usize>,
 }
 
 /// What of a joint's description the solve reads.
@@ -58,6 +79,23 @@ struct JointOptions {
     twist_limits: Option<[f32; 2]>,
     motor: Option<Motor>,
     spring: Option<Spring>,
+}
+
+impl JointOptions {
+    /// Whether the joint holds its length rigidly (a distance joint without spring or limits).
+    fn has_rigid_length(&self) -> bool {
+        self.joint_type == JointType::Distance && self.spring.is_none() && self.limits.is_none()
+    }
+
+    /// Most rows the joint adds to its group's direct solve.
+    fn holding_rows(&self) -> usize {
+        match self.joint_type {
+            JointType::Fixed => 6,
+            JointType::Ball => 3,
+            JointType::Revolute | JointType::Prismatic => 5,
+            JointType::Distance => usize::from(self.has_rigid_length()),
+        }
+    }
 }
 
 /// One joint for this step.
@@ -74,6 +112,8 @@ struct JointConstraint {
     /// not move).
     start_poses: [(Vec3, Quat); 2],
     impulses: JointImpulses,
+    /// The group whose direct solve holds this joint together, if any.
+    group: Option<usize>,
     /// Impulses on B summed over the substeps, N·s and N·m·s.
     step_linear: Vec3,
     step_angular: Vec3,
@@ -87,7 +127,8 @@ struct Geometry {
     separation: Vec3,
     /// The rotation vector of B relative to A since the joint was made, world axes, rad.
     rotation_error: Vec3,
-    /// The joint axis fixed in A (world), or the distance joint's direction from A to B.
+    /// The joint axis fixed in A (world), the distance joint's direction from A to B, or the
+    /// ball joint's twist rate vector (`Ċ_twist = (ω_B − ω_A)·axis`).
     axis: Vec3,
     /// Angle (revolute, ball twist, rad), slide (prismatic, m) or length (distance, m).
     position: f32,
@@ -161,8 +202,8 @@ impl JointConstraint {
         match options.joint_type {
             JointType::Fixed => {}
             JointType::Ball => {
+                let axis_b = rotation_b * frames.local_axis_b;
                 if options.swing_limit.is_some() {
-                    let axis_b = rotation_b * frames.local_axis_b;
                     let cross = axis.cross(axis_b);
                     let sine = cross.length();
                     geometry.swing_angle = sine.atan2(axis.dot(axis_b));
@@ -174,7 +215,12 @@ impl JointConstraint {
                     geometry.swing = Some(AxisPart::angular(bodies, geometry.swing_axis));
                 }
                 if options.twist_limits.is_some() {
-                    geometry.axis_part = Some(AxisPart::angular(bodies, axis));
+                    // The twist (about the axis, once the swing has taken A's axis onto B's)
+                    // grows at `(ω_B − ω_A)·(a + b) / (1 + a·b)`, not along A's axis alone; the
+                    // rate is held finite where the swing nears a half turn.
+                    geometry.axis =
+                        (axis + axis_b) / (1.0 + axis.dot(axis_b)).max(TWIST_RATE_FLOOR);
+                    geometry.axis_part = Some(AxisPart::angular(bodies, geometry.axis));
                 }
             }
             JointType::Revolute => {
@@ -206,6 +252,76 @@ impl JointConstraint {
             }
         }
         self.geometry = geometry;
+    }
+
+    /// Adds the rows that hold the joint together at this substep's pose to `rows`; `index` is
+    /// the joint's index among the step's constraints.
+    fn push_holding_rows(&self, index: usize, rows: &mut Vec<GroupRow>) {
+        let geometry = &self.geometry;
+        let masses = (self.bodies.inverse_mass, self.bodies.inverse_inertia);
+        let mut push = |accumulator, jacobian, error| {
+            rows.push(GroupRow::new(
+                (index, accumulator),
+                self.solver,
+                masses,
+                jacobian,
+                error,
+            ));
+        };
+        if let Some(point) = &geometry.point {
+            for (k, jacobian) in point.rows().into_iter().enumerate() {
+                let axis = Vec3::AXES[k];
+                push(
+                    Accumulator::Linear(axis),
+                    jacobian,
+                    geometry.separation.dot(axis),
+                );
+            }
+        }
+        if geometry.rotation.is_some() {
+            for (k, jacobian) in RotationPart::rows().into_iter().enumerate() {
+                let axis = Vec3::AXES[k];
+                push(
+                    Accumulator::Angular(axis),
+                    jacobian,
+                    geometry.rotation_error.dot(axis),
+                );
+            }
+        }
+        if let Some(plane) = &geometry.plane {
+            for ((jacobian, axis), error) in plane.rows().into_iter().zip(geometry.plane_errors) {
+                let accumulator = match self.options.joint_type {
+                    JointType::Revolute => Accumulator::Angular(axis),
+                    _ => Accumulator::Linear(axis),
+                };
+                push(accumulator, jacobian, error);
+            }
+        }
+        if let (true, Some(axis)) = (self.options.has_rigid_length(), &geometry.axis_part) {
+            push(
+                Accumulator::Axial,
+                axis.row(),
+                geometry.position - self.frames.length,
+            );
+        }
+    }
+
+    /// The accumulated impulse of one of its holding rows.
+    fn accumulated(&self, accumulator: Accumulator) -> f32 {
+        match accumulator {
+            Accumulator::Linear(axis) => self.impulses.linear.dot(axis),
+            Accumulator::Angular(axis) => self.impulses.angular.dot(axis),
+            Accumulator::Axial => self.impulses.axial,
+        }
+    }
+
+    /// Adds `impulse` to one of its holding rows' accumulated impulses.
+    fn accumulate(&mut self, accumulator: Accumulator, impulse: f32) {
+        match accumulator {
+            Accumulator::Linear(axis) => self.impulses.linear += impulse * axis,
+            Accumulator::Angular(axis) => self.impulses.angular += impulse * axis,
+            Accumulator::Axial => self.impulses.axial += impulse,
+        }
     }
 
     /// The impulse on B these accumulated impulses make: linear at B's anchor, and the couple.
@@ -313,10 +429,7 @@ impl JointConstraint {
                 axis.solve_limit(bodies, v, (position - min, 1.0), pass, lower);
                 axis.solve_limit(bodies, v, (max - position, -1.0), pass, upper);
             }
-            let rigid_length = options.joint_type == JointType::Distance
-                && options.spring.is_none()
-                && options.limits.is_none();
-            if rigid_length {
+            if options.has_rigid_length() && self.group.is_none() {
                 let error = position - self.frames.length;
                 axis.solve_equality(bodies, v, error, softness, &mut impulses.axial);
             }
@@ -324,6 +437,9 @@ impl JointConstraint {
         if let (Some(swing), Some(limit)) = (&geometry.swing, options.swing_limit) {
             let gap = (limit - geometry.swing_angle, -1.0);
             swing.solve_limit(bodies, v, gap, (softness, inverse_h), &mut impulses.swing);
+        }
+        if self.group.is_some() {
+            return;
         }
         if let Some(rotation) = &geometry.rotation {
             let error = geometry.rotation_error;
@@ -349,6 +465,94 @@ impl JointConstraint {
 }
 
 impl JointConstraints {
+    fn find(parent: &mut [usize], mut body: usize) -> usize {
+        while parent[body] != body {
+            parent[body] = parent[parent[body]];
+            body = parent[body];
+        }
+        body
+    }
+
+    /// Sorts the joints into groups linked by moving bodies (union–find over the solver
+    /// bodies, groups numbered in joint order) and keeps the groups small enough for the
+    /// direct solve.
+    fn group(&mut self, body_count: usize) {
+        self.parent.clear();
+        self.parent.extend(0..body_count);
+        for constraint in &self.constraints {
+            let [a, b] = constraint.solver;
+            if a != 0 && b != 0 {
+                let (root_a, root_b) = (
+                    Self::find(&mut self.parent, a),
+                    Self::find(&mut self.parent, b),
+                );
+                self.parent[root_a.max(root_b)] = root_a.min(root_b);
+            }
+        }
+        self.group_of_root.clear();
+        self.group_of_root.resize(body_count, usize::MAX);
+        let rows_of_group = &mut self.rows_of_group;
+        rows_of_group.clear();
+        self.group_count = 0;
+        for constraint in &mut self.constraints {
+            let body = constraint.solver[0].max(constraint.solver[1]);
+            let root = Self::find(&mut self.parent, body);
+            if self.group_of_root[root] == usize::MAX {
+                self.group_of_root[root] = self.group_count;
+                self.group_count += 1;
+                rows_of_group.push(0);
+            }
+            let group = self.group_of_root[root];
+            rows_of_group[group] += constraint.options.holding_rows();
+            constraint.group = Some(group);
+        }
+        for constraint in &mut self.constraints {
+            if let Some(group) = constraint.group {
+                if rows_of_group[group] > MAX_GROUP_ROWS || rows_of_group[group] == 0 {
+                    constraint.group = None;
+                }
+            }
+        }
+        if self.groups.len() < self.group_count {
+            self.groups
+                .resize_with(self.group_count, GroupSystem::default);
+        }
+    }
+
+    /// Refreshes every joint's geometry for the current poses and builds and factors each
+    /// group's system.
+    fn refresh(&mut self, motions: &[BodyMotion]) {
+        for group in &mut self.groups[..self.group_count] {
+            group.rows.clear();
+        }
+        for (index, constraint) in self.constraints.iter_mut().enumerate() {
+            constraint.refresh(motions);
+            if let Some(group) = constraint.group {
+                constraint.push_holding_rows(index, &mut self.groups[group].rows);
+            }
+        }
+        for group in &mut self.groups[..self.group_count] {
+            group.factor();
+        }
+    }
+
+    /// One direct solve of every group's holding rows.
+    fn solve_groups(&mut self, states: &mut [BodyState], softness: RowSoftness) {
+        let constraints = &mut self.constraints;
+        for group in &mut self.groups[..self.group_count] {
+            if group.rows.is_empty() {
+                continue;
+            }
+            let snapshot = &*constraints;
+            group.solve(states, softness, |row| {
+                snapshot[row.joint].accumulated(row.accumulator)
+            });
+            for (row, impulse) in group.impulses() {
+                constraints[row.joint].accumulate(row.accumulator, impulse);
+            }
+        }
+    }
+
     /// Runs `each` on every joint with the velocities of its two bodies, then writes them back
     /// (solver body 0 never changes).
     fn for_each_joint(
@@ -386,6 +590,7 @@ impl ConstraintKind for JointConstraints {
     fn prepare(&mut self, joints: &JointSet, solver_bodies: &SolverBodies, context: &StepContext) {
         self.constraints.clear();
         self.softness = context.joint.softness(context.h, context.inverse_h);
+        let body_count = solver_bodies.states.len();
         for (slot, joint, data) in joints.acting() {
             let solver = data
                 .poses
@@ -413,37 +618,46 @@ impl ConstraintKind for JointConstraints {
                 },
                 start_poses: data.poses.map(|pose| (pose.center_of_mass, pose.rotation)),
                 impulses: data.impulses,
+                group: None,
                 step_linear: Vec3::ZERO,
                 step_angular: Vec3::ZERO,
                 geometry: Geometry::default(),
             });
         }
+        self.group(body_count);
     }
 
     /// Refreshes each joint's geometry for the substep's poses, then applies its accumulated
     /// impulses.
     fn warm_start(&mut self, states: &mut [BodyState], motions: &[BodyMotion]) {
-        self.for_each_joint(states, |constraint, v| {
-            constraint.refresh(motions);
-            constraint.warm_start(v);
-        });
+        self.refresh(motions);
+        self.for_each_joint(states, |constraint, v| constraint.warm_start(v));
     }
 
     fn prepare_biased_passes(&mut self, _states: &[BodyState], _context: &StepContext) {}
 
     /// One pass; the relax pass (no bias) ends the substep, so it also adds the substep's
     /// impulses to the step's sums.
-    fn solve<const USE_BIAS: bool>(&mut self, states: &mut [BodyState], context: &StepContext) {
+    fn solve<const USE_BIAS: bool>(
+        &mut self,
+        states: &mut [BodyState],
+        motions: &[BodyMotion],
+        context: &StepContext,
+    ) {
         let softness = RowSoftness::of_pass(&self.softness, USE_BIAS);
         let times = (context.h, context.inverse_h);
-        self.for_each_joint(states, |constraint, v| {
-            constraint.solve(v, softness, times);
-            if !USE_BIAS {
+        if !USE_BIAS {
+            self.refresh(motions);
+        }
+        self.for_each_joint(states, |constraint, v| constraint.solve(v, softness, times));
+        self.solve_groups(states, RowSoftness::rigid_of_pass(&self.softness, USE_BIAS));
+        if !USE_BIAS {
+            for constraint in &mut self.constraints {
                 let (linear, angular) = constraint.impulse_on_b();
                 constraint.step_linear += linear;
                 constraint.step_angular += angular;
             }
-        });
+        }
     }
 
     fn apply_restitution(&mut self, _states: &mut [BodyState]) {}

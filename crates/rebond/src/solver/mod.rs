@@ -35,6 +35,7 @@ pub mod contact_model;
 mod contacts;
 mod graph_colour;
 mod integration;
+mod joint_groups;
 mod joint_parts;
 mod joints;
 mod parts;

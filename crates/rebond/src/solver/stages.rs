@@ -76,7 +76,12 @@ pub(crate) trait ConstraintKind {
 
     /// One pass over the constraints: with position correction (`USE_BIAS`), or without it
     /// after the poses moved (the relax pass).
-    fn solve<const USE_BIAS: bool>(&mut self, states: &mut [BodyState], context: &StepContext);
+    fn solve<const USE_BIAS: bool>(
+        &mut self,
+        states: &mut [BodyState],
+        motions: &[BodyMotion],
+        context: &StepContext,
+    );
 
     /// After the substeps: the bounce of the constraints that have one.
     fn apply_restitution(&mut self, states: &mut [BodyState]);
@@ -111,8 +116,8 @@ impl ConstraintStage {
         match self {
             Self::WarmStart => kind.warm_start(states, &bodies.motions),
             Self::PrepareBiasedPasses => kind.prepare_biased_passes(states, context),
-            Self::Solve => kind.solve::<true>(states, context),
-            Self::Relax => kind.solve::<false>(states, context),
+            Self::Solve => kind.solve::<true>(states, &bodies.motions, context),
+            Self::Relax => kind.solve::<false>(states, &bodies.motions, context),
             Self::Restitution => kind.apply_restitution(states),
         }
     }
@@ -152,7 +157,7 @@ impl Solver {
     /// Runs `stage` over every kind of constraint, one kind after another.
     #[inline(always)]
     fn run(&mut self, stage: ConstraintStage, context: &StepContext) {
-        stage.run(&mut self.joints, &mut self.bodies, context);
         stage.run(&mut self.contacts, &mut self.bodies, context);
+        stage.run(&mut self.joints, &mut self.bodies, context);
     }
 }

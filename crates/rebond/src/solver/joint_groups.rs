@@ -1,0 +1,200 @@
+//! The direct solve of the rows that hold jointed bodies together.
+//!
+//! Sequential impulses pass forces along a chain one joint per iteration, and each joint sees
+//! only its two bodies: a 100 kg weight on 1 kg links needs hundreds of iterations before the
+//! top link feels it, so the chain stretches and bounces. Instead, the equality rows of all the
+//! joints that share moving bodies (a group: a chain, a ragdoll, a vehicle) are solved together,
+//! exactly: `A λ = −(J v + b)` with `A = J M⁻¹ Jᵀ`, factored once per pose (`A = L Lᵀ`, Cholesky
+//! over each row's profile, so a chain costs what a band matrix does). Limits, motors and
+//! springs stay one row at a time (`joints.rs`): they are inequalities or soft by design.
+//!
+//! A row that depends on the ones before it (a closed loop of joints) gets no impulse of its own.
+
+use super::joint_parts::{RowJacobian, RowSoftness};
+use super::BodyState;
+use crate::math::{Mat3, Vec3, Vec3A};
+
+/// Largest group solved directly, in rows; a larger one is left to the row-by-row solve. Its
+/// matrix is stored whole (`n²` floats, 256 KiB at the cap).
+pub(super) const MAX_GROUP_ROWS: usize = 256;
+
+/// Where a row's accumulated impulse lives in its joint's `JointImpulses`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Accumulator {
+    /// `linear · axis`.
+    Linear(Vec3),
+    /// `angular · axis`.
+    Angular(Vec3),
+    /// `axial`.
+    Axial,
+}
+
+/// One equality row of a group.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct GroupRow {
+    /// The joint (index among this step's joint constraints) and where its impulse goes.
+    pub joint: usize,
+    pub accumulator: Accumulator,
+    /// Solver indices of the row's bodies (0 for one that does not move).
+    pub bodies: [usize; 2],
+    pub jacobian: RowJacobian,
+    /// `M⁻¹ Jᵀ` per side: the velocity change a unit impulse gives.
+    pub linear_response: [Vec3; 2],
+    pub angular_response: [Vec3; 2],
+    /// Position error `C` at the pose the row was built for.
+    pub error: f32,
+}
+
+impl GroupRow {
+    pub fn new(
+        (joint, accumulator): (usize, Accumulator),
+        bodies: [usize; 2],
+        (inverse_mass, inverse_inertia): ([f32; 2], [Mat3; 2]),
+        jacobian: RowJacobian,
+        error: f32,
+    ) -> Self {
+        Self {
+            joint,
+            accumulator,
+            bodies,
+            jacobian,
+            linear_response: [0, 1].map(|side| inverse_mass[side] * jacobian.linear[side]),
+            angular_response: [0, 1].map(|side| inverse_inertia[side] * jacobian.angular[side]),
+            error,
+        }
+    }
+
+    /// `J v` for the bodies' current velocities.
+    fn velocity(&self, states: &[BodyState]) -> f32 {
+        (0..2)
+            .map(|side| {
+                let state = &states[self.bodies[side]];
+                self.jacobian.linear[side].dot(state.linear_velocity.into())
+                    + self.jacobian.angular[side].dot(state.angular_velocity.into())
+            })
+            .sum()
+    }
+
+    /// `v += M⁻¹ Jᵀ λ`; body 0 never moves.
+    fn apply(&self, states: &mut [BodyState], impulse: f32) {
+        for side in 0..2 {
+            let body = self.bodies[side];
+            if body != 0 {
+                let state = &mut states[body];
+                state.linear_velocity += Vec3A::from(impulse * self.linear_response[side]);
+                state.angular_velocity += Vec3A::from(impulse * self.angular_response[side]);
+            }
+        }
+    }
+
+    /// `J_i M⁻¹ J_jᵀ`: the sum over the bodies the two rows share.
+    fn coupling(&self, other: &Self) -> f32 {
+        let mut sum = 0.0;
+        for side in 0..2 {
+            for other_side in 0..2 {
+                if self.bodies[side] != 0 && self.bodies[side] == other.bodies[other_side] {
+                    sum += self.jacobian.linear[side].dot(other.linear_response[other_side])
+                        + self.jacobian.angular[side].dot(other.angular_response[other_side]);
+                }
+            }
+        }
+        sum
+    }
+}
+
+/// A group's rows and the Cholesky factor of its `A`, in buffers the caller reuses.
+#[derive(Debug, Clone, Default)]
+pub(super) struct GroupSystem {
+    pub rows: Vec<GroupRow>,
+    /// `L` row-major, `n × n`, lower triangle used.
+    factor: Vec<f32>,
+    /// The first column of each row's profile: `A_ij = 0` for `j < first[i]`.
+    first: Vec<usize>,
+    /// Scratch: right-hand side, then solution, then the rows' impulses.
+    work: Vec<f32>,
+}
+
+/// Relative size below which a pivot is taken for zero: the row depends on the ones before it.
+const DEPENDENT_PIVOT: f32 = 1.0e-5;
+
+impl GroupSystem {
+    /// Builds `A = J M⁻¹ Jᵀ` for `rows` and factors it.
+    pub fn factor(&mut self) {
+        let n = self.rows.len();
+        self.factor.clear();
+        self.factor.resize(n * n, 0.0);
+        self.first.clear();
+        for i in 0..n {
+            let mut first = i;
+            for j in 0..=i {
+                let coupling = self.rows[i].coupling(&self.rows[j]);
+                if coupling != 0.0 {
+                    first = first.min(j);
+                }
+                self.factor[i * n + j] = coupling;
+            }
+            self.first.push(first);
+        }
+        for i in 0..n {
+            for j in self.first[i]..=i {
+                let start = self.first[i].max(self.first[j]);
+                let mut sum = self.factor[i * n + j];
+                for k in start..j {
+                    sum -= self.factor[i * n + k] * self.factor[j * n + k];
+                }
+                self.factor[i * n + j] = if i == j {
+                    let diagonal = self.rows[i].coupling(&self.rows[i]);
+                    if sum > DEPENDENT_PIVOT * diagonal && sum > 0.0 {
+                        sum.sqrt()
+                    } else {
+                        f32::INFINITY
+                    }
+                } else {
+                    sum / self.factor[j * n + j]
+                };
+            }
+        }
+    }
+
+    /// One solve of the group: `λ = −s_m A⁻¹ (J v + b C) − s_i λ_acc` per row, applied to
+    /// `states`; `accumulated(row)` reads a row's accumulated impulse. [`Self::impulses`] then
+    /// gives the impulse of each row, for the caller's accumulators.
+    pub fn solve(
+        &mut self,
+        states: &mut [BodyState],
+        softness: RowSoftness,
+        accumulated: impl Fn(&GroupRow) -> f32,
+    ) {
+        let n = self.rows.len();
+        self.work.clear();
+        self.work.extend(
+            self.rows
+                .iter()
+                .map(|row| row.velocity(states) + softness.bias_rate * row.error),
+        );
+        for i in 0..n {
+            let mut sum = self.work[i];
+            for k in self.first[i]..i {
+                sum -= self.factor[i * n + k] * self.work[k];
+            }
+            self.work[i] = sum / self.factor[i * n + i];
+        }
+        for i in (0..n).rev() {
+            let value = self.work[i] / self.factor[i * n + i];
+            self.work[i] = value;
+            for k in self.first[i]..i {
+                self.work[k] -= self.factor[i * n + k] * value;
+            }
+        }
+        for (row, value) in self.rows.iter().zip(&mut self.work) {
+            let impulse = -softness.mass_scale * *value - softness.impulse_scale * accumulated(row);
+            row.apply(states, impulse);
+            *value = impulse;
+        }
+    }
+
+    /// Each row with the impulse the last [`Self::solve`] gave it.
+    pub fn impulses(&self) -> impl Iterator<Item = (&GroupRow, f32)> {
+        self.rows.iter().zip(self.work.iter().copied())
+    }
+}
