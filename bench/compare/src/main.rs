@@ -4,11 +4,12 @@
 //! engine and round (`compare --engine E --scene S --steps N`), alternating which engine goes
 //! first from one round to the next, and collects each child's `RESULT` line: median step time,
 //! peak memory (VmHWM of the child) and stability figures. It prints a table, then one line per
-//! scene in the form `SCENE ratio=R rebond_ms=A rapier_ms=B rebond_mb=C rapier_mb=D`.
+//! scene in the form `SCENE ratio=R rebond_ms=A rapier_ms=B rebond_mb=C rapier_mb=D`, followed
+//! by `rebond_gap_m=G rapier_gap_m=H` (the largest joint gap over the run) for scenes with joints.
 //!
 //! Every scene is described once, engine-neutrally ([`scenes::Scene`]), and built from that
 //! description in each engine, so shapes, sizes, masses, poses and materials are the same by
-//! construction.
+//! construction; so are the joints (anchors, axes, limits) of `ragdolls` and `bridge`.
 //!
 //! `compare --rays` is the scene-query comparison instead: 10,000 static boxes and 10,000 rays,
 //! the same in both engines, cast through each engine's query API in one process, alternating
@@ -45,6 +46,8 @@ const SCENES: &[(&str, usize, usize)] = &[
     ("many_pyramids", 300, 5),
     ("large_pyramid", 300, 5),
     ("mixed", 300, 5),
+    ("ragdolls", 600, 5),
+    ("bridge", 600, 5),
 ];
 
 const ENGINES: [&str; 2] = ["rebond", "rapier"];
@@ -62,6 +65,9 @@ trait Engine {
     /// Largest speed of a dynamic body, m/s.
     fn max_speed(&self) -> f32;
     fn contact_points(&self) -> usize;
+    /// Largest distance between the two anchors of a joint, m: how far the joints have come
+    /// apart (0 without joints).
+    fn max_joint_gap(&self) -> f32;
     /// Most negative separation of the current manifold points re-evaluated at the current
     /// poses, for engines whose reported separations may be stale (rapier); `None` otherwise.
     fn deepest_reevaluated(&self) -> Option<f32> {
@@ -92,6 +98,7 @@ fn run_child(engine_name: &str, scene_name: &str, steps: usize) {
     let mut max_drift = 0.0f32;
     let mut deepest = 0.0f32;
     let mut deepest_reeval = 0.0f32;
+    let mut max_gap = 0.0f32;
     let mut non_finite = false;
     let is_rapier = engine_name == "rapier";
     // COMPARE_TRACE=K prints the running figures every K steps on stderr.
@@ -114,6 +121,7 @@ fn run_child(engine_name: &str, scene_name: &str, steps: usize) {
         if let Some(depth) = engine.deepest_reevaluated() {
             deepest_reeval = deepest_reeval.min(depth);
         }
+        max_gap = max_gap.max(engine.max_joint_gap());
         engine.positions(&mut current);
         for (now, then) in current.iter().zip(&start) {
             if !now.iter().all(|c| c.is_finite()) {
@@ -130,11 +138,12 @@ fn run_child(engine_name: &str, scene_name: &str, steps: usize) {
             let top = current.iter().map(|p| p[1]).fold(f32::MIN, f32::max);
             eprintln!(
                 "step {:>5}  {elapsed:>8.3} ms  drift {max_drift:.4} m  deepest {:.4} m  \
-                 highest {top:.3} m  max speed {:.3} m/s  contacts {}",
+                 highest {top:.3} m  max speed {:.3} m/s  contacts {}  joint gap {:.4} m",
                 step + 1,
                 -deepest,
                 engine.max_speed(),
-                engine.contact_points()
+                engine.contact_points(),
+                engine.max_joint_gap()
             );
         }
     }
@@ -160,6 +169,7 @@ fn run_child(engine_name: &str, scene_name: &str, steps: usize) {
         })
         .count();
     let max_height = current.iter().map(|p| p[1]).fold(f32::MIN, f32::max);
+    let sag = scene.sag_body.map(|i| start[i][1] - current[i][1]);
     let end_speed = engine.max_speed();
     let contacts = engine.contact_points();
     let mb = peak_memory_mib();
@@ -168,10 +178,13 @@ fn run_child(engine_name: &str, scene_name: &str, steps: usize) {
          median_ms={median_ms:.4} wall_median_ms={wall_median_ms:.4} mean_ms={mean_ms:.4} p90_ms={p90_ms:.4} max_ms={max_ms:.4} \
          build_ms={build_ms:.1} mb={mb:.1} drift_m={} penetration_m={:.5} reeval_penetration_m={} \
          end_max_speed={end_speed:.3} end_max_height={max_height:.3} escaped={escaped} \
-         non_finite={non_finite} contacts={contacts}",
+         non_finite={non_finite} contacts={contacts} joints={} joint_gap_m={} sag_m={}",
         if scene.is_stack { format!("{max_drift:.5}") } else { "-".to_string() },
         0.0 - deepest,
         if is_rapier { format!("{:.5}", 0.0 - deepest_reeval) } else { "-".to_string() },
+        scene.joints.len(),
+        if scene.joints.is_empty() { "-".to_string() } else { format!("{max_gap:.5}") },
+        sag.map_or("-".to_string(), |sag| format!("{sag:.4}")),
     );
 }
 
@@ -299,9 +312,9 @@ fn run_driver(only: &[String], rounds_override: Option<usize>, steps_override: O
     }
     println!();
     println!(
-        "| scene | engine | max drift m | deepest penetration m | rapier re-evaluated m | end max speed m/s | end max height m | escaped | cpu mean / p90 / max ms | build ms | contact points at end |"
+        "| scene | engine | max drift m | deepest penetration m | rapier re-evaluated m | end max speed m/s | end max height m | escaped | max joint gap m | middle plank sag m | cpu mean / p90 / max ms | build ms | contact points at end |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (scene, _, _, runs) in &summary {
         for (e, engine_runs) in runs.iter().enumerate() {
             // Stability figures come from the first round; every round runs the same scene and
@@ -310,9 +323,10 @@ fn run_driver(only: &[String], rounds_override: Option<usize>, steps_override: O
             let same = engine_runs.iter().all(|o| {
                 o.get("drift_m") == r.get("drift_m")
                     && o.get("penetration_m") == r.get("penetration_m")
+                    && o.get("joint_gap_m") == r.get("joint_gap_m")
             });
             println!(
-                "| {scene} | {} | {} | {} | {} | {} | {} | {}{} | {} / {} / {} | {:.0} | {} |",
+                "| {scene} | {} | {} | {} | {} | {} | {} | {}{} | {} | {} | {} / {} / {} | {:.0} | {} |",
                 ENGINES[e],
                 r.get("drift_m"),
                 r.get("penetration_m"),
@@ -325,6 +339,8 @@ fn run_driver(only: &[String], rounds_override: Option<usize>, steps_override: O
                 } else {
                     ""
                 },
+                r.get("joint_gap_m"),
+                r.get("sag_m"),
                 ms(med(engine_runs, "mean_ms")),
                 ms(med(engine_runs, "p90_ms")),
                 ms(med(engine_runs, "max_ms")),
@@ -333,7 +349,7 @@ fn run_driver(only: &[String], rounds_override: Option<usize>, steps_override: O
             );
             if !same {
                 println!(
-                    "|   | {} | (stability figures differ between rounds) | | | | | | | | |",
+                    "|   | {} | (stability figures differ between rounds) | | | | | | | | | | |",
                     ENGINES[e]
                 );
             }
@@ -344,8 +360,15 @@ fn run_driver(only: &[String], rounds_override: Option<usize>, steps_override: O
     println!();
     for (scene, _, _, runs) in &summary {
         let (a, b) = (med(&runs[0], "median_ms"), med(&runs[1], "median_ms"));
+        let gaps = match runs[0][0].get("joint_gap_m") {
+            "-" => String::new(),
+            gap => format!(
+                " rebond_gap_m={gap} rapier_gap_m={}",
+                runs[1][0].get("joint_gap_m")
+            ),
+        };
         println!(
-            "{scene} ratio={:.3} rebond_ms={a:.3} rapier_ms={b:.3} rebond_mb={:.1} rapier_mb={:.1}",
+            "{scene} ratio={:.3} rebond_ms={a:.3} rapier_ms={b:.3} rebond_mb={:.1} rapier_mb={:.1}{gaps}",
             a / b,
             med(&runs[0], "mb"),
             med(&runs[1], "mb"),

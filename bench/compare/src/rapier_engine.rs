@@ -1,6 +1,6 @@
 //! Building and stepping the scenes in rapier3d, and its stability figures.
 
-use crate::scenes::{Scene, ShapeSpec, DT, FRICTION, GRAVITY, RESTITUTION, SUBSTEPS};
+use crate::scenes::{JointKind, Scene, ShapeSpec, DT, FRICTION, GRAVITY, RESTITUTION, SUBSTEPS};
 use crate::Engine;
 use rapier3d::geometry::{Contact, ContactManifold, ContactPair, PairContacts};
 
@@ -20,6 +20,7 @@ impl RapierEngine {
         // relax pass (`num_internal_stabilization_iterations` = 1), at dt / iterations.
         world.integration_parameters.num_solver_iterations = SUBSTEPS as usize;
         let mut dynamic = Vec::new();
+        let mut handles = Vec::with_capacity(scene.bodies.len());
         for spec in &scene.bodies {
             let v = |a: [f32; 3]| Vector::new(a[0], a[1], a[2]);
             let collider = match &spec.shape {
@@ -52,9 +53,48 @@ impl RapierEngine {
                 .translation(v(spec.position))
                 .rotation(v(spec.rotation));
             let (handle, _) = world.insert(body, collider);
+            handles.push(handle);
             if !spec.fixed {
                 dynamic.push(handle);
             }
+        }
+        for spec in &scene.joints {
+            let v = |a: [f32; 3]| Vector::new(a[0], a[1], a[2]);
+            let (body1, body2) = (handles[spec.body_a], handles[spec.body_b]);
+            // The joint frame's X is the axis; each body's frame is the world joint frame seen
+            // from the body's start pose, so the frames coincide at the start (angles 0), as
+            // rebond measures them.
+            let world_frame = Pose::from_parts(
+                v(spec.anchor),
+                Rotation::from_rotation_arc(Vector::X, v(spec.axis)),
+            );
+            let frame1 = world.bodies[body1].position().inverse() * world_frame;
+            let frame2 = world.bodies[body2].position().inverse() * world_frame;
+            // `contacts_enabled(false)`: rebond keeps joined bodies from colliding by default,
+            // rapier does not. rapier's joints keep their defaults otherwise (nearly rigid, no
+            // warm start), as rebond's do (`joint_hertz` 60, ζ 2, warm-started).
+            let joint: GenericJoint = match spec.kind {
+                JointKind::Ball { swing, twist } => SphericalJointBuilder::new()
+                    .local_frame1(frame1)
+                    .local_frame2(frame2)
+                    .limits(JointAxis::AngX, twist)
+                    .limits(JointAxis::AngY, [-swing, swing])
+                    .limits(JointAxis::AngZ, [-swing, swing])
+                    .contacts_enabled(false)
+                    .into(),
+                JointKind::Revolute { limits } => {
+                    let builder = RevoluteJointBuilder::new(Vector::X).contacts_enabled(false);
+                    let builder = match limits {
+                        Some(limits) => builder.limits(limits),
+                        None => builder,
+                    };
+                    // The builder takes one axis for both bodies; the frames give each its own.
+                    let mut joint = builder.build();
+                    joint.data.set_local_frame1(frame1).set_local_frame2(frame2);
+                    joint.into()
+                }
+            };
+            world.insert_impulse_joint(body1, body2, joint);
         }
         Self { world, dynamic }
     }
@@ -138,5 +178,19 @@ impl Engine for RapierEngine {
 
     fn contact_points(&self) -> usize {
         self.manifold_points().count()
+    }
+
+    fn max_joint_gap(&self) -> f32 {
+        let bodies = &self.world.bodies;
+        self.world
+            .impulse_joints()
+            .map(|(_, joint)| {
+                let anchor1 =
+                    bodies[joint.body1()].position() * joint.data.local_frame1.translation;
+                let anchor2 =
+                    bodies[joint.body2()].position() * joint.data.local_frame2.translation;
+                (anchor2 - anchor1).length()
+            })
+            .fold(0.0, f32::max)
     }
 }

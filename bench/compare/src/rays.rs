@@ -60,7 +60,9 @@ fn ray_scene() -> (Scene, Vec<RaySpec>) {
     (
         Scene {
             bodies,
+            joints: Vec::new(),
             is_stack: false,
+            sag_body: None,
         },
         rays,
     )

@@ -1,6 +1,6 @@
 //! Building and stepping the scenes in rebond, and its stability figures.
 
-use crate::scenes::{Scene, ShapeSpec, DT, FRICTION, GRAVITY, RESTITUTION, SUBSTEPS};
+use crate::scenes::{JointKind, Scene, ShapeSpec, DT, FRICTION, GRAVITY, RESTITUTION, SUBSTEPS};
 use crate::Engine;
 
 pub fn rebond_shape(shape: &ShapeSpec) -> rebond::Shape {
@@ -27,11 +27,12 @@ pub fn rebond_shape(shape: &ShapeSpec) -> rebond::Shape {
 pub struct RebondEngine {
     pub world: rebond::World,
     dynamic: Vec<rebond::BodyHandle>,
+    joints: Vec<rebond::JointHandle>,
 }
 
 impl RebondEngine {
     pub fn new(scene: &Scene) -> Self {
-        use rebond::{BodyDesc, Quat, Vec3, World, WorldSettings};
+        use rebond::{BodyDesc, JointDesc, Quat, Vec3, World, WorldSettings};
         let mut world = World::new(WorldSettings {
             gravity: Vec3::new(0.0, GRAVITY, 0.0),
             substeps: SUBSTEPS,
@@ -39,6 +40,7 @@ impl RebondEngine {
         })
         .expect("settings");
         let mut dynamic = Vec::new();
+        let mut handles = Vec::with_capacity(scene.bodies.len());
         for spec in &scene.bodies {
             let shape = rebond_shape(&spec.shape);
             let desc = if spec.fixed {
@@ -52,11 +54,38 @@ impl RebondEngine {
                 .friction(FRICTION)
                 .restitution(RESTITUTION);
             let handle = world.add_body(desc).expect("valid body");
+            handles.push(handle);
             if !spec.fixed {
                 dynamic.push(handle);
             }
         }
-        Self { world, dynamic }
+        let joints = scene
+            .joints
+            .iter()
+            .map(|spec| {
+                let (a, b) = (handles[spec.body_a], handles[spec.body_b]);
+                let (anchor, axis) = (Vec3::from(spec.anchor), Vec3::from(spec.axis));
+                let desc = match spec.kind {
+                    JointKind::Ball { swing, twist } => JointDesc::ball(a, b, anchor)
+                        .axis(axis)
+                        .swing_limit(swing)
+                        .twist_limits(twist[0], twist[1]),
+                    JointKind::Revolute { limits } => {
+                        let desc = JointDesc::revolute(a, b, anchor, axis);
+                        match limits {
+                            Some([min, max]) => desc.limits(min, max),
+                            None => desc,
+                        }
+                    }
+                };
+                world.add_joint(desc).expect("valid joint")
+            })
+            .collect();
+        Self {
+            world,
+            dynamic,
+            joints,
+        }
     }
 }
 
@@ -91,5 +120,15 @@ impl Engine for RebondEngine {
 
     fn contact_points(&self) -> usize {
         self.world.contact_count()
+    }
+
+    fn max_joint_gap(&self) -> f32 {
+        self.joints
+            .iter()
+            .map(|&h| {
+                let placement = self.world.joint_placement(h).expect("joint");
+                (placement.anchor_b - placement.anchor_a).length()
+            })
+            .fold(0.0, f32::max)
     }
 }

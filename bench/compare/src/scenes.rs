@@ -2,6 +2,8 @@
 //! pose and mass, and the deterministic jitter that places and tilts them.
 
 use crate::rebond_engine::rebond_shape;
+use rebond::{Quat, Vec3};
+use std::f32::consts::FRAC_PI_2;
 
 /// Step length, seconds.
 pub const DT: f32 = 1.0 / 60.0;
@@ -36,10 +38,42 @@ pub struct BodySpec {
     pub mass: f32,
 }
 
+/// What a joint holds, with its limits (radians).
+#[derive(Clone, Debug)]
+pub enum JointKind {
+    /// Holds the anchor point. Swing: largest angle between the twist axis as fixed in each body;
+    /// twist: `[min, max]` rotation about it. rebond takes these as a swing cone and twist limits;
+    /// rapier has no cone, so it gets `[-swing, swing]` on each of the two axes across the twist
+    /// axis (its joint frame's Y and Z) and the twist on X: a square cone, wider on the diagonals.
+    Ball { swing: f32, twist: [f32; 2] },
+    /// Holds the anchor point and the axis; `[min, max]` rotation of `body_b` relative to
+    /// `body_a` about the axis, right-handed (rebond's convention, and rapier's about its joint
+    /// frame's X), or free.
+    Revolute { limits: Option<[f32; 2]> },
+}
+
+/// A joint between two bodies of the scene, placed in the world as the bodies start: both engines
+/// fix the anchor and axis to each body from the bodies' start poses, so every angle starts at 0.
+#[derive(Clone, Debug)]
+pub struct JointSpec {
+    pub kind: JointKind,
+    /// Indices in [`Scene::bodies`].
+    pub body_a: usize,
+    pub body_b: usize,
+    /// World anchor, m.
+    pub anchor: [f32; 3],
+    /// Unit world axis: the hinge axis, or the ball joint's twist axis.
+    pub axis: [f32; 3],
+}
+
 pub struct Scene {
     pub bodies: Vec<BodySpec>,
+    pub joints: Vec<JointSpec>,
     /// Whether the largest drift of a dynamic body from its start is a meaningful figure.
     pub is_stack: bool,
+    /// A dynamic body (index among the dynamic bodies, in scene order) whose drop below its start
+    /// height at the end of the run is reported: the bridge's middle plank.
+    pub sag_body: Option<usize>,
 }
 
 fn unit_box() -> ShapeSpec {
@@ -98,6 +132,8 @@ impl Jitter {
 
 pub fn build_scene(name: &str) -> Scene {
     let mut bodies = Vec::new();
+    let mut joints = Vec::new();
+    let mut sag_body = None;
     let is_stack = match name {
         // Square pyramid, 10×10 base up to 1×1: 385 boxes.
         "pyramid" => {
@@ -187,9 +223,193 @@ pub fn build_scene(name: &str) -> Scene {
             grid.fill(&mut bodies, &shapes);
             false
         }
+        // 36 ragdolls of 11 bodies and 10 joints lying on their backs, 4 layers of 3×3 spaced
+        // 2.2 m, the layers 0.8 m apart from 1 m up and turned 90° from one to the next, each
+        // ragdoll moved by up to 0.3 m and turned by up to 0.3 rad about Y: a pile on the ground.
+        "ragdolls" => {
+            bodies.push(ground(20.0, 20.0));
+            let mut jitter = Jitter(23);
+            for layer in 0..4 {
+                for i in 0..3 {
+                    for k in 0..3 {
+                        let offset = jitter.next3(0.3);
+                        let yaw =
+                            jitter.next() * 0.3 + if layer % 2 == 1 { FRAC_PI_2 } else { 0.0 };
+                        let centre = Vec3::new(
+                            (i as f32 - 1.0) * 2.2 + offset[0],
+                            1.0 + layer as f32 * 0.8,
+                            (k as f32 - 1.0) * 2.2 + offset[2],
+                        );
+                        let orientation =
+                            Quat::from_rotation_y(yaw) * Quat::from_rotation_x(-FRAC_PI_2);
+                        ragdoll(&mut bodies, &mut joints, centre, orientation);
+                    }
+                }
+            }
+            false
+        }
+        // A rope bridge: 30 planks (0.5 × 0.1 × 2 m, 100 kg) hanging between two fixed blocks
+        // 5 m up, on 31 free hinges along Z with 2 cm between planks; it starts on a circular
+        // arc 1 m deep. 20 boxes of 0.5 m (125 kg) fall on its middle 10 m from 7 to 8.3 m.
+        "bridge" => {
+            bodies.push(ground(20.0, 20.0));
+            sag_body = Some(bridge(&mut bodies, &mut joints, 30));
+            let mut jitter = Jitter(31);
+            for i in 0..20 {
+                let offset = jitter.next3(0.1);
+                let tilt = jitter.next3(0.3);
+                bodies.push(dynamic(
+                    ShapeSpec::Cuboid([0.25; 3]),
+                    [
+                        -4.5 + (i / 2) as f32 + offset[0],
+                        7.0 + 0.65 * (i % 3) as f32 + offset[1],
+                        if i % 2 == 0 { -0.5 } else { 0.5 } + offset[2],
+                    ],
+                    tilt,
+                ));
+            }
+            false
+        }
         other => panic!("unknown scene {other:?}"),
     };
-    Scene { bodies, is_stack }
+    Scene {
+        bodies,
+        joints,
+        is_stack,
+        sag_body,
+    }
+}
+
+/// Pushes a ragdoll of 11 bodies and 10 joints. Its parts are laid out standing in a T-pose,
+/// facing +Z, centred on the origin, then turned by `orientation` and moved to `centre`.
+fn ragdoll(
+    bodies: &mut Vec<BodySpec>,
+    joints: &mut Vec<JointSpec>,
+    centre: Vec3,
+    orientation: Quat,
+) {
+    // Capsules stand along Y; an arm lies along X.
+    let along_x = Quat::from_rotation_z(FRAC_PI_2);
+    let capsule = |radius, half_height| ShapeSpec::Capsule {
+        radius,
+        half_height,
+    };
+    // Half the standing height: the parts below are given from the soles up.
+    let lift = Vec3::new(0.0, -0.88, 0.0);
+    let first = bodies.len();
+    let mut part = |shape, position: [f32; 3], rotation: Quat| {
+        let position = centre + orientation * (Vec3::from(position) + lift);
+        let rotation = (orientation * rotation).to_scaled_axis();
+        bodies.push(dynamic(shape, position.to_array(), rotation.to_array()));
+    };
+    // Pelvis, chest, head, then each side's upper arm, forearm, thigh and shin. Gaps of 3 to 6 cm
+    // between joined parts keep them clear of each other at rest.
+    let (pelvis, chest) = ([0.16, 0.1, 0.1], [0.2, 0.22, 0.12]);
+    part(ShapeSpec::Cuboid(pelvis), [0.0, 0.95, 0.0], Quat::IDENTITY);
+    part(ShapeSpec::Cuboid(chest), [0.0, 1.3, 0.0], Quat::IDENTITY);
+    part(ShapeSpec::Sphere(0.12), [0.0, 1.7, 0.0], Quat::IDENTITY);
+    for side in [1.0, -1.0] {
+        part(capsule(0.05, 0.1), [0.38 * side, 1.45, 0.0], along_x);
+        part(capsule(0.045, 0.1), [0.695 * side, 1.45, 0.0], along_x);
+        part(capsule(0.07, 0.15), [0.1 * side, 0.6, 0.0], Quat::IDENTITY);
+        part(capsule(0.06, 0.15), [0.1 * side, 0.15, 0.0], Quat::IDENTITY);
+    }
+    let mut joint = |kind, body_a: usize, body_b: usize, anchor: [f32; 3], axis: [f32; 3]| {
+        joints.push(JointSpec {
+            kind,
+            body_a: first + body_a,
+            body_b: first + body_b,
+            anchor: (centre + orientation * (Vec3::from(anchor) + lift)).to_array(),
+            axis: (orientation * Vec3::from(axis)).to_array(),
+        });
+    };
+    let ball = |swing, twist: f32| JointKind::Ball {
+        swing,
+        twist: [-twist, twist],
+    };
+    // Elbows and knees bend one way only, from straight: forearms forward, shins backward.
+    let hinge = || JointKind::Revolute {
+        limits: Some([0.0, 2.4]),
+    };
+    joint(ball(0.5, 0.4), 0, 1, [0.0, 1.065, 0.0], [0.0, 1.0, 0.0]); // spine
+    joint(ball(0.6, 0.8), 1, 2, [0.0, 1.55, 0.0], [0.0, 1.0, 0.0]); // neck
+    for (index, side) in [1.0f32, -1.0].into_iter().enumerate() {
+        let (upper_arm, forearm, thigh, shin) =
+            (3 + 4 * index, 4 + 4 * index, 5 + 4 * index, 6 + 4 * index);
+        joint(
+            ball(1.3, 0.6),
+            1,
+            upper_arm,
+            [0.215 * side, 1.45, 0.0],
+            [side, 0.0, 0.0],
+        );
+        // About −Y on the left (+X) side and +Y on the right, a positive angle swings the
+        // forearm towards +Z on both.
+        joint(
+            hinge(),
+            upper_arm,
+            forearm,
+            [0.54 * side, 1.45, 0.0],
+            [0.0, -side, 0.0],
+        );
+        joint(
+            ball(1.0, 0.5),
+            0,
+            thigh,
+            [0.1 * side, 0.835, 0.0],
+            [0.0, -1.0, 0.0],
+        );
+        joint(
+            hinge(),
+            thigh,
+            shin,
+            [0.1 * side, 0.37, 0.0],
+            [1.0, 0.0, 0.0],
+        );
+    }
+}
+
+/// Pushes two fixed blocks and `planks` planks hanging between them on hinges along Z, on a
+/// circular arc 1 m deep; returns the middle plank's index among the dynamic bodies.
+fn bridge(bodies: &mut Vec<BodySpec>, joints: &mut Vec<JointSpec>, planks: usize) -> usize {
+    const PITCH: f32 = 0.52;
+    const HEIGHT: f32 = 5.0;
+    // The planks turn by equal steps from −MAX_TILT to +MAX_TILT: an arc whose depth is about
+    // planks × PITCH × MAX_TILT / 4 = 1 m for 30 planks.
+    const MAX_TILT: f32 = 0.25;
+    let tilt = |i: usize| -MAX_TILT * (1.0 - (2 * i + 1) as f32 / planks as f32);
+    let span: f32 = (0..planks).map(|i| PITCH * tilt(i).cos()).sum();
+    let left = Vec3::new(-span / 2.0, HEIGHT, 0.0);
+    let dynamic_before = bodies.iter().filter(|b| !b.fixed).count();
+    let anchor_block = bodies.len();
+    bodies.push(fixed_box([0.5, 0.5, 1.2], [left.x - 0.51, HEIGHT, 0.0]));
+    bodies.push(fixed_box([0.5, 0.5, 1.2], [span / 2.0 + 0.51, HEIGHT, 0.0]));
+    let hinge = |body_a, body_b, anchor: Vec3| JointSpec {
+        kind: JointKind::Revolute { limits: None },
+        body_a,
+        body_b,
+        anchor: anchor.to_array(),
+        axis: [0.0, 0.0, 1.0],
+    };
+    let mut joint_point = left;
+    for i in 0..planks {
+        let direction = Vec3::new(tilt(i).cos(), tilt(i).sin(), 0.0);
+        let next = joint_point + PITCH * direction;
+        let previous = if i == 0 {
+            anchor_block
+        } else {
+            bodies.len() - 1
+        };
+        joints.push(hinge(previous, bodies.len(), joint_point));
+        bodies.push(dynamic(
+            ShapeSpec::Cuboid([PITCH / 2.0 - 0.01, 0.05, 1.0]),
+            ((joint_point + next) / 2.0).to_array(),
+            [0.0, 0.0, tilt(i)],
+        ));
+        joint_point = next;
+    }
+    joints.push(hinge(anchor_block + 1, bodies.len() - 1, joint_point));
+    dynamic_before + planks / 2
 }
 
 /// Dynamic bodies on a grid of spacing 1.5 m centred on the Y axis, `columns` × `columns` per

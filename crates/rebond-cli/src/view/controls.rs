@@ -18,6 +18,8 @@ pub enum Action {
     ToggleContacts,
     /// Show or hide bounding boxes.
     ToggleBoundingBoxes,
+    /// Show or hide joints.
+    ToggleJoints,
     /// Tint sleeping bodies, or not.
     ToggleSleepingTint,
     /// Shoot a ball from the camera toward the cursor.
@@ -80,6 +82,12 @@ pub const KEY_BINDINGS: &[KeyBinding] = &[
         label: "B",
         action: Action::ToggleBoundingBoxes,
         description: "bounding boxes",
+    },
+    KeyBinding {
+        key: Key::J,
+        label: "J",
+        action: Action::ToggleJoints,
+        description: "joints (anchors, axes, limits)",
     },
     KeyBinding {
         key: Key::Z,

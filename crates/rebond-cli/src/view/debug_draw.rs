@@ -1,9 +1,10 @@
 //! What the debug toggles add to the picture, as plain geometry: contact points with their
-//! normals, bounding boxes, and the spring of a dragged body.
+//! normals, bounding boxes, joints ([`super::joint_draw`]), and the spring of a dragged body.
 
 use rebond::{Aabb, Vec3};
 
 use super::camera::corner;
+use super::joint_draw::push_joints;
 use super::palette::{
     Rgb, BOUNDING_BOX, CONTACT_NORMAL, CONTACT_POINT, DRAG_SPRING, SPECULATIVE_POINT,
 };
@@ -35,9 +36,9 @@ pub struct Marker {
 /// Everything the debug drawing shows this frame.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct DebugGeometry {
-    /// Lines: normals, box edges, the drag spring.
+    /// Lines: normals, box edges, joints, the drag spring.
     pub segments: Vec<Segment>,
-    /// Dots: contact points, the drag target.
+    /// Dots: contact points, joint anchors, the drag target.
     pub markers: Vec<Marker>,
 }
 
@@ -72,6 +73,10 @@ pub fn debug_geometry(viewer: &Viewer) -> DebugGeometry {
                 push_box_edges(&mut geometry.segments, &body.aabb());
             }
         }
+    }
+    if viewer.display.joints {
+        let simulation = &viewer.simulation;
+        push_joints(&mut geometry, world, simulation.initial_world());
     }
     if let Some(drag) = viewer.simulation.drag() {
         if let Some(anchor) = drag.anchor(world) {

@@ -6,14 +6,16 @@
 //! The module splits by concept: [`simulation`] (the stepping world and the user's pokes),
 //! [`drag`] (the mouse spring), [`picking`] (ray casts, which the engine lacks), [`camera`],
 //! [`controls`] (the key table and help), [`viewer`] (input to actions), [`mesh`] (a triangle
-//! mesh per shape), [`ground`], [`palette`], [`debug_draw`], [`overlay`] (text panels),
-//! [`render`] (three-d drawing), [`screenshot`] and [`window`] (winit's event loop).
+//! mesh per shape), [`ground`], [`palette`], [`debug_draw`] with [`joint_draw`], [`overlay`]
+//! (text panels), [`render`] (three-d drawing), [`screenshot`] and [`window`] (winit's event
+//! loop).
 
 mod camera;
 mod controls;
 mod debug_draw;
 mod drag;
 mod ground;
+mod joint_draw;
 mod mesh;
 mod overlay;
 mod palette;

@@ -70,6 +70,16 @@ pub const CONTACT_NORMAL: Rgb = Rgb([255, 240, 80]);
 pub const BOUNDING_BOX: Rgb = Rgb([80, 230, 255]);
 /// The spring of a dragged body.
 pub const DRAG_SPRING: Rgb = Rgb([255, 255, 255]);
+/// Joint anchors, and the spokes fixed to a joint's second body that show its angle.
+pub const JOINT_ANCHOR: Rgb = Rgb([150, 255, 80]);
+/// Hinge, slide and twist axes.
+pub const JOINT_AXIS: Rgb = Rgb([255, 90, 220]);
+/// Joint limits: a hinge's limit directions, a swing cone, a range of slide.
+pub const JOINT_LIMIT: Rgb = Rgb([180, 150, 255]);
+/// The line between the anchors of a joint that has come apart.
+pub const JOINT_GAP: Rgb = Rgb([255, 40, 40]);
+/// The line between a distance joint's anchors, or a slider's.
+pub const JOINT_LINK: Rgb = Rgb([235, 235, 235]);
 
 /// The colour of a body: static bodies are stone grey; the others take a palette colour picked
 /// by a hash (FNV-1a) of their name.

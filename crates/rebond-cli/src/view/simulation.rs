@@ -131,6 +131,12 @@ impl Simulation {
         &self.world
     }
 
+    /// The world as loaded, which a reset goes back to. Scenes add their joints as they load, so
+    /// it holds the poses each joint's angles count from.
+    pub fn initial_world(&self) -> &World {
+        &self.initial_world
+    }
+
     /// Every body with its name and colour, scene bodies first, in scene order.
     pub fn bodies(&self) -> &[BodyInfo] {
         &self.bodies

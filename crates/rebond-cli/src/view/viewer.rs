@@ -10,7 +10,7 @@ use super::controls::{action_for_key, Action};
 use super::simulation::Simulation;
 
 /// What is drawn besides the bodies.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DisplayOptions {
     /// Contact points and their normals.
     pub contacts: bool,
@@ -20,6 +20,21 @@ pub struct DisplayOptions {
     pub sleeping_tint: bool,
     /// The help overlay.
     pub help: bool,
+    /// Joints: anchors, axes, limits, gaps.
+    pub joints: bool,
+}
+
+impl Default for DisplayOptions {
+    /// Only joints: they are part of how the scene is built, and otherwise invisible.
+    fn default() -> Self {
+        Self {
+            contacts: false,
+            bounding_boxes: false,
+            sleeping_tint: false,
+            help: false,
+            joints: true,
+        }
+    }
 }
 
 /// What a held mouse button is doing.
@@ -89,6 +104,7 @@ impl Viewer {
             Action::ToggleBoundingBoxes => {
                 self.display.bounding_boxes = !self.display.bounding_boxes;
             }
+            Action::ToggleJoints => self.display.joints = !self.display.joints,
             Action::ToggleSleepingTint => {
                 self.display.sleeping_tint = !self.display.sleeping_tint;
             }
@@ -269,16 +285,17 @@ mod tests {
     fn keys_toggle_what_is_shown_and_quit() {
         let mut viewer = viewer();
         assert_eq!(viewer.display, DisplayOptions::default());
-        for key in [Key::C, Key::B, Key::Z, Key::H] {
+        for key in [Key::C, Key::B, Key::Z, Key::H, Key::J] {
             press(&mut viewer, key);
         }
-        let all = DisplayOptions {
+        let all_but_joints = DisplayOptions {
             contacts: true,
             bounding_boxes: true,
             sleeping_tint: true,
             help: true,
+            joints: false,
         };
-        assert_eq!(viewer.display, all);
+        assert_eq!(viewer.display, all_but_joints);
         press(&mut viewer, Key::F1);
         assert!(!viewer.display.help);
         assert!(!viewer.should_quit());
