@@ -287,6 +287,9 @@ pub struct RigidBody {
     pub(crate) sleep_group: Option<usize>,
     /// Distance from the centre of mass to the farthest corner of the local bounding box, m.
     pub(crate) max_extent: f32,
+    /// Whether the shape has only flat surfaces ([`Shape::is_polyhedral`]): only then can its
+    /// contacts be recycled.
+    pub(crate) polyhedral: bool,
     /// The body's entry in the broad phase, set when it joins a world.
     pub(crate) proxy: Option<ProxyHandle>,
     pub(crate) sensor: bool,
@@ -358,6 +361,7 @@ impl RigidBody {
             sleep_time: 0.0,
             sleep_group: None,
             max_extent: 0.0,
+            polyhedral: false,
             proxy: None,
             sensor: desc.sensor,
             collision_groups: desc.collision_groups,
@@ -371,6 +375,7 @@ impl RigidBody {
             body.local_inertia = properties.inertia;
             body.local_inverse_inertia = inverse_inertia;
         }
+        body.polyhedral = body.shape.is_polyhedral();
         let local_bounds = body.shape.aabb(&Pose::IDENTITY);
         body.max_extent = (local_bounds.min - body.local_center_of_mass)
             .abs()

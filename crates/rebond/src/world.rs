@@ -668,7 +668,11 @@ impl World {
                 continue;
             }
             let (pose_a, pose_b) = (body_a.pose(), body_b.pose());
-            if contacts.recycle(body_a_handle, body_b_handle, &pose_a, &pose_b) {
+            // Only flat surfaces keep their contact features while they turn: a recycled point
+            // on a rolling ball would lag behind the true contact, and the normal force there
+            // would push the roll on.
+            let recyclable = body_a.polyhedral && body_b.polyhedral;
+            if recyclable && contacts.recycle(body_a_handle, body_b_handle, &pose_a, &pose_b) {
                 continue;
             }
             let margin = settings.speculative_distance + dt * closing_speed_bound(body_a, body_b);

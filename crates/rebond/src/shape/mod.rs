@@ -80,6 +80,20 @@ impl Shape {
         Halfspace::new(normal).map(Shape::Halfspace)
     }
 
+    /// Whether every surface of the shape is flat (boxes, hulls, halfspaces, and compounds of
+    /// them): its contact points are corners, edges and faces that turn with it. On a curved
+    /// surface the point in contact changes as the body rolls.
+    pub(crate) fn is_polyhedral(&self) -> bool {
+        match self {
+            Shape::Cuboid(_) | Shape::ConvexHull(_) | Shape::Halfspace(_) => true,
+            Shape::Sphere(_) | Shape::Capsule(_) | Shape::Cylinder(_) => false,
+            Shape::Compound(compound) => compound
+                .children()
+                .iter()
+                .all(|child| child.shape.is_polyhedral()),
+        }
+    }
+
     /// Whether the shape has a finite volume (everything but a halfspace).
     pub fn is_bounded(&self) -> bool {
         !matches!(self, Shape::Halfspace(_))
