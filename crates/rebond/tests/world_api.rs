@@ -234,6 +234,22 @@ fn bad_scene_joints_are_refused_at_their_place() {
 }
 
 #[test]
+fn the_builtin_joint_scenes_load_with_their_joints() {
+    for (name, joints) in [
+        ("pendulum", 7),
+        ("chain", 34),
+        ("bridge", 15),
+        ("ragdolls", 270),
+        ("car", 4),
+        ("cradle_hanging", 10),
+    ] {
+        let scene = Scene::from_file(scene_path(name)).unwrap();
+        assert_eq!(scene.joints().count(), joints, "{name}");
+        assert_eq!(scene.world().joint_count(), joints, "{name}");
+    }
+}
+
+#[test]
 fn force_point_in_a_scene_turns_the_body_as_r_cross_f() {
     let json = br#"{"gravity": [0, 0, 0], "bodies": [{"name": "rod",
         "shape": {"type": "box", "half_extents": [1, 0.1, 0.1]}, "mass": 3,

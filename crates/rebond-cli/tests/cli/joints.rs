@@ -162,3 +162,30 @@ fn a_scene_without_joints_writes_no_joints_field() {
         }
     }
 }
+
+#[test]
+fn a_builtin_joint_scene_records_its_joints() {
+    let dir = TestDir::new("joints_builtin");
+    let record_path = dir.path("chain.jsonl");
+    let outcome = rebond([
+        "run".as_ref(),
+        "chain".as_ref(),
+        "--steps".as_ref(),
+        "60".as_ref(),
+        "--record".as_ref(),
+        record_path.as_os_str(),
+    ]);
+    assert_eq!(outcome.status, 0, "{}", outcome.stderr);
+    let text = fs::read_to_string(&record_path).expect("the record file exists");
+    let last: Value = serde_json::from_str(text.lines().last().expect("lines")).expect("JSON");
+    let joints = last["joints"].as_array().expect("a joints array");
+    assert_eq!(joints.len(), 34);
+    assert_eq!(joints[0]["name"], "ball_joint_0");
+    assert_eq!(joints[33]["name"], "hinge_joint_weight");
+    for joint in joints {
+        assert_eq!(joint["broken"], false, "{joint}");
+        for index in 0..3 {
+            assert!(component(joint, "force", index).is_finite(), "{joint}");
+        }
+    }
+}
