@@ -46,6 +46,34 @@ def rotate(q, v):
     return [v[i] + 2.0 * (w * uv[i] + uuv[i]) for i in range(3)]
 
 
+def add(a, b):
+    """The sum of two vectors."""
+    return [a[i] + b[i] for i in range(3)]
+
+
+def scaled(v, factor):
+    """The vector v times a number."""
+    return [value * factor for value in v]
+
+
+def normalized(v):
+    """The unit vector along v."""
+    length = math.sqrt(sum(value * value for value in v))
+    return [value / length for value in v]
+
+
+def quat_from_y(direction):
+    """The unit quaternion [x, y, z, w] turning +Y onto the unit `direction` (the axis of a
+    capsule or cylinder)."""
+    x, y, z = direction
+    if y < -0.999999:
+        return [1.0, 0.0, 0.0, 0.0]
+    # Half-way quaternion: the axis +Y × d, with w = 1 + +Y · d, then normalised.
+    q = [z, 0.0, -x, 1.0 + y]
+    length = math.sqrt(sum(value * value for value in q))
+    return [value / length for value in q]
+
+
 def ground_box(half_width):
     """A static box whose top face is the plane y = 0."""
     return {
@@ -56,8 +84,9 @@ def ground_box(half_width):
     }
 
 
-def write_scene(file_name, bodies, gravity=None, substeps=None, compact=False):
-    """Writes a scene with one body per line; `compact` drops the spaces inside each line."""
+def write_scene(file_name, bodies, gravity=None, substeps=None, compact=False, joints=None):
+    """Writes a scene with one body (and joint) per line; `compact` drops the spaces inside each
+    line."""
     separators = (",", ":") if compact else (", ", ": ")
     indent = "" if compact else "    "
     lines = ["{"]
@@ -68,6 +97,11 @@ def write_scene(file_name, bodies, gravity=None, substeps=None, compact=False):
     lines.append('  "bodies": [')
     body_lines = [indent + json.dumps(body, separators=separators) for body in bodies]
     lines.append(",\n".join(body_lines))
+    if joints:
+        lines.append("  ],")
+        lines.append('  "joints": [')
+        joint_lines = [indent + json.dumps(joint, separators=separators) for joint in joints]
+        lines.append(",\n".join(joint_lines))
     lines.append("  ]")
     lines.append("}")
     (SCENES_DIR / file_name).write_text("\n".join(lines) + "\n", encoding="utf-8")
@@ -290,6 +324,310 @@ def spinner():
     write_scene("spinner.json", bodies, gravity=[0.0, 0.0, 0.0], substeps=8)
 
 
+def pendulum():
+    """Pendulums hung from the world: revolute and ball, small and large swings, a rod, and a
+    double pendulum."""
+    bodies = [ground_box(20.0)]
+    joints = []
+    pivot_height = 5.0
+    bob = {"type": "sphere", "radius": 0.2}
+
+    def hinged_bob(name, z, angle, joint_type, velocity=None):
+        """A 1 kg bob 2 m below a pivot of the world, started `angle` radians out along +X."""
+        pivot = [0.0, pivot_height, z]
+        body = {
+            "name": name, "shape": bob, "mass": 1.0,
+            "position": rounded(add(pivot, [2.0 * math.sin(angle), -2.0 * math.cos(angle), 0.0])),
+        }
+        if velocity is not None:
+            body["linear_velocity"] = velocity
+        bodies.append(body)
+        joint = {"name": f"{name}_pivot", "type": joint_type, "body_b": name, "anchor": pivot}
+        if joint_type == "revolute":
+            joint["axis"] = [0.0, 0.0, 1.0]
+        joints.append(joint)
+
+    hinged_bob("revolute_small", -3.0, math.radians(10.0), "revolute")
+    hinged_bob("revolute_large", -1.5, math.radians(150.0), "revolute")
+    hinged_bob("ball_small", 4.0, math.radians(15.0), "ball", velocity=[0.0, 0.0, 0.8])
+    hinged_bob("ball_large", 9.0, math.radians(90.0), "ball", velocity=[0.0, 0.0, 3.0])
+
+    # A physical pendulum: a 1.9 m rod hinged at its top end, started 60 degrees out.
+    angle = math.radians(60.0)
+    direction = [math.sin(angle), -math.cos(angle), 0.0]
+    pivot = [0.0, pivot_height, 0.0]
+    bodies.append({
+        "name": "rod", "shape": {"type": "capsule", "radius": 0.05, "half_height": 0.9},
+        "position": rounded(add(pivot, scaled(direction, 0.95))),
+        "rotation": rounded(quat_from_y(direction), 6), "mass": 2.0,
+    })
+    joints.append({
+        "name": "rod_pivot", "type": "revolute", "body_b": "rod", "anchor": pivot,
+        "axis": [0.0, 0.0, 1.0],
+    })
+
+    # A double pendulum of two 1 m rods, both started horizontal: chaotic.
+    upper_pivot = [0.0, pivot_height, 1.5]
+    elbow = add(upper_pivot, [1.0, 0.0, 0.0])
+    along_x = rounded(axis_angle((0.0, 0.0, 1.0), math.pi / 2.0), 6)
+    link = {"type": "capsule", "radius": 0.05, "half_height": 0.45}
+    bodies.append({
+        "name": "double_upper", "shape": link, "mass": 1.0,
+        "position": add(upper_pivot, [0.5, 0.0, 0.0]), "rotation": along_x,
+    })
+    bodies.append({
+        "name": "double_lower", "shape": link, "mass": 1.0,
+        "position": add(elbow, [0.5, 0.0, 0.0]), "rotation": along_x,
+    })
+    joints.append({
+        "name": "double_shoulder", "type": "revolute", "body_b": "double_upper",
+        "anchor": upper_pivot, "axis": [0.0, 0.0, 1.0],
+    })
+    joints.append({
+        "name": "double_elbow", "type": "revolute", "body_a": "double_upper",
+        "body_b": "double_lower", "anchor": elbow, "axis": [0.0, 0.0, 1.0],
+    })
+    write_scene("pendulum.json", bodies, joints=joints)
+
+
+def chain():
+    """Two chains of 16 links hanging from the world, each with a 25 kg weight at its end: one on
+    ball joints, started askew, and one on revolute joints, started horizontal."""
+    bodies = [ground_box(30.0)]
+    joints = []
+    link_length = 0.5
+    link = {"type": "capsule", "radius": 0.07, "half_height": link_length / 2.0 - 0.07}
+    for prefix, joint_type, start, direction, weight in [
+        ("ball", "ball", [-6.0, 12.0, -2.0], normalized([1.0, 0.0, 0.4]),
+         {"type": "sphere", "radius": 0.35}),
+        ("hinge", "revolute", [-6.0, 12.0, 2.0], [1.0, 0.0, 0.0],
+         {"type": "box", "half_extents": [0.35, 0.35, 0.35]}),
+    ]:
+        rotation = rounded(quat_from_y(direction), 6)
+        previous = None
+        point = start
+        for index in range(16):
+            name = f"{prefix}_link_{index}"
+            bodies.append({
+                "name": name, "shape": link, "mass": 1.0,
+                "position": rounded(add(point, scaled(direction, link_length / 2.0))),
+                "rotation": rotation,
+            })
+            joint = {"name": f"{prefix}_joint_{index}", "type": joint_type, "body_b": name,
+                     "anchor": rounded(point)}
+            if previous is not None:
+                joint["body_a"] = previous
+            if joint_type == "revolute":
+                joint["axis"] = [0.0, 0.0, 1.0]
+            joints.append(joint)
+            previous = name
+            point = add(point, scaled(direction, link_length))
+        name = f"{prefix}_weight"
+        bodies.append({
+            "name": name, "shape": weight, "mass": 25.0,
+            "position": rounded(add(point, scaled(direction, 0.35))), "rotation": rotation,
+        })
+        joint = {"name": f"{prefix}_joint_weight", "type": joint_type, "body_a": previous,
+                 "body_b": name, "anchor": rounded(point)}
+        if joint_type == "revolute":
+            joint["axis"] = [0.0, 0.0, 1.0]
+        joints.append(joint)
+    write_scene("chain.json", bodies, joints=joints)
+
+
+def bridge():
+    """A rope bridge: 14 planks on revolute joints hung with some slack between two static
+    pillars, and boxes and a ball dropped on it."""
+    bodies = [ground_box(30.0)]
+    joints = []
+    count = 14
+    plank_length = 1.0
+    height = 5.0
+    max_slope = 0.35
+    slopes = [max_slope * (2.0 * (index + 0.5) / count - 1.0) for index in range(count)]
+    span = sum(plank_length * math.cos(slope) for slope in slopes)
+    points = [[-span / 2.0, height, 0.0]]
+    for slope in slopes:
+        points.append(add(points[-1], [plank_length * math.cos(slope),
+                                       plank_length * math.sin(slope), 0.0]))
+    for side, x in [("left", points[0][0] - 0.5), ("right", points[-1][0] + 0.5)]:
+        bodies.append({
+            "name": f"pillar_{side}", "type": "static",
+            "shape": {"type": "box", "half_extents": [0.5, height / 2.0, 1.2]},
+            "position": rounded([x, height / 2.0, 0.0]),
+        })
+    axis = [0.0, 0.0, 1.0]
+    for index, slope in enumerate(slopes):
+        name = f"plank_{index}"
+        bodies.append({
+            "name": name, "shape": {"type": "box", "half_extents": [0.48, 0.08, 1.0]},
+            "mass": 10.0, "friction": 0.8,
+            "position": rounded(scaled(add(points[index], points[index + 1]), 0.5)),
+            "rotation": rounded(axis_angle(axis, slope), 6),
+        })
+        body_a = "pillar_left" if index == 0 else f"plank_{index - 1}"
+        joints.append({"name": f"hinge_{index}", "type": "revolute", "body_a": body_a,
+                       "body_b": name, "anchor": rounded(points[index]), "axis": axis})
+    joints.append({"name": f"hinge_{count}", "type": "revolute", "body_a": "pillar_right",
+                   "body_b": f"plank_{count - 1}", "anchor": rounded(points[-1]), "axis": axis})
+    for index, x in enumerate([-4.5, -2.0, 0.5, 3.0, 5.0]):
+        bodies.append({
+            "name": f"crate_{index}", "shape": {"type": "box", "half_extents": [0.3, 0.3, 0.3]},
+            "mass": 20.0, "position": [x, height + 1.5 + 0.7 * index, 0.3 * (index % 3 - 1)],
+        })
+    bodies.append({
+        "name": "ball", "shape": {"type": "sphere", "radius": 0.4}, "mass": 30.0,
+        "position": [-1.0, height + 6.0, 0.0],
+    })
+    write_scene("bridge.json", bodies, joints=joints)
+
+
+def ragdoll_parts():
+    """One ragdoll standing in its own frame (facing +Z, feet near y = 0, arms out along X):
+    (name, shape, mass, position, rotation) of each part, and (name, type, body_a, body_b,
+    anchor, axis, limits) of each joint."""
+    along_x = axis_angle((0.0, 0.0, 1.0), math.pi / 2.0)
+    upright = [0.0, 0.0, 0.0, 1.0]
+    parts = [
+        ("torso", {"type": "box", "half_extents": [0.18, 0.3, 0.1]}, 25.0, [0.0, 1.25, 0.0], upright),
+        ("head", {"type": "sphere", "radius": 0.12}, 5.0, [0.0, 1.70, 0.0], upright),
+    ]
+    joints = [("neck", "ball", "torso", "head", [0.0, 1.57, 0.0], [0.0, 1.0, 0.0],
+               {"swing_limit": 0.7, "twist_limits": [-0.8, 0.8]})]
+    for side, sign in [("left", 1.0), ("right", -1.0)]:
+        parts += [
+            (f"upper_arm_{side}", {"type": "capsule", "radius": 0.06, "half_height": 0.11}, 2.5,
+             [0.36 * sign, 1.47, 0.0], along_x),
+            (f"lower_arm_{side}", {"type": "capsule", "radius": 0.05, "half_height": 0.11}, 1.5,
+             [0.69 * sign, 1.47, 0.0], along_x),
+            (f"upper_leg_{side}", {"type": "capsule", "radius": 0.08, "half_height": 0.14}, 8.0,
+             [0.1 * sign, 0.73, 0.0], upright),
+            (f"lower_leg_{side}", {"type": "capsule", "radius": 0.07, "half_height": 0.16}, 4.0,
+             [0.1 * sign, 0.28, 0.0], upright),
+        ]
+        # Elbows bend the forearm forward (+Z) and knees the shin backward (-Z), by the
+        # right-hand rule about these axes; both start straight, at their lower limit.
+        joints += [
+            (f"shoulder_{side}", "ball", "torso", f"upper_arm_{side}", [0.19 * sign, 1.47, 0.0],
+             [sign, 0.0, 0.0], {"swing_limit": 1.6, "twist_limits": [-0.7, 0.7]}),
+            (f"elbow_{side}", "revolute", f"upper_arm_{side}", f"lower_arm_{side}",
+             [0.53 * sign, 1.47, 0.0], [0.0, -sign, 0.0], {"limits": [0.0, 2.5]}),
+            (f"hip_{side}", "ball", "torso", f"upper_leg_{side}", [0.1 * sign, 0.95, 0.0],
+             [0.0, -1.0, 0.0], {"swing_limit": 1.2, "twist_limits": [-0.5, 0.5]}),
+            (f"knee_{side}", "revolute", f"upper_leg_{side}", f"lower_leg_{side}",
+             [0.1 * sign, 0.51, 0.0], [1.0, 0.0, 0.0], {"limits": [0.0, 2.4]}),
+        ]
+    return parts, joints
+
+
+def ragdolls():
+    """30 ragdolls (ten parts, nine joints each) dropped lying down in six piles of five, each
+    turned its own way, onto a ground box."""
+    generator = Lcg(20261202)
+    parts, part_joints = ragdoll_parts()
+    center = [0.0, 0.9, 0.0]
+    lying = axis_angle((1.0, 0.0, 0.0), -math.pi / 2.0)
+    bodies = [ground_box(20.0)]
+    joints = []
+    index = 0
+    for level in range(5):
+        for pile_x in [-2.6, 0.0, 2.6]:
+            for pile_z in [-1.3, 1.3]:
+                heading = level * math.pi / 2.0 + generator.symmetric(0.4)
+                tilt = axis_angle((1.0, 0.0, 0.0), generator.symmetric(0.15))
+                turn = quat_mul(axis_angle((0.0, 1.0, 0.0), heading), quat_mul(tilt, lying))
+                origin = [pile_x, 0.8 + 0.7 * level, pile_z]
+
+                def place(point):
+                    return rounded(add(origin, rotate(turn, add(point, scaled(center, -1.0)))))
+
+                prefix = f"ragdoll{index}"
+                # Some angular damping stands in for the friction of real joints: without it a
+                # head or an arm lying on the ground rolls about its joint for ever (spheres and
+                # capsules roll without resistance), and the piles never fall asleep.
+                for name, shape, mass, position, rotation in parts:
+                    bodies.append({
+                        "name": f"{prefix}_{name}", "shape": shape, "mass": mass,
+                        "position": place(position),
+                        "rotation": rounded(quat_mul(turn, rotation), 6),
+                        "angular_damping": 1.0,
+                    })
+                for name, joint_type, body_a, body_b, anchor, axis, extra in part_joints:
+                    joint = {
+                        "name": f"{prefix}_{name}", "type": joint_type,
+                        "body_a": f"{prefix}_{body_a}", "body_b": f"{prefix}_{body_b}",
+                        "anchor": place(anchor), "axis": rounded(rotate(turn, axis), 6),
+                    }
+                    joint.update(extra)
+                    joints.append(joint)
+                index += 1
+    write_scene("ragdolls.json", bodies, joints=joints, compact=True)
+
+
+def car():
+    """A car: a box chassis on four cylinder wheels, each on a revolute joint about its axle with
+    a velocity motor, driving over bumps."""
+    bodies = [ground_box(40.0)]
+    joints = []
+    start_x = -10.0
+    wheel_radius = 0.35
+    bodies.append({
+        "name": "chassis", "shape": {"type": "box", "half_extents": [1.0, 0.15, 0.55]},
+        "mass": 150.0, "position": [start_x, 0.75, 0.0],
+    })
+    # A cylinder's axis is its local Y: a quarter turn about X lays it along Z, the axle.
+    axle = rounded(axis_angle((1.0, 0.0, 0.0), math.pi / 2.0), 6)
+    for name, dx, z in [("front_left", 0.75, -0.75), ("front_right", 0.75, 0.75),
+                        ("rear_left", -0.75, -0.75), ("rear_right", -0.75, 0.75)]:
+        wheel = f"wheel_{name}"
+        center = [start_x + dx, wheel_radius, z]
+        bodies.append({
+            "name": wheel,
+            "shape": {"type": "cylinder", "radius": wheel_radius, "half_height": 0.12},
+            "mass": 10.0, "friction": 1.2, "position": center, "rotation": axle,
+        })
+        # Rolling towards +X turns a wheel clockwise seen from +Z, a negative angular velocity:
+        # -10 rad/s is 3.5 m/s.
+        joints.append({
+            "name": f"axle_{name}", "type": "revolute", "body_a": "chassis", "body_b": wheel,
+            "anchor": center, "axis": [0.0, 0.0, 1.0],
+            "motor": {"target_velocity": -10.0, "max_force": 60.0},
+        })
+    for index, (x, radius) in enumerate([(-5.0, 0.08), (-2.0, 0.12), (1.0, 0.1), (4.0, 0.15),
+                                         (7.0, 0.1), (9.0, 0.12)]):
+        bodies.append({
+            "name": f"bump_{index}", "type": "static",
+            "shape": {"type": "capsule", "radius": radius, "half_height": 1.5},
+            "position": [x, 0.0, 0.0], "rotation": axle,
+        })
+    write_scene("car.json", bodies, joints=joints)
+
+
+def cradle_hanging():
+    """Newton's cradle on strings: five touching balls of restitution 1, each hung from two
+    points of the world by two distance joints (a V), the first pulled 40 degrees aside."""
+    bodies = [ground_box(10.0)]
+    joints = []
+    bar_height = 4.0
+    string_drop = 2.5
+    for index in range(5):
+        angle = math.radians(-40.0) if index == 0 else 0.0
+        bar = [float(index), bar_height, 0.0]
+        center = rounded(add(bar, [string_drop * math.sin(angle),
+                                   -string_drop * math.cos(angle), 0.0]))
+        name = f"ball_{index}"
+        bodies.append({
+            "name": name, "shape": {"type": "sphere", "radius": 0.5}, "mass": 1.0,
+            "position": center, "restitution": 1.0, "friction": 0.0,
+        })
+        for side, z in [("back", -1.0), ("front", 1.0)]:
+            joints.append({
+                "name": f"string_{index}_{side}", "type": "distance", "body_b": name,
+                "anchor": add(bar, [0.0, 0.0, z]), "anchor_b": center,
+            })
+    write_scene("cradle_hanging.json", bodies, joints=joints)
+
+
 if __name__ == "__main__":
     showcase()
     pyramid()
@@ -298,3 +636,9 @@ if __name__ == "__main__":
     ramp()
     cradle()
     spinner()
+    pendulum()
+    chain()
+    bridge()
+    ragdolls()
+    car()
+    cradle_hanging()

@@ -53,6 +53,42 @@ pub const BUILTIN_SCENES: &[BuiltinScene] = &[
                       (Dzhanibekov effect)",
         json: include_str!("../../../scenes/spinner.json"),
     },
+    BuiltinScene {
+        name: "pendulum",
+        description: "pendulums from fixed points: revolute and ball, small and large swings, \
+                      a rod, a double pendulum",
+        json: include_str!("../../../scenes/pendulum.json"),
+    },
+    BuiltinScene {
+        name: "chain",
+        description: "two chains of 16 links, on ball and on revolute joints, each with a 25 kg \
+                      weight at the end, falling from horizontal",
+        json: include_str!("../../../scenes/chain.json"),
+    },
+    BuiltinScene {
+        name: "bridge",
+        description: "14 planks on revolute joints hung between two pillars, crates and a ball \
+                      dropped on them",
+        json: include_str!("../../../scenes/bridge.json"),
+    },
+    BuiltinScene {
+        name: "ragdolls",
+        description: "30 ragdolls (ball shoulders, hips and necks with cone and twist limits, \
+                      hinged elbows and knees) falling in piles onto a ground box",
+        json: include_str!("../../../scenes/ragdolls.json"),
+    },
+    BuiltinScene {
+        name: "car",
+        description: "a box chassis on four cylinder wheels driven by revolute joint motors, \
+                      over bumps",
+        json: include_str!("../../../scenes/car.json"),
+    },
+    BuiltinScene {
+        name: "cradle_hanging",
+        description: "Newton's cradle on strings: five balls with restitution 1, each hung by \
+                      two distance joints, the first pulled aside",
+        json: include_str!("../../../scenes/cradle_hanging.json"),
+    },
 ];
 
 /// The built-in scene called `name`.

@@ -242,9 +242,16 @@ fn execute(command: Command) -> Result<String, CommandError> {
         }
         #[cfg(not(feature = "viewer"))]
         Command::View(_) => Err(Failure::NoViewer),
-        Command::Scenes => Ok(BUILTIN_SCENES
-            .iter()
-            .map(|scene| format!("{:<10} {}\n", scene.name, scene.description))
-            .collect()),
+        Command::Scenes => {
+            let width = BUILTIN_SCENES
+                .iter()
+                .map(|scene| scene.name.len())
+                .max()
+                .unwrap_or(0);
+            Ok(BUILTIN_SCENES
+                .iter()
+                .map(|scene| format!("{:<width$} {}\n", scene.name, scene.description))
+                .collect())
+        }
     }
 }

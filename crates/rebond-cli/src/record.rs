@@ -1,4 +1,5 @@
-//! Records: the state of every body, one JSON line per recorded step.
+//! Records: the state of every body, and of every joint when the scene has some, one JSON line
+//! per recorded step.
 
 use std::ffi::OsString;
 use std::fs::{self, File};
@@ -16,6 +17,10 @@ struct RecordLine<'a> {
     step: u64,
     time: f64,
     bodies: Vec<BodyState<'a>>,
+    /// Left out of the line when the scene has no joints, so that such records read as before
+    /// joints existed.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    joints: Vec<JointState<'a>>,
 }
 
 /// The state of one body in a record line.
@@ -27,6 +32,15 @@ struct BodyState<'a> {
     linear_velocity: [f32; 3],
     angular_velocity: [f32; 3],
     sleeping: bool,
+}
+
+/// What one joint did over the last step, in a record line.
+#[derive(Debug, Serialize)]
+struct JointState<'a> {
+    name: &'a str,
+    force: [f32; 3],
+    torque: [f32; 3],
+    broken: bool,
 }
 
 /// Writes record lines through a buffer to a hidden file beside the record's path, renamed to
@@ -61,7 +75,8 @@ impl Recorder {
         })
     }
 
-    /// Appends the state of every body after `step` steps, in scene order.
+    /// Appends the state of every body after `step` steps, and what every joint did in that step,
+    /// in scene order.
     ///
     /// Floats are written by serde_json's shortest round-trip formatting of the engine's `f32`
     /// values; `time` is `step × timestep` in double precision. The output is byte-for-byte
@@ -78,10 +93,20 @@ impl Recorder {
                 sleeping: body.is_sleeping(),
             })
             .collect();
+        let joints = scene
+            .joints()
+            .map(|(name, joint)| JointState {
+                name,
+                force: joint.force().to_array(),
+                torque: joint.torque().to_array(),
+                broken: joint.is_broken(),
+            })
+            .collect();
         let line = RecordLine {
             step,
             time: step as f64 * scene.timestep().seconds,
             bodies,
+            joints,
         };
         serde_json::to_writer(&mut self.writer, &line)
             .map_err(std::io::Error::from)

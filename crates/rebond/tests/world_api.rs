@@ -4,7 +4,7 @@ mod common;
 
 use common::{add_ground, run, unit_box, world, G};
 use rebond::scene::{LoadError, Scene};
-use rebond::{BodyDesc, QueryFilter, Ray, Shape, Vec3, World, WorldSettings};
+use rebond::{BodyDesc, JointType, Motor, QueryFilter, Ray, Shape, Vec3, World, WorldSettings};
 
 #[test]
 fn user_data_rides_along_with_the_body() {
@@ -92,6 +92,161 @@ fn a_missing_scene_file_is_a_read_error_and_a_bad_one_names_the_place() {
         .unwrap_err();
     assert_eq!(error.place, "bodies[0].shape.radius");
     assert_eq!(error.message, "must be positive, got -1");
+}
+
+/// A post, a door and a ball, with `joints` (the inside of the JSON list).
+fn scene_with_joints(joints: &str) -> Result<Scene, rebond::scene::SceneError> {
+    let json = format!(
+        r#"{{"bodies": [
+            {{"name": "post", "type": "static", "shape": {{"type": "box", "half_extents": [0.1, 1, 0.1]}}}},
+            {{"name": "door", "shape": {{"type": "box", "half_extents": [0.5, 1, 0.05]}},
+              "position": [0.6, 0, 0]}},
+            {{"name": "ball", "shape": {{"type": "sphere", "radius": 0.2}}, "position": [3, 1, 2]}}
+        ], "joints": [{joints}]}}"#
+    );
+    Scene::from_json(json.as_bytes())
+}
+
+#[test]
+fn scene_joints_load_in_order_with_their_names_and_defaults() {
+    let scene = scene_with_joints(
+        r#"{"name": "hinge", "type": "revolute", "body_a": "post", "body_b": "door",
+            "anchor": [0.1, 0, 0], "axis": [0, 3, 0],
+            "motor": {"target_velocity": 1.5}},
+           {"type": "ball", "body_a": null, "body_b": "ball"},
+           {"type": "distance", "body_a": "door", "body_b": "ball", "anchor": [1, 0, 0],
+            "spring": {"stiffness": 40}},
+           {"name": "servo", "type": "prismatic", "body_a": "post", "body_b": "door",
+            "axis": [1, 0, 0], "collide_connected": true, "break_force": 100,
+            "motor": {"target_position": 0.2, "stiffness": 50}}"#,
+    )
+    .unwrap();
+    let names: Vec<&str> = scene.joints().map(|(name, _)| name).collect();
+    assert_eq!(names, ["hinge", "joint1", "joint2", "servo"]);
+    let joint = |name: &str| {
+        let handle = scene.joint_handle(name).expect("a joint of that name");
+        scene.world().joint(handle).unwrap()
+    };
+    let (post, door, ball) = (
+        scene.body_handle("post").unwrap(),
+        scene.body_handle("door").unwrap(),
+        scene.body_handle("ball").unwrap(),
+    );
+
+    let hinge = joint("hinge");
+    assert_eq!(hinge.joint_type(), JointType::Revolute);
+    assert_eq!(hinge.bodies(), (Some(post), door));
+    assert_eq!(
+        hinge.desc().motor,
+        Some(Motor::velocity(1.5, f32::INFINITY)),
+        "a motor without `max_force` is unlimited"
+    );
+    let placement = scene
+        .world()
+        .joint_placement(scene.joint_handle("hinge").unwrap())
+        .unwrap();
+    assert!(
+        (placement.axis_a - Vec3::Y).length() < 1e-6,
+        "the axis is normalised"
+    );
+
+    let hung = joint("joint1");
+    assert_eq!(hung.bodies(), (None, ball));
+    assert_eq!(
+        hung.desc().anchor,
+        Vec3::new(3.0, 1.0, 2.0),
+        "the anchor defaults to body_b's position"
+    );
+    assert!(!hung.desc().collide_connected);
+
+    let spring = joint("joint2").desc();
+    assert_eq!(spring.anchor_b, None, "anchor_b defaults to the anchor");
+    assert_eq!(spring.spring.map(|spring| spring.damping), Some(0.0));
+
+    let servo = joint("servo").desc();
+    assert!(servo.collide_connected);
+    assert_eq!(servo.break_force, 100.0);
+    assert_eq!(servo.break_torque, f32::INFINITY);
+    assert_eq!(
+        servo.motor,
+        Some(Motor::position(0.2, 50.0, 0.0, f32::INFINITY))
+    );
+}
+
+#[test]
+fn bad_scene_joints_are_refused_at_their_place() {
+    let cases = [
+        (
+            r#"{"type": "ball", "body_b": "dor"}"#,
+            "joints[0].body_b",
+            "no body is named \"dor\"",
+        ),
+        (
+            r#"{"type": "ball", "body_a": "door", "body_b": "door"}"#,
+            "joints[0].body_b",
+            "a joint cannot join a body to itself",
+        ),
+        (
+            r#"{"type": "revolute", "body_b": "door"}"#,
+            "joints[0].axis",
+            "required field is missing (a revolute joint needs it)",
+        ),
+        (
+            r#"{"type": "revolute", "body_b": "door", "axis": [0, 0, 0]}"#,
+            "joints[0].axis",
+            "vector has zero length",
+        ),
+        (
+            r#"{"type": "distance", "body_b": "door", "limits": [2, 1]}"#,
+            "joints[0].limits",
+            "min must not exceed max, got [2, 1]",
+        ),
+        (
+            r#"{"type": "revolute", "body_b": "door", "axis": [0, 1, 0],
+                "spring": {"stiffness": 1}}"#,
+            "joints[0].spring",
+            "does not apply to a revolute joint",
+        ),
+        (
+            r#"{"type": "distance", "body_b": "door", "spring": {"stiffness": -1}}"#,
+            "joints[0].spring.stiffness",
+            "must not be negative, got -1",
+        ),
+        (
+            r#"{"type": "prismatic", "body_b": "door", "axis": [1, 0, 0],
+                "motor": {"target_position": 1, "damping": 2}}"#,
+            "joints[0].motor.stiffness",
+            "required field is missing (a position motor needs it)",
+        ),
+        (
+            r#"{"type": "ball", "body_b": "door"}, {"name": "joint0", "type": "ball", "body_b": "ball"}"#,
+            "joints[1].name",
+            "duplicate name \"joint0\": joints[0] and joints[1] both have it",
+        ),
+    ];
+    for (joints, place, message) in cases {
+        let error = scene_with_joints(joints).unwrap_err();
+        assert_eq!(
+            (error.place.as_str(), error.message.as_str()),
+            (place, message)
+        );
+    }
+}
+
+#[test]
+fn the_builtin_joint_scenes_load_with_their_joints() {
+    for (name, joints) in [
+        ("pendulum", 7),
+        ("chain", 34),
+        ("bridge", 15),
+        ("ragdolls", 270),
+        ("car", 4),
+        ("cradle_hanging", 10),
+    ] {
+        let scene = Scene::from_file(scene_path(name)).unwrap();
+        assert_eq!(scene.joints().count(), joints, "{name}");
+        assert_eq!(scene.world().joint_count(), joints, "{name}");
+    }
 }
 
 #[test]

@@ -5,6 +5,7 @@ mod bad_input;
 mod commands;
 mod common;
 mod filtering;
+mod joints;
 mod records;
 mod scenes;
 #[cfg(feature = "viewer")]

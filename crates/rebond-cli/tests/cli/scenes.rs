@@ -3,7 +3,7 @@
 use crate::common::{rebond, rebond_in, TestDir};
 
 /// Every built-in scene the brief asks for, with its body count (ground included).
-const BUILTIN_SCENES: [(&str, usize); 7] = [
+const BUILTIN_SCENES: [(&str, usize); 13] = [
     ("showcase", 31),
     ("pyramid", 211),
     ("column", 11),
@@ -11,6 +11,12 @@ const BUILTIN_SCENES: [(&str, usize); 7] = [
     ("ramp", 28),
     ("cradle", 5),
     ("spinner", 5),
+    ("pendulum", 8),
+    ("chain", 35),
+    ("bridge", 23),
+    ("ragdolls", 301),
+    ("car", 12),
+    ("cradle_hanging", 6),
 ];
 
 /// The value of a `label  value` line of a summary.

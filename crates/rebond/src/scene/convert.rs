@@ -1,12 +1,13 @@
 //! From the file's model to the engine's descriptions: every number narrowed to `f32` and checked,
 //! every error placed at the path of the value the user wrote (`bodies[3].shape.radius`).
 
-use crate::body::BodyDesc;
+use crate::body::{BodyDesc, BodyHandle};
 use crate::filter::InteractionGroups;
+use crate::joint::{JointDesc, Motor};
 use crate::math::{Pose, Quat, Vec3};
 use crate::shape::{CompoundChild, Shape};
 
-use super::format::{BodyEntry, ChildEntry, ShapeEntry, ShapeKind};
+use super::format::{BodyEntry, ChildEntry, JointEntry, MotorEntry, ShapeEntry, ShapeKind};
 use super::{join, SceneError, Timestep, DEFAULT_TIMESTEP};
 
 /// Narrows a file number to `f32`, refusing one beyond the `f32` range.
@@ -41,6 +42,14 @@ pub(super) fn rotation(place: &str, value: [f64; 4]) -> Result<Quat, SceneError>
         narrowed[index] = scalar(&format!("{place}[{index}]"), component)?;
     }
     Ok(Quat::from_array(narrowed))
+}
+
+/// Narrows a file pair `[min, max]`, naming the bad element.
+fn pair(place: &str, value: [f64; 2]) -> Result<[f32; 2], SceneError> {
+    Ok([
+        scalar(&format!("{place}[0]"), value[0])?,
+        scalar(&format!("{place}[1]"), value[1])?,
+    ])
 }
 
 /// The time step: finite and positive, also once rounded to `f32`.
@@ -237,4 +246,139 @@ fn compound_child(entry: &ChildEntry, place: &str) -> Result<CompoundChild, Scen
         child.restitution = Some(scalar(&format!("{place}.restitution"), value)?);
     }
     Ok(child)
+}
+
+/// The engine description of one joint; errors are placed under `place` (`joints[i]`).
+/// `find_body` gives the handle and the position of the body of a name. Values are narrowed and
+/// the bodies looked up here; the rest (ranges, which fields the joint type takes, a body joined
+/// to itself) is checked by the world when the joint is added.
+pub(super) fn joint_desc(
+    entry: &JointEntry,
+    place: &str,
+    find_body: impl Fn(&str) -> Option<(BodyHandle, Vec3)>,
+) -> Result<JointDesc, SceneError> {
+    let field = |name: &str| format!("{place}.{name}");
+    let body = |name: &str, side: &str| {
+        find_body(name)
+            .ok_or_else(|| SceneError::new(field(side), format!("no body is named \"{name}\"")))
+    };
+    let body_a = match &entry.body_a {
+        Some(name) => Some(body(name, "body_a")?.0),
+        None => None,
+    };
+    let (body_b, position_b) = body(&entry.body_b, "body_b")?;
+    let anchor = match entry.anchor {
+        Some(value) => vector(&field("anchor"), value)?,
+        None => position_b,
+    };
+    let mut desc = JointDesc::new(entry.kind.into(), body_a, body_b, anchor);
+    if let Some(value) = entry.anchor_b {
+        desc.anchor_b = Some(vector(&field("anchor_b"), value)?);
+    }
+    if let Some(value) = entry.axis {
+        desc.axis = Some(vector(&field("axis"), value)?);
+    }
+    if let Some(value) = entry.limits {
+        desc.limits = Some(pair(&field("limits"), value)?);
+    }
+    if let Some(value) = entry.swing_limit {
+        desc.swing_limit = Some(scalar(&field("swing_limit"), value)?);
+    }
+    if let Some(value) = entry.twist_limits {
+        desc.twist_limits = Some(pair(&field("twist_limits"), value)?);
+    }
+    if let Some(entry) = &entry.motor {
+        desc.motor = Some(motor(entry, &field("motor"))?);
+    }
+    if let Some(value) = entry.length {
+        desc.length = Some(scalar(&field("length"), value)?);
+    }
+    if let Some(spring) = &entry.spring {
+        let damping = match spring.damping {
+            Some(value) => scalar(&field("spring.damping"), value)?,
+            None => 0.0,
+        };
+        desc = desc.spring(
+            scalar(&field("spring.stiffness"), spring.stiffness)?,
+            damping,
+        );
+    }
+    if let Some(value) = entry.collide_connected {
+        desc.collide_connected = value;
+    }
+    if let Some(value) = entry.break_force {
+        desc.break_force = scalar(&field("break_force"), value)?;
+    }
+    if let Some(value) = entry.break_torque {
+        desc.break_torque = scalar(&field("break_torque"), value)?;
+    }
+    Ok(desc)
+}
+
+/// The engine motor of a motor entry; errors are placed under `place` (`joints[i].motor`). The
+/// target present says the kind: `target_velocity` a velocity motor, `target_position` a position
+/// motor. A missing `max_force` is unlimited, a missing position motor `damping` is 0.
+fn motor(entry: &MotorEntry, place: &str) -> Result<Motor, SceneError> {
+    let field = |name: &str| join(place, name);
+    let max_force = || match entry.max_force {
+        Some(value) => scalar(&field("max_force"), value),
+        None => Ok(f32::INFINITY),
+    };
+    match (entry.target_velocity, entry.target_position) {
+        (Some(target_velocity), _) => {
+            motor_fields(entry, place, "velocity", &["target_velocity", "max_force"])?;
+            Ok(Motor::velocity(
+                scalar(&field("target_velocity"), target_velocity)?,
+                max_force()?,
+            ))
+        }
+        (None, Some(target_position)) => {
+            let fields = ["target_position", "stiffness", "damping", "max_force"];
+            motor_fields(entry, place, "position", &fields)?;
+            let stiffness = entry.stiffness.ok_or_else(|| {
+                SceneError::new(
+                    field("stiffness"),
+                    "required field is missing (a position motor needs it)",
+                )
+            })?;
+            let damping = match entry.damping {
+                Some(value) => scalar(&field("damping"), value)?,
+                None => 0.0,
+            };
+            Ok(Motor::position(
+                scalar(&field("target_position"), target_position)?,
+                scalar(&field("stiffness"), stiffness)?,
+                damping,
+                max_force()?,
+            ))
+        }
+        (None, None) => Err(SceneError::new(
+            place,
+            "required field is missing: `target_velocity` (a velocity motor) or \
+             `target_position` (a position motor)",
+        )),
+    }
+}
+
+/// Refuses a field of a motor entry that its `kind` of motor does not take (`fields`).
+fn motor_fields(
+    entry: &MotorEntry,
+    place: &str,
+    kind: &str,
+    fields: &[&str],
+) -> Result<(), SceneError> {
+    match entry.present_fields().find(|field| !fields.contains(field)) {
+        Some(stray) => {
+            let expected = fields
+                .iter()
+                .map(|field| format!("`{field}`"))
+                .collect::<Vec<_>>()
+                .join(", ");
+            Err(SceneError::new(
+                join(place, stray),
+                format!("unknown field `{stray}` for a {kind} motor, expected {expected}"),
+            ))
+        }
+        None => Ok(()),
+    }
 }

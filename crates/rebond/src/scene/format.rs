@@ -16,6 +16,7 @@ use serde::de::{Deserializer, MapAccess, Visitor};
 use serde::Deserialize;
 
 use crate::body::BodyType;
+use crate::joint::JointType;
 
 /// A value that must be written as a JSON object. Derived structs alone would also take a JSON
 /// array of their fields in order, which the format does not allow.
@@ -60,6 +61,7 @@ pub(super) struct SceneFile {
     pub(super) substeps: Option<u32>,
     pub(super) restitution_threshold: Option<f64>,
     pub(super) bodies: Vec<JsonObject<BodyEntry>>,
+    pub(super) joints: Option<Vec<JsonObject<JointEntry>>>,
 }
 
 /// How a body moves, as written.
@@ -199,6 +201,88 @@ pub(super) struct ChildEntry {
     pub(super) restitution: Option<f64>,
 }
 
+/// The joint types of the format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum JointKind {
+    Fixed,
+    Ball,
+    Revolute,
+    Prismatic,
+    Distance,
+}
+
+impl From<JointKind> for JointType {
+    fn from(kind: JointKind) -> Self {
+        match kind {
+            JointKind::Fixed => JointType::Fixed,
+            JointKind::Ball => JointType::Ball,
+            JointKind::Revolute => JointType::Revolute,
+            JointKind::Prismatic => JointType::Prismatic,
+            JointKind::Distance => JointType::Distance,
+        }
+    }
+}
+
+/// One joint, as written. Which fields belong to which joint type is the engine's rule
+/// (`JointDesc` refuses the others, naming the field).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct JointEntry {
+    pub(super) name: Option<String>,
+    #[serde(rename = "type")]
+    pub(super) kind: JointKind,
+    pub(super) body_a: Option<String>,
+    pub(super) body_b: String,
+    pub(super) anchor: Option<[f64; 3]>,
+    pub(super) anchor_b: Option<[f64; 3]>,
+    pub(super) axis: Option<[f64; 3]>,
+    pub(super) limits: Option<[f64; 2]>,
+    pub(super) swing_limit: Option<f64>,
+    pub(super) twist_limits: Option<[f64; 2]>,
+    pub(super) motor: Option<JsonObject<MotorEntry>>,
+    pub(super) length: Option<f64>,
+    pub(super) spring: Option<JsonObject<SpringEntry>>,
+    pub(super) collide_connected: Option<bool>,
+    pub(super) break_force: Option<f64>,
+    pub(super) break_torque: Option<f64>,
+}
+
+/// A motor, as written: the fields of both kinds, the kind told by which target is present and
+/// the other kind's fields refused later, as for shapes.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct MotorEntry {
+    pub(super) target_velocity: Option<f64>,
+    pub(super) target_position: Option<f64>,
+    pub(super) stiffness: Option<f64>,
+    pub(super) damping: Option<f64>,
+    pub(super) max_force: Option<f64>,
+}
+
+impl MotorEntry {
+    /// The names of the fields present in the file.
+    pub(super) fn present_fields(&self) -> impl Iterator<Item = &'static str> {
+        [
+            ("target_velocity", self.target_velocity.is_some()),
+            ("target_position", self.target_position.is_some()),
+            ("stiffness", self.stiffness.is_some()),
+            ("damping", self.damping.is_some()),
+            ("max_force", self.max_force.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(field, present)| present.then_some(field))
+    }
+}
+
+/// A distance joint's spring, as written; `damping` defaults to 0.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct SpringEntry {
+    pub(super) stiffness: f64,
+    pub(super) damping: Option<f64>,
+}
+
 #[cfg(test)]
 mod tests {
     //! The users' reference, `docs/scene-format.md`, names every field and type name the loader
@@ -211,6 +295,7 @@ mod tests {
     use serde::{forward_to_deserialize_any, Deserialize, Deserializer};
 
     use super::{BodyEntry, BodyKind, ChildEntry, GroupsEntry, SceneFile, ShapeEntry, ShapeKind};
+    use super::{JointEntry, JointKind, MotorEntry, SpringEntry};
 
     const REFERENCE: &str = include_str!("../../../../docs/scene-format.md");
 
@@ -269,6 +354,10 @@ mod tests {
             names_of::<ChildEntry>(),
             names_of::<ShapeKind>(),
             names_of::<BodyKind>(),
+            names_of::<JointEntry>(),
+            names_of::<JointKind>(),
+            names_of::<MotorEntry>(),
+            names_of::<SpringEntry>(),
         ]
         .concat();
         assert!(names.len() > 30, "recorded only {names:?}");

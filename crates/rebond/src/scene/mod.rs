@@ -1,6 +1,6 @@
 //! Scene files: JSON descriptions of a world (gravity, timestep, bodies with their shapes and
-//! materials), loaded into a [`World`] ready to step. The format is documented field by field in
-//! `docs/scene-format.md`; the `rebond` command line runs such files.
+//! materials, joints between them), loaded into a [`World`] ready to step. The format is
+//! documented field by field in `docs/scene-format.md`; the `rebond` command line runs such files.
 //!
 //! ```
 //! use rebond::scene::Scene;
@@ -34,8 +34,11 @@ use std::io;
 use std::path::{Path, PathBuf};
 
 use crate::body::{BodyHandle, RigidBody};
+use crate::error::ErrorKind;
+use crate::joint::{Joint, JointHandle, JointType};
+use crate::math::Vec3;
 use crate::world::{World, WorldSettings};
-use convert::{body_desc, scalar, timestep, vector};
+use convert::{body_desc, joint_desc, scalar, timestep, vector};
 use format::{JsonObject, SceneFile};
 
 /// Default seconds per step when a scene leaves `timestep` out.
@@ -139,13 +142,24 @@ struct SceneBody {
     handle: BodyHandle,
 }
 
+/// A joint of a loaded scene.
+#[derive(Debug, Clone)]
+struct SceneJoint {
+    /// Its unique name among joints, used in records.
+    name: String,
+    /// Its handle in the scene's world.
+    handle: JointHandle,
+}
+
 /// A scene checked and loaded into a world, ready to step.
 ///
-/// Bodies are never removed from the world, so the handle of every scene body stays valid.
+/// Stepping never removes a body or a joint (a broken joint stays, broken), so the handle of every
+/// scene body and joint stays valid unless removed through [`Scene::world_mut`].
 #[derive(Debug, Clone)]
 pub struct Scene {
     world: World,
     bodies: Vec<SceneBody>,
+    joints: Vec<SceneJoint>,
     timestep: Timestep,
 }
 
@@ -193,9 +207,40 @@ impl Scene {
                 .map_err(|error| SceneError::from(error.within(&place)))?;
             bodies.push(SceneBody { name, handle });
         }
+        // Where each body stands as loaded, for the joints' default anchors: taken before the
+        // joints are added, since adding needs the world mutably.
+        let body_places: HashMap<&str, (BodyHandle, Vec3)> = bodies
+            .iter()
+            .filter_map(|body| {
+                let position = world.body(body.handle).ok()?.position();
+                Some((body.name.as_str(), (body.handle, position)))
+            })
+            .collect();
+        let entries = file.joints.as_deref().unwrap_or_default();
+        let mut joints = Vec::with_capacity(entries.len());
+        let mut joint_indices_by_name: HashMap<String, usize> = HashMap::new();
+        for (index, entry) in entries.iter().enumerate() {
+            let place = format!("joints[{index}]");
+            let name = entry
+                .name
+                .clone()
+                .unwrap_or_else(|| format!("joint{index}"));
+            if let Some(first) = joint_indices_by_name.insert(name.clone(), index) {
+                let message =
+                    format!("duplicate name \"{name}\": joints[{first}] and {place} both have it");
+                return Err(SceneError::new(format!("{place}.name"), message));
+            }
+            let desc = joint_desc(entry, &place, |name| body_places.get(name).copied())?;
+            let joint_type = desc.joint_type;
+            let handle = world
+                .add_joint(desc)
+                .map_err(|error| joint_error(error.within(&place), joint_type))?;
+            joints.push(SceneJoint { name, handle });
+        }
         Ok(Self {
             world,
             bodies,
+            joints,
             timestep,
         })
     }
@@ -232,6 +277,23 @@ impl Scene {
             .map(|body| body.handle)
     }
 
+    /// Every joint with its name, in scene order (a joint removed through [`Scene::world_mut`] is
+    /// left out; a broken one stays).
+    pub fn joints(&self) -> impl Iterator<Item = (&str, &Joint)> {
+        self.joints.iter().filter_map(|joint| {
+            let state = self.world.joint(joint.handle).ok()?;
+            Some((joint.name.as_str(), state))
+        })
+    }
+
+    /// The handle of the joint named `name`.
+    pub fn joint_handle(&self, name: &str) -> Option<JointHandle> {
+        self.joints
+            .iter()
+            .find(|joint| joint.name == name)
+            .map(|joint| joint.handle)
+    }
+
     /// The world, to change: set velocities, apply forces, add bodies.
     pub fn world_mut(&mut self) -> &mut World {
         &mut self.world
@@ -241,6 +303,22 @@ impl Scene {
     pub fn into_world(self) -> World {
         self.world
     }
+}
+
+/// The scene error for a joint the world refused: a missing axis is told the way the loader
+/// tells every missing field, with the reason it is needed.
+fn joint_error(error: crate::Error, joint_type: JointType) -> SceneError {
+    if error.kind != ErrorKind::Missing {
+        return error.into();
+    }
+    let needing = match joint_type {
+        JointType::Ball => "a ball joint with `swing_limit` or `twist_limits`".to_owned(),
+        other => format!("a {} joint", other.name()),
+    };
+    SceneError::new(
+        error.field,
+        format!("required field is missing ({needing} needs it)"),
+    )
 }
 
 /// Deserialises the file, turning serde errors into a place and a message.
