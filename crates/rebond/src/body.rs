@@ -780,6 +780,15 @@ impl RigidBody {
         }
     }
 
+    /// Whether the step moves the body: a kinematic body, or a dynamic one awake.
+    pub(crate) fn is_awake(&self) -> bool {
+        match self.body_type {
+            BodyType::Dynamic => !self.sleeping,
+            BodyType::Kinematic => true,
+            BodyType::Static => false,
+        }
+    }
+
     pub(crate) fn is_dynamic(&self) -> bool {
         self.body_type == BodyType::Dynamic
     }

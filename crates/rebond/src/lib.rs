@@ -52,6 +52,7 @@ pub mod query;
 pub mod scene;
 pub mod shape;
 mod solver;
+mod sorted;
 mod world;
 
 pub use body::{BodyDesc, BodyHandle, BodyType, RigidBody};
@@ -68,6 +69,8 @@ pub use material::CombineRule;
 pub use math::{Aabb, Mat3, Pose, Quat, Vec3};
 pub use query::{QueryFilter, Ray, RayHit, ShapeHit};
 pub use shape::{CompoundChild, Shape};
+#[doc(hidden)]
+pub use world::StepWork;
 pub use world::{
     World, WorldSettings, DEFAULT_GRAVITY, DEFAULT_MAX_LINEAR_SPEED, DEFAULT_SUBSTEPS, MAX_SUBSTEPS,
 };

@@ -18,6 +18,7 @@ use crate::joint::{
 use crate::material::{CombineRule, Material};
 use crate::math::{Aabb, Vec3};
 use crate::solver::{ContactSettings, JointSettings, Solver, StepSettings};
+use crate::sorted::merged;
 
 /// Default gravity, m/s²: Earth's, along −Y.
 pub const DEFAULT_GRAVITY: Vec3 = Vec3::new(0.0, -9.81, 0.0);
@@ -124,6 +125,19 @@ impl WorldSettings {
     }
 }
 
+/// What the last step walked over, for tests that a step's work follows what is awake:
+/// diagnostics, not part of the stable API.
+#[doc(hidden)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct StepWork {
+    /// Bodies the step moved: awake dynamic and kinematic ones.
+    pub bodies: usize,
+    /// Broad-phase pairs the step walked.
+    pub pairs: usize,
+    /// Contacts the step solved.
+    pub contacts: usize,
+}
+
 /// A physics world: bodies, settings and the step that moves them.
 ///
 /// ```
@@ -153,12 +167,11 @@ pub struct World {
     events: EventTracker,
     /// Pairs the narrow phase ran on in the last step (recycled and sleeping pairs excepted).
     narrow_phase_pair_tests: usize,
+    /// What the last step walked over.
+    step_work: StepWork,
     /// Each body's bounding box, by arena slot, refreshed at the start of each step for the bodies
     /// that may have moved.
     bounds_of_slot: Vec<Aabb>,
-    /// Arena slots of the dynamic and kinematic bodies, ascending: the bodies a step may move.
-    /// Static bodies are left out of every per-body pass of the step.
-    movable_slots: Vec<usize>,
     /// Arena slots of static bodies lent out by [`World::body_mut`] since the last step, whose
     /// bounding boxes the next step refreshes in case they were moved.
     touched_static_slots: Vec<usize>,
@@ -180,8 +193,8 @@ impl World {
             ignored_pairs: IgnoredPairs::default(),
             events: EventTracker::default(),
             narrow_phase_pair_tests: 0,
+            step_work: StepWork::default(),
             bounds_of_slot: Vec::new(),
-            movable_slots: Vec::new(),
             touched_static_slots: Vec::new(),
         })
     }
@@ -204,11 +217,73 @@ impl World {
 
     /// Wakes every sleeping body.
     pub fn wake_all(&mut self) {
-        for &slot in &self.movable_slots {
-            if let Some(body) = self.bodies.at_slot_mut(slot) {
-                body.wake();
+        for slot in 0..self.bodies.slot_count() {
+            if self
+                .bodies
+                .at_slot(slot)
+                .is_some_and(|(_, body)| body.sleeping)
+            {
+                self.wake_slot(slot);
             }
         }
+    }
+
+    /// Wakes the body in `slot`; its group wakes at the next [`World::wake_groups`].
+    fn wake_slot(&mut self, slot: usize) {
+        if let Some(body) = self.bodies.at_slot_mut(slot) {
+            body.wake();
+            self.islands.note_woken(slot);
+        }
+    }
+
+    /// Wakes the group of each body woken since the last call, whole, and brings back the
+    /// contacts, broad-phase pairs, touching pairs and sensor overlaps parked while no body of
+    /// theirs was awake (`mid_step`: after the step listed its sensor pairs). Costs the groups
+    /// woken and, when any woke, a pass over the parked lists.
+    fn wake_groups(&mut self, mid_step: bool) {
+        let Self {
+            bodies,
+            broad_phase,
+            contacts,
+            islands,
+            events,
+            ..
+        } = self;
+        if !islands.wake_groups(bodies) {
+            return;
+        }
+        for &slot in islands.woken() {
+            if let Some(proxy) = bodies.at_slot(slot).and_then(|(_, body)| body.proxy) {
+                broad_phase.set_asleep(proxy, false);
+            }
+        }
+        let awake = |handle: BodyHandle| bodies.get(handle.0).is_some_and(RigidBody::is_awake);
+        let wakes = |a: BodyHandle, b: BodyHandle| awake(a) || awake(b);
+        contacts.unpark(wakes);
+        events.unpark(wakes, mid_step);
+    }
+
+    /// Parks the contacts, broad-phase pairs, touching pairs and sensor overlaps of which no body
+    /// is awake any more, once bodies fell asleep: no step walks them until one of their bodies
+    /// wakes.
+    fn park_sleeping(&mut self) {
+        let Self {
+            bodies,
+            broad_phase,
+            contacts,
+            islands,
+            events,
+            ..
+        } = self;
+        for &slot in islands.fell_asleep() {
+            if let Some(proxy) = bodies.at_slot(slot).and_then(|(_, body)| body.proxy) {
+                broad_phase.set_asleep(proxy, true);
+            }
+        }
+        let awake = |handle: BodyHandle| bodies.get(handle.0).is_some_and(RigidBody::is_awake);
+        let parks = |a: BodyHandle, b: BodyHandle| !awake(a) && !awake(b);
+        contacts.park(parks);
+        events.park(parks);
     }
 
     /// Checks `desc` and adds the body; on error the world is unchanged.
@@ -229,8 +304,7 @@ impl World {
         }
         self.bounds_of_slot[slot] = aabb;
         if !is_static {
-            let place = self.movable_slots.partition_point(|&other| other < slot);
-            self.movable_slots.insert(place, slot);
+            self.islands.add_body(slot);
         }
         Ok(BodyHandle(index))
     }
@@ -244,21 +318,42 @@ impl World {
         for joint in joints {
             self.remove_joint(joint)?;
         }
+        if !self.bodies.get(handle.0).ok_or_else(stale)?.is_awake() {
+            // A sleeping or static body may have parked contacts: its group and the groups resting
+            // on it wake now, so that the contacts come back to be dropped below.
+            let resting: Vec<BodyHandle> = self
+                .contacts
+                .parked()
+                .filter(|contact| contact.key.body_a == handle || contact.key.body_b == handle)
+                .flat_map(|contact| [contact.key.body_a, contact.key.body_b])
+                .collect();
+            for other in resting {
+                self.wake_slot(other.slot());
+            }
+            self.wake_slot(handle.slot());
+            self.wake_groups(false);
+            // Its parked touching pairs and overlaps (a sensor around a sleeping body) end at the
+            // next step, as an awake body's do.
+            self.events.unpark(|a, b| a == handle || b == handle, false);
+        }
         let mut body = self.bodies.remove(handle.0).ok_or_else(stale)?;
         if let Some(proxy) = body.proxy.take() {
             self.broad_phase.remove(proxy);
         }
-        self.movable_slots.retain(|&slot| slot != handle.slot());
+        if body.body_type != BodyType::Static {
+            self.islands.remove_body(handle.slot());
+        }
         self.touched_static_slots
             .retain(|&slot| slot != handle.slot());
-        for contact in self.contacts.contacts() {
-            let other = match (contact.key.body_a == handle, contact.key.body_b == handle) {
-                (true, _) => contact.key.body_b,
-                (_, true) => contact.key.body_a,
+        for index in 0..self.contacts.contacts().len() {
+            let key = self.contacts.contacts()[index].key;
+            let other = match (key.body_a == handle, key.body_b == handle) {
+                (true, _) => key.body_b,
+                (_, true) => key.body_a,
                 _ => continue,
             };
-            if let Some(resting) = self.bodies.get_mut(other.0) {
-                resting.wake();
+            if self.bodies.get(other.0).is_some() {
+                self.wake_slot(other.slot());
             }
         }
         self.contacts.remove_body(handle);
@@ -276,6 +371,9 @@ impl World {
         let body = self.bodies.get_mut(handle.0).ok_or_else(stale)?;
         if body.body_type == BodyType::Static {
             self.touched_static_slots.push(handle.slot());
+        } else {
+            // The caller may wake it: its group wakes at the next step.
+            self.islands.note_woken(handle.slot());
         }
         Ok(body)
     }
@@ -291,8 +389,8 @@ impl World {
     ) -> Result<()> {
         let body = self.bodies.get_mut(handle.0).ok_or_else(stale)?;
         body.collision_groups = groups;
-        body.wake();
-        if let Some(proxy) = body.proxy {
+        self.wake_slot(handle.slot());
+        if let Some(proxy) = self.bodies.get(handle.0).and_then(|body| body.proxy) {
             self.broad_phase.refilter(proxy);
         }
         self.drop_contacts(|bodies, a, b| match (bodies.get(a.0), bodies.get(b.0)) {
@@ -315,15 +413,13 @@ impl World {
         if !self.ignored_pairs.set(a, b, ignored) {
             return Ok(());
         }
+        for handle in [a, b] {
+            self.wake_slot(handle.slot());
+        }
         if let Some(proxy) = proxy_a {
             self.broad_phase.refilter(proxy);
         }
         self.drop_contacts(|_, body_a, body_b| ignored && (body_a, body_b) == ordered(a, b));
-        for handle in [a, b] {
-            if let Some(body) = self.bodies.get_mut(handle.0) {
-                body.wake();
-            }
-        }
         Ok(())
     }
 
@@ -404,9 +500,7 @@ impl World {
         joint.desc = desc;
         let (body_a, body_b) = joint.bodies();
         for body in body_a.into_iter().chain([body_b]) {
-            if let Some(body) = self.bodies.get_mut(body.0) {
-                body.wake();
-            }
+            self.wake_slot(body.slot());
         }
         Ok(())
     }
@@ -414,6 +508,24 @@ impl World {
     /// Joints that broke during the last step, in slot order. Valid until the next step.
     pub fn joint_break_events(&self) -> &[JointBreakEvent] {
         self.joints.break_events()
+    }
+
+    /// Adds the joints to this step's islands, and keeps what is jointed to a moving kinematic
+    /// body from counting as still.
+    fn link_joints(&mut self) {
+        let sleep_speed = self.settings.sleep_speed;
+        let moving_kinematic = |bodies: &Arena<RigidBody>, slot: usize| {
+            bodies.at_slot(slot).is_some_and(|(_, body)| {
+                body.body_type == BodyType::Kinematic && body.max_point_speed() > sleep_speed
+            })
+        };
+        for (slot_a, slot_b) in self.joints.body_links() {
+            self.islands.link(&self.bodies, slot_a, slot_b);
+            if moving_kinematic(&self.bodies, slot_a) || moving_kinematic(&self.bodies, slot_b) {
+                self.islands.keep_awake(slot_a);
+                self.islands.keep_awake(slot_b);
+            }
+        }
     }
 
     /// After a joint between `body_a` and `body_b` came or went: wakes both, and when it keeps
@@ -426,9 +538,7 @@ impl World {
         excludes: bool,
     ) {
         for handle in body_a.into_iter().chain([body_b]) {
-            if let Some(body) = self.bodies.get_mut(handle.0) {
-                body.wake();
-            }
+            self.wake_slot(handle.slot());
         }
         let Some(body_a) = body_a.filter(|_| excludes) else {
             return;
@@ -459,17 +569,27 @@ impl World {
         self.bodies.iter().filter(|(_, body)| body.sleeping).count()
     }
 
-    /// This step's contacts (one manifold per pair of touching convex parts), sorted by key.
+    /// This step's contacts (one manifold per pair of touching convex parts), sorted by key: the
+    /// contacts the step solved, each with at least one awake body. The contacts of sleeping
+    /// bodies (asleep together, or asleep on a static body) are kept apart, unchanged, in
+    /// [`World::sleeping_contacts`] until one of their bodies wakes.
     pub fn contacts(&self) -> &[Contact] {
         self.contacts.contacts()
     }
 
-    /// Number of contact points in this step's manifolds, speculative ones (bodies still apart by
-    /// less than [`WorldSettings::speculative_distance`]) included.
+    /// The contacts of which no body is awake (asleep, or asleep against a static body), sorted by
+    /// key, as they were when their bodies fell asleep.
+    pub fn sleeping_contacts(&self) -> impl ExactSizeIterator<Item = &Contact> {
+        self.contacts.parked()
+    }
+
+    /// Number of contact points in all manifolds, sleeping ones included, speculative ones
+    /// (bodies still apart by less than [`WorldSettings::speculative_distance`]) too.
     pub fn contact_count(&self) -> usize {
         self.contacts
             .contacts()
             .iter()
+            .chain(self.contacts.parked())
             .map(|contact| contact.manifold.len())
             .sum()
     }
@@ -492,13 +612,13 @@ impl World {
     }
 
     /// Pairs of bodies touching (surfaces meeting or contacts pushing) during the last step,
-    /// smaller handle first, sorted.
-    pub fn touching_pairs(&self) -> &[(BodyHandle, BodyHandle)] {
+    /// sleeping pairs included, smaller handle first, sorted.
+    pub fn touching_pairs(&self) -> impl Iterator<Item = (BodyHandle, BodyHandle)> + '_ {
         self.events.touching()
     }
 
-    /// (sensor, body) pairs overlapping after the last step, sorted.
-    pub fn sensor_overlaps(&self) -> &[(BodyHandle, BodyHandle)] {
+    /// (sensor, body) pairs overlapping after the last step, sleeping bodies included, sorted.
+    pub fn sensor_overlaps(&self) -> impl Iterator<Item = (BodyHandle, BodyHandle)> + '_ {
         self.events.overlaps()
     }
 
@@ -506,14 +626,12 @@ impl World {
     /// pairs whose fat boxes overlap and that interact (groups, ignored pairs, never two
     /// sensors). Diagnostics.
     pub fn broad_phase_pairs(&self) -> impl Iterator<Item = (BodyHandle, BodyHandle)> + '_ {
-        self.broad_phase
-            .pairs()
-            .iter()
-            .filter_map(|&(key_a, key_b)| {
-                let (index_a, _) = self.bodies.at_slot(key_a as usize)?;
-                let (index_b, _) = self.bodies.at_slot(key_b as usize)?;
-                Some(ordered(BodyHandle(index_a), BodyHandle(index_b)))
-            })
+        let pairs = self.broad_phase.pairs().iter().copied();
+        merged(pairs, self.broad_phase.parked_pairs()).filter_map(|(key_a, key_b)| {
+            let (index_a, _) = self.bodies.at_slot(key_a as usize)?;
+            let (index_b, _) = self.bodies.at_slot(key_b as usize)?;
+            Some(ordered(BodyHandle(index_a), BodyHandle(index_b)))
+        })
     }
 
     /// How many pairs of bodies the narrow phase tested in the last step: broad-phase pairs with
@@ -521,6 +639,13 @@ impl World {
     /// Diagnostics.
     pub fn narrow_phase_pair_tests(&self) -> usize {
         self.narrow_phase_pair_tests
+    }
+
+    /// What the last step walked over. Diagnostics, for tests that a step's work follows what is
+    /// awake.
+    #[doc(hidden)]
+    pub fn step_work(&self) -> StepWork {
+        self.step_work
     }
 
     /// Number of islands (groups of awake dynamic bodies linked by contacts) after the last step.
@@ -543,13 +668,18 @@ impl World {
     /// Forces and torques applied since the last step act during the whole step, then are cleared.
     pub fn step(&mut self, dt: f32) -> Result<()> {
         check_positive("dt", dt)?;
+        self.wake_groups(false);
         self.update_contacts(dt);
-        self.islands
-            .wake_touched_groups(&mut self.bodies, &self.movable_slots);
+        self.wake_groups(true);
+        self.step_work = StepWork {
+            bodies: self.islands.awake().len(),
+            pairs: self.broad_phase.pairs().len(),
+            contacts: self.contacts.contacts().len(),
+        };
         self.joints.refresh_poses(&self.bodies);
         self.solver.step(
             &mut self.bodies,
-            &self.movable_slots,
+            self.islands.awake(),
             (&mut self.joints, &mut self.contacts),
             StepSettings {
                 dt,
@@ -572,24 +702,34 @@ impl World {
         let substep_length = dt / self.settings.substeps as f32;
         self.events
             .update_contacts(self.contacts.contacts(), &self.bodies, substep_length);
-        self.events.finish_sensor_step(&self.bodies);
-        self.islands.update_sleep(
+        let bodies = &self.bodies;
+        let awake = |handle: BodyHandle| bodies.get(handle.0).is_some_and(RigidBody::is_awake);
+        self.events
+            .finish_sensor_step(bodies, |a, b| !awake(a) && !awake(b));
+        self.islands.begin_islands(&self.bodies);
+        self.islands
+            .link_contacts(&self.bodies, self.contacts.contacts());
+        self.link_joints();
+        let fell_asleep = self.islands.update_sleep(
             &mut self.bodies,
-            &self.movable_slots,
-            (self.contacts.contacts(), self.joints.body_links()),
+            self.contacts.contacts(),
             dt,
             self.settings.sleep_speed,
             self.settings.sleep_time,
         );
+        if fell_asleep {
+            self.park_sleeping();
+        }
         Ok(())
     }
 }
 
 impl World {
-    /// Collision detection: refreshes every proxy's box, updates the broad-phase pairs (only
-    /// pairs that interact: groups, ignored pairs, not two sensors), and runs the narrow phase on
-    /// each pair with a moving body, carrying impulses over by feature id. Pairs with a sensor
-    /// get no contacts; they are listed for the overlap test at the end of the step.
+    /// Collision detection: refreshes the boxes of the awake bodies (and of static bodies lent
+    /// out), updates the broad-phase pairs (only pairs that interact: groups, ignored pairs, not
+    /// two sensors), and runs the narrow phase on each pair with a moving body, carrying impulses
+    /// over by feature id. Pairs of which no body is awake are parked and not walked. Pairs with
+    /// a sensor get no contacts; they are listed for the overlap test at the end of the step.
     /// A pair whose bodies barely moved relative to each other since its manifolds were computed
     /// rebuilds them instead ([`ContactCache::recycle`]).
     ///
@@ -609,17 +749,14 @@ impl World {
             events,
             narrow_phase_pair_tests,
             bounds_of_slot,
-            movable_slots,
+            islands,
             touched_static_slots,
             ..
         } = self;
-        for &slot in movable_slots.iter().chain(touched_static_slots.iter()) {
+        for &slot in islands.awake().iter().chain(touched_static_slots.iter()) {
             let Some((_, body)) = bodies.at_slot(slot) else {
                 continue;
             };
-            if body.sleeping {
-                continue;
-            }
             let bounds = body.aabb();
             bounds_of_slot[slot] = bounds;
             if let Some(proxy) = body.proxy {
@@ -717,6 +854,7 @@ impl World {
             for (sleeper, _) in wakes.into_iter().filter(|&(_, wakes)| wakes) {
                 if let Some(body) = bodies.get_mut(sleeper.0) {
                     body.wake();
+                    islands.note_woken(sleeper.slot());
                 }
             }
         }
@@ -724,14 +862,28 @@ impl World {
 }
 
 impl World {
-    /// Removes this step's contacts of the pairs `(a, b)` for which `dropped(bodies, a, b)` is
-    /// true, and wakes their bodies.
+    /// Removes the contacts of the pairs `(a, b)` for which `dropped(bodies, a, b)` is true, and
+    /// wakes their bodies: a sleeping pair's groups wake first, so that its contacts come back to
+    /// be dropped.
     fn drop_contacts(
         &mut self,
         dropped: impl Fn(&Arena<RigidBody>, BodyHandle, BodyHandle) -> bool,
     ) {
+        let sleeping: Vec<BodyHandle> = self
+            .contacts
+            .parked()
+            .filter(|contact| dropped(&self.bodies, contact.key.body_a, contact.key.body_b))
+            .flat_map(|contact| [contact.key.body_a, contact.key.body_b])
+            .collect();
+        for handle in sleeping {
+            self.wake_slot(handle.slot());
+        }
+        self.wake_groups(false);
         let Self {
-            bodies, contacts, ..
+            bodies,
+            contacts,
+            islands,
+            ..
         } = self;
         for contact in contacts.contacts() {
             let (a, b) = (contact.key.body_a, contact.key.body_b);
@@ -739,6 +891,7 @@ impl World {
                 for handle in [a, b] {
                     if let Some(body) = bodies.get_mut(handle.0) {
                         body.wake();
+                        islands.note_woken(handle.slot());
                     }
                 }
             }

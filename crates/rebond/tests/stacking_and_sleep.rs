@@ -384,3 +384,83 @@ fn same_input_gives_bit_identical_trajectories() {
     };
     assert_eq!(simulate(), simulate());
 }
+
+/// Runs `world` until every body of `bodies` sleeps, at most `steps` steps.
+fn run_until_asleep(world: &mut World, bodies: &[BodyHandle], steps: usize) {
+    for _ in 0..steps {
+        world.step(DT).unwrap();
+        if bodies
+            .iter()
+            .all(|&handle| world.body(handle).unwrap().is_sleeping())
+        {
+            return;
+        }
+    }
+    panic!("the bodies never fell asleep");
+}
+
+#[test]
+fn a_woken_stack_gets_its_contacts_back_and_still_stands() {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    add_ground(&mut world, 0.6);
+    let boxes = add_boxes(
+        &mut world,
+        (0..5).map(|i| Vec3::new(0.0, 0.5 + i as f32, 0.0)),
+    );
+    let handles: Vec<BodyHandle> = boxes.iter().map(|&(handle, _)| handle).collect();
+    run_until_asleep(&mut world, &handles, 300);
+    world.step(DT).unwrap();
+    // Asleep, the stack's contacts are parked: the step solves none and keeps them all.
+    assert!(world.contacts().is_empty());
+    let parked: Vec<_> = world.sleeping_contacts().copied().collect();
+    assert_eq!(parked.len(), 5, "ground–box and four box–box contacts");
+    let rest: Vec<Vec3> = handles
+        .iter()
+        .map(|&handle| world.body(handle).unwrap().position())
+        .collect();
+
+    world.body_mut(handles[2]).unwrap().wake();
+    world.step(DT).unwrap();
+    assert!(handles
+        .iter()
+        .all(|&handle| !world.body(handle).unwrap().is_sleeping()));
+    assert_eq!(world.sleeping_contacts().count(), 0);
+    let keys: Vec<_> = world.contacts().iter().map(|c| c.bodies()).collect();
+    assert_eq!(keys, parked.iter().map(|c| c.bodies()).collect::<Vec<_>>());
+    // Woken with their impulses, the contacts hold the stack as they did before it slept.
+    for _ in 0..60 {
+        world.step(DT).unwrap();
+        for (&handle, start) in handles.iter().zip(&rest) {
+            let drift = world.body(handle).unwrap().position().distance(*start);
+            assert!(drift < 0.01, "a box moved {drift} m after waking");
+        }
+    }
+}
+
+#[test]
+fn a_step_visits_no_sleeping_body_pair_or_contact() {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    add_ground(&mut world, 0.6);
+    let resting = add_boxes(
+        &mut world,
+        (0..100).map(|i| Vec3::new(2.0 * (i % 10) as f32, 0.5, 2.0 * (i / 10) as f32)),
+    );
+    let handles: Vec<BodyHandle> = resting.iter().map(|&(handle, _)| handle).collect();
+    run_until_asleep(&mut world, &handles, 120);
+    let awake = world
+        .add_body(unit_box(Vec3::new(-10.0, 0.5, -10.0)).can_sleep(false))
+        .unwrap();
+    run(&mut world, 10);
+    // Only the awake box and its one pair and contact, with the ground.
+    assert_eq!(
+        world.step_work(),
+        rebond::StepWork {
+            bodies: 1,
+            pairs: 1,
+            contacts: 1
+        }
+    );
+    assert_eq!(world.sleeping_contacts().count(), 100);
+    assert_eq!(world.broad_phase_pairs().count(), 101);
+    assert!(world.body(awake).unwrap().position().y > 0.45);
+}

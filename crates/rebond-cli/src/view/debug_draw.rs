@@ -47,7 +47,7 @@ pub fn debug_geometry(viewer: &Viewer) -> DebugGeometry {
     let world = viewer.simulation.world();
     let mut geometry = DebugGeometry::default();
     if viewer.display.contacts {
-        for contact in world.contacts() {
+        for contact in world.contacts().iter().chain(world.sleeping_contacts()) {
             let normal = contact.normal();
             for point in contact.points() {
                 let colour = if point.separation < 0.0 {

@@ -7,9 +7,18 @@
 //! new fat box and is marked moved. [`BroadPhase::update_pairs`] then drops every pair of a moved
 //! or removed proxy and lets each moved proxy query the trees for its current overlaps, so the
 //! work is proportional to what moved, not to the number of bodies.
+//!
+//! A moving proxy can be put to sleep ([`BroadPhase::set_asleep`]): a pair of which neither proxy
+//! is awake (two sleeping, or sleeping and static) cannot change, so it is parked in a list of its
+//! own that no update walks, and comes back to [`BroadPhase::pairs`] when one of its proxies wakes.
+//! An update walks the awake pairs and what changed; the parked list only when a proxy woke or an
+//! asleep or static proxy changed. A new pair of which no proxy is awake (a static proxy moved or
+//! added next to sleeping ones) is listed for one update, so that the caller sees the meeting (a
+//! sensor's overlap), and parked at the next.
 
 use super::dynamic_tree::{DynamicTree, ProxyId};
 use crate::math::Aabb;
+use crate::sorted::merge_into;
 
 /// Names one body's proxy in a [`BroadPhase`]: which tree it is in and its id there, packed in
 /// one `u32` (the top bit set for the static tree) so that a pair of them takes 8 bytes. Ordered
@@ -123,8 +132,17 @@ pub struct BroadPhase {
     pair_keys: Vec<(u32, u32)>,
     /// Scratch: pairs found by this update's queries.
     found_pairs: Vec<Pair>,
-    /// Scratch: the merge of the kept and found pairs.
-    merged_pairs: Vec<Pair>,
+    /// Whether each proxy of the moving tree sleeps, by [`ProxyId::index`].
+    asleep: Vec<bool>,
+    /// The pairs of which no proxy is awake, sorted: kept without being walked.
+    parked: Vec<Pair>,
+    /// Scratch: pairs to park at this update.
+    parking: Vec<Pair>,
+    /// Whether a proxy fell asleep since the last update, so awake pairs may have to be parked.
+    park_pending: bool,
+    /// Whether a proxy woke, or an asleep or static proxy changed, since the last update, so parked
+    /// pairs may have to come back or be dropped.
+    sweep_parked: bool,
 }
 
 impl BroadPhase {
@@ -140,6 +158,9 @@ impl BroadPhase {
         let side = self.side_mut(is_static);
         let proxy = side.tree.create_proxy(aabb, key);
         let handle = ProxyHandle::new(is_static, proxy);
+        if !is_static {
+            self.set_asleep_flag(proxy, false);
+        }
         self.mark(handle, ProxyState::Moved);
         handle
     }
@@ -153,7 +174,48 @@ impl BroadPhase {
         self.side_mut(handle.is_static())
             .tree
             .destroy_proxy(handle.proxy());
-        self.mark(handle, ProxyState::Removed);
+        self.mark_changed(handle, ProxyState::Removed);
+        if !handle.is_static() {
+            self.set_asleep_flag(handle.proxy(), false);
+        }
+    }
+
+    /// Puts a moving proxy to sleep or wakes it (static proxies never wake): from the next
+    /// [`update_pairs`](Self::update_pairs), the pairs of which neither proxy is awake are parked,
+    /// out of [`pairs`](Self::pairs), and a woken proxy's pairs come back.
+    ///
+    /// # Panics
+    /// If `handle` names a static proxy.
+    pub fn set_asleep(&mut self, handle: ProxyHandle, asleep: bool) {
+        assert!(!handle.is_static(), "a static proxy never wakes");
+        if self.is_asleep(handle) == asleep {
+            return;
+        }
+        self.set_asleep_flag(handle.proxy(), asleep);
+        if asleep {
+            self.park_pending = true;
+        } else {
+            self.sweep_parked = true;
+        }
+    }
+
+    /// Whether the proxy is a moving one and awake.
+    fn is_awake(&self, handle: ProxyHandle) -> bool {
+        !handle.is_static() && !self.is_asleep(handle)
+    }
+
+    fn is_asleep(&self, handle: ProxyHandle) -> bool {
+        self.asleep
+            .get(handle.proxy().index())
+            .copied()
+            .unwrap_or(false)
+    }
+
+    fn set_asleep_flag(&mut self, proxy: ProxyId, asleep: bool) {
+        if proxy.index() >= self.asleep.len() {
+            self.asleep.resize(proxy.index() + 1, false);
+        }
+        self.asleep[proxy.index()] = asleep;
     }
 
     /// Reports a body's new tight box. Returns whether the box left the fat box, in which case the
@@ -168,7 +230,7 @@ impl BroadPhase {
             .tree
             .move_proxy(handle.proxy(), tight_aabb);
         if moved {
-            self.mark(handle, ProxyState::Moved);
+            self.mark_changed(handle, ProxyState::Moved);
         }
         moved
     }
@@ -184,7 +246,7 @@ impl BroadPhase {
     /// which `accepts(a, b)` (called with either key first) is true. When the filter's answer
     /// for a proxy's pairs changes, [`refilter`](Self::refilter) the proxy.
     pub fn update_pairs_filtered(&mut self, mut accepts: impl FnMut(u32, u32) -> bool) {
-        if self.changed.is_empty() {
+        if self.changed.is_empty() && !self.park_pending && !self.sweep_parked {
             return;
         }
         let Self {
@@ -194,15 +256,50 @@ impl BroadPhase {
             pairs,
             pair_keys,
             found_pairs,
-            merged_pairs,
+            asleep,
+            parked,
+            parking,
+            park_pending,
+            sweep_parked,
         } = self;
         let sides = [&*moving_side, &*static_side];
         let side_of = |handle: ProxyHandle| sides[usize::from(handle.is_static())];
         let is_unchanged =
             |handle: ProxyHandle| side_of(handle).state(handle.proxy()) == ProxyState::Unchanged;
-        pairs.retain(|pair| is_unchanged(pair.proxies.0) && is_unchanged(pair.proxies.1));
-
+        let is_awake = |handle: ProxyHandle| {
+            !handle.is_static() && !asleep.get(handle.proxy().index()).copied().unwrap_or(false)
+        };
         found_pairs.clear();
+        parking.clear();
+        if *sweep_parked {
+            parked.retain(|pair| {
+                let (a, b) = pair.proxies;
+                if !(is_unchanged(a) && is_unchanged(b)) {
+                    return false;
+                }
+                let wakes = is_awake(a) || is_awake(b);
+                if wakes {
+                    found_pairs.push(*pair);
+                }
+                !wakes
+            });
+        }
+        if *park_pending {
+            pairs.retain(|pair| {
+                let (a, b) = pair.proxies;
+                if !(is_unchanged(a) && is_unchanged(b)) {
+                    return false;
+                }
+                let parks = !is_awake(a) && !is_awake(b);
+                if parks {
+                    parking.push(*pair);
+                }
+                !parks
+            });
+        } else {
+            pairs.retain(|pair| is_unchanged(pair.proxies.0) && is_unchanged(pair.proxies.1));
+        }
+
         for &handle in changed.iter() {
             let side = side_of(handle);
             if side.state(handle.proxy()) != ProxyState::Moved {
@@ -231,24 +328,15 @@ impl BroadPhase {
         }
         // Keys are unique among live proxies, so no two pairs share a sort key.
         found_pairs.sort_unstable_by_key(|pair| pair.sort_key);
-
-        merged_pairs.clear();
-        merged_pairs.reserve(pairs.len() + found_pairs.len());
-        let (mut kept, mut found) = (pairs.iter().peekable(), found_pairs.iter().peekable());
-        while let (Some(&&next_kept), Some(&&next_found)) = (kept.peek(), found.peek()) {
-            if next_kept.sort_key <= next_found.sort_key {
-                merged_pairs.push(next_kept);
-                kept.next();
-            } else {
-                merged_pairs.push(next_found);
-                found.next();
-            }
-        }
-        merged_pairs.extend(kept);
-        merged_pairs.extend(found);
-        std::mem::swap(pairs, merged_pairs);
+        merge_into(pairs, found_pairs, |pair| pair.sort_key);
         pair_keys.clear();
         pair_keys.extend(pairs.iter().map(Pair::keys));
+        merge_into(parked, parking, |pair| pair.sort_key);
+        // The new pairs of which no proxy is awake are parked at the next update.
+        *park_pending = found_pairs
+            .iter()
+            .any(|pair| !is_awake(pair.proxies.0) && !is_awake(pair.proxies.1));
+        *sweep_parked = false;
 
         for handle in changed.drain(..) {
             let side = if handle.is_static() {
@@ -263,14 +351,20 @@ impl BroadPhase {
     /// Drops the proxy's pairs and finds them again at the next update, as if it had moved: for
     /// when the pair filter's answer changed. `handle` must name a live proxy.
     pub fn refilter(&mut self, handle: ProxyHandle) {
-        self.mark(handle, ProxyState::Moved);
+        self.mark_changed(handle, ProxyState::Moved);
     }
 
     /// The pairs of keys whose fat boxes overlapped at the last
-    /// [`update_pairs`](Self::update_pairs): smaller key first, sorted, each pair once, never two
-    /// static bodies.
+    /// [`update_pairs`](Self::update_pairs) and of which at least one proxy is awake: smaller key
+    /// first, sorted, each pair once, never two static bodies.
     pub fn pairs(&self) -> &[(u32, u32)] {
         &self.pair_keys
+    }
+
+    /// The parked pairs: overlapping at the last [`update_pairs`](Self::update_pairs), no proxy
+    /// awake; smaller key first, sorted.
+    pub fn parked_pairs(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
+        self.parked.iter().map(Pair::keys)
     }
 
     /// Number of live proxies, static and moving.
@@ -319,6 +413,15 @@ impl BroadPhase {
         } else {
             &mut self.moving_side
         }
+    }
+
+    /// Records a change to a proxy that may have pairs: one that is not awake may have parked
+    /// pairs, which the next update then looks through.
+    fn mark_changed(&mut self, handle: ProxyHandle, state: ProxyState) {
+        if !self.is_awake(handle) {
+            self.sweep_parked = true;
+        }
+        self.mark(handle, state);
     }
 
     /// Records a change to a proxy, listing it for the next update if it was not listed yet.
@@ -412,5 +515,42 @@ mod tests {
         broad_phase.update_pairs();
         assert_eq!(broad_phase.pairs(), &[(3, 4)]);
         assert_eq!(broad_phase.proxy_count(), 3);
+    }
+
+    #[test]
+    fn pairs_of_sleeping_proxies_are_parked_until_one_wakes() {
+        let mut broad_phase = BroadPhase::new();
+        broad_phase.insert(0, unit_box_at(0.0), true);
+        let first = broad_phase.insert(1, unit_box_at(0.5), false);
+        let second = broad_phase.insert(2, unit_box_at(1.0), false);
+        broad_phase.insert(3, unit_box_at(10.0), false);
+        broad_phase.update_pairs();
+        assert_eq!(broad_phase.pairs(), &[(0, 1), (0, 2), (1, 2)]);
+
+        broad_phase.set_asleep(first, true);
+        broad_phase.update_pairs();
+        assert_eq!(
+            broad_phase.pairs(),
+            &[(0, 2), (1, 2)],
+            "a pair with an awake proxy stays"
+        );
+        broad_phase.set_asleep(second, true);
+        broad_phase.update_pairs();
+        assert!(broad_phase.pairs().is_empty());
+        let parked: Vec<_> = broad_phase.parked_pairs().collect();
+        assert_eq!(parked, [(0, 1), (0, 2), (1, 2)]);
+
+        broad_phase.set_asleep(second, false);
+        broad_phase.update_pairs();
+        assert_eq!(broad_phase.pairs(), &[(0, 2), (1, 2)]);
+        assert!(broad_phase.parked_pairs().eq([(0, 1)]));
+        broad_phase.remove(first);
+        broad_phase.update_pairs();
+        assert_eq!(broad_phase.pairs(), &[(0, 2)]);
+        assert_eq!(
+            broad_phase.parked_pairs().count(),
+            0,
+            "a removed proxy's parked pairs go"
+        );
     }
 }

@@ -1,5 +1,6 @@
 //! The contact cache: this step's contacts, each with the impulses its points carried over from
-//! the point with the same feature id in the previous step (warm starting).
+//! the point with the same feature id in the previous step (warm starting), and the parked
+//! contacts of sleeping bodies, which no step touches until one of their bodies wakes.
 
 use std::ops::Range;
 
@@ -8,6 +9,7 @@ use super::narrow_phase::{PartCache, PartContacts};
 use crate::body::BodyHandle;
 use crate::material::Material;
 use crate::math::{Pose, Vec3, Vec3A};
+use crate::sorted::merge_into;
 use glam::Mat3A;
 
 /// A manifold is rebuilt from its stored points instead of running the narrow phase again while
@@ -193,10 +195,24 @@ impl Contact {
     }
 }
 
-/// This step's contacts, sorted by key, and last step's, kept to warm-start from.
+/// A contact parked while its bodies sleep, with what its query left.
+#[derive(Debug, Clone, Copy)]
+struct ParkedContact {
+    contact: Contact,
+    part_cache: PartCache,
+}
+
+/// This step's contacts, sorted by key, and last step's, kept to warm-start from; and the parked
+/// contacts, of pairs of which no body is awake.
 #[derive(Debug, Clone, Default)]
 pub struct ContactCache {
     current: Vec<Contact>,
+    /// Contacts of pairs of which no body is awake (asleep, or asleep against static), sorted by
+    /// key: moved out of `current` whole when their bodies fall asleep and back when one wakes.
+    parked: Vec<ParkedContact>,
+    /// Scratch of [`park`](Self::park) and [`unpark`](Self::unpark): the contacts moving.
+    moving_parked: Vec<ParkedContact>,
+    moving_current: Vec<Contact>,
     previous: Vec<Contact>,
     /// Where in `previous` the last pair asked for ended: the world asks for pairs in key order
     /// (the broad phase's pairs are sorted), so the next one is found by walking on from there.
@@ -386,7 +402,66 @@ impl ContactCache {
         &mut self.current
     }
 
-    /// Forgets every contact of `body` (it was removed), so no impulse reaches a later body.
+    /// Parks this step's contacts of the pairs `(a, b)` for which `parks(a, b)` is true: they
+    /// leave [`contacts`](Self::contacts), unchanged, impulses and query caches included, until
+    /// [`unpark`](Self::unpark) brings them back.
+    pub fn park(&mut self, mut parks: impl FnMut(BodyHandle, BodyHandle) -> bool) {
+        let Self {
+            current,
+            parked,
+            moving_parked,
+            part_caches,
+            ..
+        } = self;
+        moving_parked.clear();
+        current.retain(|contact| {
+            let moves = parks(contact.key.body_a, contact.key.body_b);
+            if moves {
+                let part_cache = contact
+                    .part_cache
+                    .and_then(|index| part_caches.get(index as usize))
+                    .copied()
+                    .unwrap_or_default();
+                moving_parked.push(ParkedContact {
+                    contact: *contact,
+                    part_cache,
+                });
+            }
+            !moves
+        });
+        merge_into(parked, moving_parked, |parked| parked.contact.key);
+    }
+
+    /// Brings the parked contacts of the pairs `(a, b)` for which `wakes(a, b)` is true back into
+    /// [`contacts`](Self::contacts), in key order, as they were parked.
+    pub fn unpark(&mut self, mut wakes: impl FnMut(BodyHandle, BodyHandle) -> bool) {
+        let Self {
+            current,
+            parked,
+            moving_current,
+            part_caches,
+            ..
+        } = self;
+        moving_current.clear();
+        parked.retain(|parked| {
+            let moves = wakes(parked.contact.key.body_a, parked.contact.key.body_b);
+            if moves {
+                let mut contact = parked.contact;
+                contact.part_cache = keep_part_cache(part_caches, parked.part_cache);
+                moving_current.push(contact);
+            }
+            !moves
+        });
+        merge_into(current, moving_current, |contact| contact.key);
+    }
+
+    /// The parked contacts, sorted by key.
+    pub fn parked(&self) -> impl ExactSizeIterator<Item = &Contact> {
+        self.parked.iter().map(|parked| &parked.contact)
+    }
+
+    /// Forgets every contact of `body` (it was removed), so no impulse reaches a later body: those
+    /// of this step, as the world brings a removed body's parked contacts back first.
     pub fn remove_body(&mut self, body: BodyHandle) {
         self.retain_pairs(|body_a, body_b| body_a != body && body_b != body);
     }

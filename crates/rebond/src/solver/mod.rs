@@ -150,8 +150,9 @@ pub(crate) struct SolverBodies {
 }
 
 impl SolverBodies {
-    /// Copies every awake dynamic or kinematic body into the solver array (slot order).
-    fn gather(&mut self, bodies: &Arena<RigidBody>, movable: &[usize]) {
+    /// Copies the bodies of `awake` (the slots of the awake dynamic and of the kinematic bodies,
+    /// ascending) into the solver array, in that order.
+    fn gather(&mut self, bodies: &Arena<RigidBody>, awake: &[usize]) {
         for &slot in self.slot_of_solver_index.iter().skip(1) {
             self.solver_index_of_slot[slot] = 0;
         }
@@ -162,21 +163,19 @@ impl SolverBodies {
         self.motions.push(BodyMotion::FIXED);
         self.slot_of_solver_index.clear();
         self.slot_of_solver_index.push(0);
-        for &slot in movable {
+        for &slot in awake {
             let Some((_, body)) = bodies.at_slot(slot) else {
                 continue;
             };
-            if !body.sleeping {
-                self.solver_index_of_slot[slot] = self.states.len();
-                self.slot_of_solver_index.push(slot);
-                self.states.push(BodyState {
-                    linear_velocity: body.linear_velocity.into(),
-                    angular_velocity: body.angular_velocity.into(),
-                    delta_position: Vec3A::ZERO,
-                    delta_rotation: Vec3A::ZERO,
-                });
-                self.motions.push(BodyMotion::from_body(body));
-            }
+            self.solver_index_of_slot[slot] = self.states.len();
+            self.slot_of_solver_index.push(slot);
+            self.states.push(BodyState {
+                linear_velocity: body.linear_velocity.into(),
+                angular_velocity: body.angular_velocity.into(),
+                delta_position: Vec3A::ZERO,
+                delta_rotation: Vec3A::ZERO,
+            });
+            self.motions.push(BodyMotion::from_body(body));
         }
     }
 

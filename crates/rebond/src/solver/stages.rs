@@ -124,18 +124,18 @@ impl ConstraintStage {
 }
 
 impl Solver {
-    /// Advances every awake body of `movable` (the slots of the dynamic and kinematic bodies,
-    /// ascending) by one step, with its joints and contacts: the stages in order
+    /// Advances the bodies of `awake` (the slots of the awake dynamic and of the kinematic bodies,
+    /// ascending) by one step, with their joints and contacts: the stages in order
     /// (`solver/mod.rs` lists what each does).
     pub fn step(
         &mut self,
         bodies: &mut Arena<RigidBody>,
-        movable: &[usize],
+        awake: &[usize],
         (joints, contacts): (&mut JointSet, &mut ContactCache),
         settings: StepSettings,
     ) {
         let context = StepContext::new(&settings);
-        self.bodies.gather(bodies, movable);
+        self.bodies.gather(bodies, awake);
         self.joints.prepare(joints, &self.bodies, &context);
         self.contacts.prepare(contacts, &self.bodies, &context);
         for _ in 0..context.substeps {
