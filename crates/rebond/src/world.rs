@@ -453,7 +453,8 @@ impl World {
     }
 
     /// Removes the joint and returns it; its handle becomes stale. Wakes both bodies, which
-    /// collide with each other again at the next step if the joint kept them apart.
+    /// collide with each other again at the next step if the joint kept them apart (as they do
+    /// once it breaks).
     pub fn remove_joint(&mut self, handle: JointHandle) -> Result<Joint> {
         let joint = self.joints.remove(handle).ok_or_else(stale_joint)?;
         let (body_a, body_b) = joint.bodies();
@@ -699,6 +700,15 @@ impl World {
             },
         );
         self.joints.finish_step(dt);
+        for index in 0..self.joints.break_events().len() {
+            // A broken joint no longer keeps its bodies apart: the broad phase looks at them
+            // again at the next step.
+            let joint = self.joints.break_events()[index].joint;
+            let body_b = self.joints.get(joint).map(|joint| joint.desc.body_b);
+            if let Some(proxy) = body_b.and_then(|body| self.bodies.get(body.0)?.proxy) {
+                self.broad_phase.refilter(proxy);
+            }
+        }
         let substep_length = dt / self.settings.substeps as f32;
         self.events
             .update_contacts(self.contacts.contacts(), &self.bodies, substep_length);

@@ -368,18 +368,20 @@ impl JointDesc {
             None => None,
         };
         if let Some(limits) = self.limits {
-            let (min, max) = match kind {
-                Revolute => (-PI, PI),
-                Distance => (0.0, f32::MAX),
-                _ => (f32::MIN, f32::MAX),
-            };
-            check_interval("limits", limits, min, max)?;
+            match kind {
+                Revolute => check_interval("limits", limits, Some((-PI, PI)))?,
+                Distance => {
+                    check_non_negative("limits[0]", limits[0])?;
+                    check_interval("limits", limits, None)?;
+                }
+                _ => check_interval("limits", limits, None)?,
+            }
         }
         if let Some(angle) = self.swing_limit {
             check_range("swing_limit", angle, 0.0, PI)?;
         }
         if let Some(limits) = self.twist_limits {
-            check_interval("twist_limits", limits, -PI, PI)?;
+            check_interval("twist_limits", limits, Some((-PI, PI)))?;
         }
         if let Some(motor) = &self.motor {
             motor.validate().map_err(|error| error.within("motor"))?;
@@ -400,10 +402,15 @@ impl JointDesc {
     }
 }
 
-/// Checks a `[min, max]` pair: both finite, within `[low, high]`, and `min ≤ max`.
-fn check_interval(field: &str, [min, max]: [f32; 2], low: f32, high: f32) -> Result<()> {
-    check_range(&format!("{field}[0]"), min, low, high)?;
-    check_range(&format!("{field}[1]"), max, low, high)?;
+/// Checks a `[min, max]` pair: both finite, within `range` when one is given, and `min ≤ max`.
+fn check_interval(field: &str, [min, max]: [f32; 2], range: Option<(f32, f32)>) -> Result<()> {
+    for (index, value) in [min, max].into_iter().enumerate() {
+        let field = format!("{field}[{index}]");
+        match range {
+            Some((low, high)) => check_range(&field, value, low, high)?,
+            None => check_finite(&field, value)?,
+        };
+    }
     if min > max {
         return Err(Error::new(field, ErrorKind::InvertedLimits { min, max }));
     }

@@ -143,14 +143,8 @@ impl JointSet {
     /// Removes a joint and returns it.
     pub fn remove(&mut self, handle: JointHandle) -> Option<Joint> {
         let (joint, _) = self.joints.remove(handle.0)?;
-        if let (false, Some(body_a)) = (joint.desc.collide_connected, joint.desc.body_a) {
-            let pair = ordered(body_a, joint.desc.body_b);
-            if let Ok(index) = self.excluded.binary_search_by_key(&pair, |&(pair, _)| pair) {
-                self.excluded[index].1 -= 1;
-                if self.excluded[index].1 == 0 {
-                    self.excluded.remove(index);
-                }
-            }
+        if !joint.broken {
+            release_exclusion(&mut self.excluded, &joint.desc);
         }
         Some(joint)
     }
@@ -255,6 +249,7 @@ impl JointSet {
                     torque: joint.torque,
                 });
                 joint.broken = true;
+                release_exclusion(&mut self.excluded, &joint.desc);
                 joint.force = Vec3::ZERO;
                 joint.torque = Vec3::ZERO;
                 data.impulses = JointImpulses::default();
@@ -265,6 +260,19 @@ impl JointSet {
     /// The joints that broke in the last step.
     pub fn break_events(&self) -> &[JointBreakEvent] {
         &self.break_events
+    }
+}
+
+/// Forgets that the joint of `desc` keeps its bodies from colliding (it went or broke).
+fn release_exclusion(excluded: &mut Vec<((BodyHandle, BodyHandle), u32)>, desc: &JointDesc) {
+    if let (false, Some(body_a)) = (desc.collide_connected, desc.body_a) {
+        let pair = ordered(body_a, desc.body_b);
+        if let Ok(index) = excluded.binary_search_by_key(&pair, |&(pair, _)| pair) {
+            excluded[index].1 -= 1;
+            if excluded[index].1 == 0 {
+                excluded.remove(index);
+            }
+        }
     }
 }
 

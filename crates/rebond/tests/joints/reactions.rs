@@ -101,3 +101,31 @@ fn a_joint_weaker_than_its_load_breaks_in_the_first_step_and_the_body_falls_free
     );
     assert!(world.joint_break_events().is_empty());
 }
+
+#[test]
+fn once_broken_a_joint_no_longer_keeps_its_bodies_from_colliding() {
+    // A box welded on top of a static block breaks its weld in the first step; from then on the
+    // two collide, so the box rests on the block instead of falling through it.
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    let block = world
+        .add_body(BodyDesc::static_body(
+            Shape::cuboid(Vec3::splat(0.5)).unwrap(),
+        ))
+        .unwrap();
+    let crate_ = add(
+        &mut world,
+        BodyDesc::dynamic(Shape::cuboid(Vec3::splat(0.5)).unwrap())
+            .mass(1.0)
+            .position(Vec3::new(0.0, 1.0, 0.0)),
+    );
+    let weld = world
+        .add_joint(JointDesc::fixed(block, crate_, Vec3::new(0.0, 0.5, 0.0)).break_force(0.1))
+        .unwrap();
+    world.step(DT).unwrap();
+    assert!(world.joint(weld).unwrap().is_broken());
+    for _ in 0..60 {
+        world.step(DT).unwrap();
+    }
+    let height = world.body(crate_).unwrap().position().y;
+    assert!((height - 1.0).abs() < 0.01, "the box is at {height} m");
+}
