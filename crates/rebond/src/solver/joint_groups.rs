@@ -87,18 +87,11 @@ impl GroupRow {
         }
     }
 
-    /// `J_i M⁻¹ J_jᵀ`: the sum over the bodies the two rows share.
-    fn coupling(&self, other: &Self) -> f32 {
-        let mut sum = 0.0;
-        for side in 0..2 {
-            for other_side in 0..2 {
-                if self.bodies[side] != 0 && self.bodies[side] == other.bodies[other_side] {
-                    sum += self.jacobian.linear[side].dot(other.linear_response[other_side])
-                        + self.jacobian.angular[side].dot(other.angular_response[other_side]);
-                }
-            }
-        }
-        sum
+    /// The part of `J_i M⁻¹ J_jᵀ` that body side `side` of this row and side `other_side` of
+    /// `other` (the same body) give.
+    fn coupling_through(&self, side: usize, other: &Self, other_side: usize) -> f32 {
+        self.jacobian.linear[side].dot(other.linear_response[other_side])
+            + self.jacobian.angular[side].dot(other.angular_response[other_side])
     }
 }
 
@@ -112,39 +105,56 @@ pub(super) struct GroupSystem {
     first: Vec<usize>,
     /// Scratch: right-hand side, then solution, then the rows' impulses.
     work: Vec<f32>,
+    /// Scratch: each moving body side of each row, `(body, row, side)`, sorted, so the rows
+    /// sharing a body are neighbours: `A` is assembled from them alone.
+    sides: Vec<(usize, usize, usize)>,
+    /// Scratch: `A_ii`, for the pivot test.
+    diagonal: Vec<f32>,
+    /// Whether `sides` and `first` describe `rows`: which rows there are and which bodies they
+    /// join stays the same through a step, only their Jacobians change.
+    structure_known: bool,
 }
 
 /// Relative size below which a pivot is taken for zero: the row depends on the ones before it.
 const DEPENDENT_PIVOT: f32 = 1.0e-5;
 
 impl GroupSystem {
-    /// Builds `A = J M⁻¹ Jᵀ` for `rows` and factors it.
+    /// Builds `A = J M⁻¹ Jᵀ` for `rows` and factors it. `A_ij` is non-zero only where rows `i`
+    /// and `j` share a moving body, so it is assembled body by body from the rows on each, and
+    /// only each row's profile (from its first non-zero column) is stored and factored.
     pub fn factor(&mut self) {
         let n = self.rows.len();
-        self.factor.clear();
-        self.factor.resize(n * n, 0.0);
-        self.first.clear();
-        for i in 0..n {
-            let mut first = i;
-            for j in 0..=i {
-                let coupling = self.rows[i].coupling(&self.rows[j]);
-                if coupling != 0.0 {
-                    first = first.min(j);
-                }
-                self.factor[i * n + j] = coupling;
-            }
-            self.first.push(first);
+        if !self.structure_known {
+            self.find_structure();
         }
+        self.factor.resize(n * n, 0.0);
+        for i in 0..n {
+            self.factor[i * n + self.first[i]..=i * n + i].fill(0.0);
+        }
+        for run in self.sides.chunk_by(|a, b| a.0 == b.0) {
+            for (position, &(_, i, side_i)) in run.iter().enumerate() {
+                for &(_, j, side_j) in &run[..=position] {
+                    let (row, column, row_side, column_side) = if i >= j {
+                        (i, j, side_i, side_j)
+                    } else {
+                        (j, i, side_j, side_i)
+                    };
+                    self.factor[row * n + column] +=
+                        self.rows[row].coupling_through(row_side, &self.rows[column], column_side);
+                }
+            }
+        }
+        self.diagonal.clear();
+        self.diagonal.extend((0..n).map(|i| self.factor[i * n + i]));
         for i in 0..n {
             for j in self.first[i]..=i {
                 let start = self.first[i].max(self.first[j]);
-                let mut sum = self.factor[i * n + j];
-                for k in start..j {
-                    sum -= self.factor[i * n + k] * self.factor[j * n + k];
-                }
+                let row_i = &self.factor[i * n + start..i * n + j];
+                let row_j = &self.factor[j * n + start..j * n + j];
+                let sum = self.factor[i * n + j]
+                    - row_i.iter().zip(row_j).map(|(a, b)| a * b).sum::<f32>();
                 self.factor[i * n + j] = if i == j {
-                    let diagonal = self.rows[i].coupling(&self.rows[i]);
-                    if sum > DEPENDENT_PIVOT * diagonal && sum > 0.0 {
+                    if sum > DEPENDENT_PIVOT * self.diagonal[i] && sum > 0.0 {
                         sum.sqrt()
                     } else {
                         f32::INFINITY
@@ -154,6 +164,33 @@ impl GroupSystem {
                 };
             }
         }
+    }
+
+    /// The group's rows changed (a new step): [`Self::factor`] finds again which rows share bodies.
+    pub fn forget_structure(&mut self) {
+        self.structure_known = false;
+    }
+
+    /// Lists each row's moving bodies, sorted by body, and each row's first non-zero column.
+    fn find_structure(&mut self) {
+        self.sides.clear();
+        for (index, row) in self.rows.iter().enumerate() {
+            for side in 0..2 {
+                if row.bodies[side] != 0 {
+                    self.sides.push((row.bodies[side], index, side));
+                }
+            }
+        }
+        self.sides.sort_unstable();
+        self.first.clear();
+        self.first.extend(0..self.rows.len());
+        for run in self.sides.chunk_by(|a, b| a.0 == b.0) {
+            let lowest = run[0].1;
+            for &(_, row, _) in run {
+                self.first[row] = self.first[row].min(lowest);
+            }
+        }
+        self.structure_known = true;
     }
 
     /// One solve of the group: `λ = −s_m A⁻¹ (J v + b C) − s_i λ_acc` per row, applied to

@@ -15,7 +15,7 @@
 
 use super::joint_groups::{Accumulator, GroupRow, GroupSystem, MAX_GROUP_ROWS};
 use super::joint_parts::{
-    AxisPart, JointBodies, PlanePart, PointPart, RotationPart, RowSoftness, Velocities,
+    AxisPart, JointBodies, PlanePart, PointPart, RotationPart, RowJacobian, RowSoftness, Velocities,
 };
 use super::softness::Softness;
 use super::stages::{ConstraintKind, StepContext};
@@ -68,6 +68,10 @@ pub(crate) struct JointConstraints {
     group_of_root: Vec<usize>,
     /// Scratch: how many holding rows each group has.
     rows_of_group: Vec<usize>,
+    /// Whether the rows were built at the bodies' current poses: poses move only between the
+    /// biased passes and the relax pass, so the rows the relax pass builds serve the next
+    /// substep's warm start and biased passes too; only the first substep builds its own.
+    rows_current: bool,
 }
 
 /// What of a joint's description the solve reads.
@@ -297,10 +301,19 @@ impl JointConstraint {
                 push(accumulator, jacobian, error);
             }
         }
-        if let (true, Some(axis)) = (self.options.has_rigid_length(), &geometry.axis_part) {
+        if self.options.has_rigid_length() {
+            // Without a direction the row is all zeros, and gets no impulse; it stays in the
+            // group so that the group's rows are the same all through the step.
+            let row = geometry.axis_part.map_or(
+                RowJacobian {
+                    linear: [Vec3::ZERO; 2],
+                    angular: [Vec3::ZERO; 2],
+                },
+                |axis| axis.row(),
+            );
             push(
                 Accumulator::Axial,
-                axis.row(),
+                row,
                 geometry.position - self.frames.length,
             );
         }
@@ -517,6 +530,9 @@ impl JointConstraints {
             self.groups
                 .resize_with(self.group_count, GroupSystem::default);
         }
+        for group in &mut self.groups[..self.group_count] {
+            group.forget_structure();
+        }
     }
 
     /// Refreshes every joint's geometry for the current poses and builds and factors each
@@ -625,12 +641,16 @@ impl ConstraintKind for JointConstraints {
             });
         }
         self.group(body_count);
+        self.rows_current = false;
     }
 
-    /// Refreshes each joint's geometry for the substep's poses, then applies its accumulated
-    /// impulses.
+    /// Applies each joint's accumulated impulses, with rows at the substep's poses (built here in
+    /// the first substep, by the last relax pass in the others).
     fn warm_start(&mut self, states: &mut [BodyState], motions: &[BodyMotion]) {
-        self.refresh(motions);
+        if !self.rows_current {
+            self.refresh(motions);
+            self.rows_current = true;
+        }
         self.for_each_joint(states, |constraint, v| constraint.warm_start(v));
     }
 
