@@ -2,22 +2,14 @@
 //! breaking, and chains under heavy loads.
 
 mod chains;
+#[path = "../common/mod.rs"]
+mod common;
 mod drives;
 mod pendulums;
 mod reactions;
 
-use rebond::{BodyDesc, BodyHandle, Quat, Shape, Vec3, World, WorldSettings};
-
-pub const DT: f32 = 1.0 / 60.0;
-pub const G: f32 = 9.81;
-
-pub fn world(gravity: Vec3) -> World {
-    World::new(WorldSettings {
-        gravity,
-        ..WorldSettings::default()
-    })
-    .unwrap()
-}
+pub use common::{world, DT, G};
+use rebond::{BodyDesc, BodyHandle, Quat, Shape, Vec3, World};
 
 /// A dynamic body that never sleeps, so every sample below is of a moving simulation.
 pub fn add(world: &mut World, desc: BodyDesc) -> BodyHandle {
