@@ -3,9 +3,9 @@
 //! type's rows.
 //!
 //! A joint's geometry (anchors, axes, angles and the parts built on them) follows the bodies:
-//! it is refreshed from the poses of each substep when the warm start runs, and again for the
-//! relax pass after the poses moved, so the rows and their position errors are exact for the
-//! poses, not only to first order. The relax pass's refresh matters: with the rows of the
+//! it is rebuilt from the poses at the first substep's warm start and for every relax pass,
+//! after the poses moved (the next substep's warm start and biased passes see the same poses), so
+//! the rows and their position errors are exact for the poses, not only to first order. The relax pass's refresh matters: with the rows of the
 //! substep's start, the velocity it leaves is tangent to where the body was, and a pendulum
 //! loses its energy at a rate proportional to the substep.
 //!
