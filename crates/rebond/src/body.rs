@@ -768,6 +768,12 @@ impl RigidBody {
         self.sleep_time = 0.0;
     }
 
+    /// Whether the body is kinematic and moving faster than `speed` (m/s, its fastest point):
+    /// what it touches or is jointed to must not fall asleep.
+    pub(crate) fn is_kinematic_moving_faster_than(&self, speed: f32) -> bool {
+        self.body_type == BodyType::Kinematic && self.max_point_speed() > speed
+    }
+
     /// Whether the body is awake and moves this step: an awake dynamic body, or a kinematic one
     /// with a velocity. Only movers need fresh contacts and can wake sleeping bodies.
     pub(crate) fn is_awake_mover(&self) -> bool {

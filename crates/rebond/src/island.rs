@@ -18,7 +18,7 @@
 //! without one touches nothing asleep.
 
 use crate::arena::Arena;
-use crate::body::{BodyType, RigidBody};
+use crate::body::RigidBody;
 use crate::collision::contact_cache::Contact;
 use crate::math::Vec3;
 use crate::sorted::merge_into;
@@ -199,10 +199,9 @@ impl Islands {
             [contact.key.body_a, contact.key.body_b]
                 .iter()
                 .any(|handle| {
-                    bodies.get(handle.0).is_some_and(|body| {
-                        body.body_type == BodyType::Kinematic
-                            && body.max_point_speed() > sleep_speed
-                    })
+                    bodies
+                        .get(handle.0)
+                        .is_some_and(|body| body.is_kinematic_moving_faster_than(sleep_speed))
                 })
         });
         for contact in moving_kinematic_contacts {

@@ -87,6 +87,22 @@ fn inverse_or_zero(k: Mat3) -> Mat3 {
     }
 }
 
+/// The impulse of one solve of a three-row part with effective mass `mass` (`K⁻¹`), relative
+/// velocity `Ċ` and position error `C`: `λ = −s_m K⁻¹ (Ċ + b C) − s_i λ_acc`, added to
+/// `accumulated`.
+fn block_impulse(
+    mass: Mat3,
+    velocity: Vec3,
+    error: Vec3,
+    softness: RowSoftness,
+    accumulated: &mut Vec3,
+) -> Vec3 {
+    let target = velocity + softness.bias_rate * error;
+    let impulse = -softness.mass_scale * (mass * target) - softness.impulse_scale * *accumulated;
+    *accumulated += impulse;
+    impulse
+}
+
 /// The point part: three rows holding the anchor `p_B` on the anchor `p_A`, `C = p_B − p_A`.
 ///
 /// - Jacobian: `Ċ = v_B + ω_B × r_B − v_A − ω_A × r_A` (`r` from each centre of mass to its
@@ -145,10 +161,7 @@ impl PointPart {
         softness: RowSoftness,
         accumulated: &mut Vec3,
     ) {
-        let target = self.velocity(v) + softness.bias_rate * error;
-        let impulse =
-            -softness.mass_scale * (self.mass * target) - softness.impulse_scale * *accumulated;
-        *accumulated += impulse;
+        let impulse = block_impulse(self.mass, self.velocity(v), error, softness, accumulated);
         self.apply(bodies, v, impulse);
     }
 }
@@ -194,10 +207,8 @@ impl RotationPart {
         softness: RowSoftness,
         accumulated: &mut Vec3,
     ) {
-        let target = v.angular[1] - v.angular[0] + softness.bias_rate * error;
-        let impulse =
-            -softness.mass_scale * (self.mass * target) - softness.impulse_scale * *accumulated;
-        *accumulated += impulse;
+        let velocity = v.angular[1] - v.angular[0];
+        let impulse = block_impulse(self.mass, velocity, error, softness, accumulated);
         Self::apply(bodies, v, impulse);
     }
 }

@@ -3,7 +3,7 @@
 
 use super::{stale, stale_joint, World};
 use crate::arena::Arena;
-use crate::body::{BodyHandle, BodyType, RigidBody};
+use crate::body::{BodyHandle, RigidBody};
 use crate::error::Result;
 use crate::filter::ordered;
 use crate::joint::{Joint, JointBreakEvent, JointDesc, JointHandle, JointPlacement, Motor};
@@ -97,9 +97,9 @@ impl World {
     pub(super) fn link_joints(&mut self) {
         let sleep_speed = self.settings.sleep_speed;
         let moving_kinematic = |bodies: &Arena<RigidBody>, slot: usize| {
-            bodies.at_slot(slot).is_some_and(|(_, body)| {
-                body.body_type == BodyType::Kinematic && body.max_point_speed() > sleep_speed
-            })
+            bodies
+                .at_slot(slot)
+                .is_some_and(|(_, body)| body.is_kinematic_moving_faster_than(sleep_speed))
         };
         for (slot_a, slot_b) in self.joints.body_links() {
             self.islands.link(&self.bodies, slot_a, slot_b);
