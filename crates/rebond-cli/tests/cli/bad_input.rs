@@ -631,7 +631,7 @@ fn inverted_joint_limits_are_refused() {
 }
 
 #[test]
-fn negative_joint_stiffness_damping_max_force_and_break_values_are_refused() {
+fn negative_joint_stiffness_damping_max_force_friction_and_break_values_are_refused() {
     let motor = |motor: &str| {
         scene_with_joint(&format!(
             r#"{{"type": "revolute", "body_a": "door", "body_b": "ball", "axis": [0, 1, 0],
@@ -684,6 +684,11 @@ fn negative_joint_stiffness_damping_max_force_and_break_values_are_refused() {
             ball(r#""break_torque": -1"#),
             "joints[2].break_torque",
         ),
+        (
+            "joint_negative_friction",
+            ball(r#""friction": -1"#),
+            "joints[2].friction",
+        ),
     ];
     for (test_name, scene, place) in cases {
         assert_refused(test_name, &scene, place, "must not be negative");
@@ -726,6 +731,14 @@ fn joint_fields_of_another_joint_type_are_refused() {
         ),
         "joints[2].swing_limit",
         "does not apply to a prismatic joint",
+    );
+    assert_refused(
+        "joint_friction_on_distance",
+        &scene_with_joint(
+            r#"{"type": "distance", "body_a": "door", "body_b": "ball", "friction": 1}"#,
+        ),
+        "joints[2].friction",
+        "does not apply to a distance joint",
     );
     assert_refused(
         "joint_position_field_on_velocity_motor",

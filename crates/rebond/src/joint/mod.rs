@@ -183,6 +183,11 @@ pub struct JointDesc {
     pub length: Option<f32>,
     /// Distance joints: a spring instead of a rigid length.
     pub spring: Option<Spring>,
+    /// Ball, revolute and prismatic joints: the most torque (N·m; prismatic: force, N) the
+    /// joint's own friction opposes relative motion with, ≥ 0, default 0. Coulomb friction on the
+    /// free motion: the joint holds still under a smaller load and slides against this one
+    /// under a larger, `|τ| ≤ friction` (ball: the couple's magnitude).
+    pub friction: f32,
     /// Whether the two bodies still collide with each other, default false.
     pub collide_connected: bool,
     /// The joint breaks for good in the step its force on `body_b` exceeds this, N, ≥ 0;
@@ -214,6 +219,7 @@ impl JointDesc {
             motor: None,
             length: None,
             spring: None,
+            friction: 0.0,
             collide_connected: false,
             break_force: f32::INFINITY,
             break_torque: f32::INFINITY,
@@ -306,6 +312,12 @@ impl JointDesc {
         self
     }
 
+    /// Sets [`friction`](Self::friction).
+    pub fn friction(mut self, friction: f32) -> Self {
+        self.friction = friction;
+        self
+    }
+
     /// Sets [`collide_connected`](Self::collide_connected).
     pub fn collide_connected(mut self, collide: bool) -> Self {
         self.collide_connected = collide;
@@ -348,6 +360,11 @@ impl JointDesc {
         only("motor", self.motor.is_some(), &[Revolute, Prismatic])?;
         only("length", self.length.is_some(), &[Distance])?;
         only("spring", self.spring.is_some(), &[Distance])?;
+        only(
+            "friction",
+            self.friction != 0.0,
+            &[Ball, Revolute, Prismatic],
+        )?;
         check_finite_vector("anchor", self.anchor)?;
         if let Some(anchor_b) = self.anchor_b {
             check_finite_vector("anchor_b", anchor_b)?;
@@ -393,6 +410,7 @@ impl JointDesc {
             check_non_negative("spring.stiffness", spring.stiffness)?;
             check_non_negative("spring.damping", spring.damping)?;
         }
+        check_non_negative("friction", self.friction)?;
         check_non_negative_or_infinite("break_force", self.break_force)?;
         check_non_negative_or_infinite("break_torque", self.break_torque)?;
         if self.body_a == Some(self.body_b) {

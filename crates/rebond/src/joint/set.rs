@@ -43,6 +43,10 @@ pub(crate) struct JointImpulses {
     pub swing: f32,
     pub twist_lower: f32,
     pub twist_upper: f32,
+    /// Joint friction: the ball joint's couple, N·m·s.
+    pub friction_couple: Vec3,
+    /// Joint friction along the revolute or prismatic axis, N·m·s or N·s.
+    pub friction: f32,
 }
 
 /// A body side of a joint as the step starts: its handle, and its centre of mass and rotation

@@ -303,6 +303,9 @@ pub(super) fn joint_desc(
             damping,
         );
     }
+    if let Some(value) = entry.friction {
+        desc.friction = scalar(&field("friction"), value)?;
+    }
     if let Some(value) = entry.collide_connected {
         desc.collide_connected = value;
     }

@@ -243,6 +243,7 @@ pub(super) struct JointEntry {
     pub(super) motor: Option<JsonObject<MotorEntry>>,
     pub(super) length: Option<f64>,
     pub(super) spring: Option<JsonObject<SpringEntry>>,
+    pub(super) friction: Option<f64>,
     pub(super) collide_connected: Option<bool>,
     pub(super) break_force: Option<f64>,
     pub(super) break_torque: Option<f64>,

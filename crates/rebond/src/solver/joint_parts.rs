@@ -211,6 +211,22 @@ impl RotationPart {
         let impulse = block_impulse(self.mass, velocity, error, softness, accumulated);
         Self::apply(bodies, v, impulse);
     }
+
+    /// Joint friction on the relative rotation: drives `ω_B − ω_A` to zero with an accumulated
+    /// couple of at most `max_impulse` (N·m·s) in magnitude, Coulomb's law for a couple.
+    pub fn solve_friction(
+        &self,
+        bodies: &JointBodies,
+        v: &mut Velocities,
+        max_impulse: f32,
+        accumulated: &mut Vec3,
+    ) {
+        let velocity = v.angular[1] - v.angular[0];
+        let total = (*accumulated - self.mass * velocity).clamp_length_max(max_impulse);
+        let applied = total - *accumulated;
+        *accumulated = total;
+        Self::apply(bodies, v, applied);
+    }
 }
 
 /// The axis part: one row, the relative velocity along a direction `d` of two anchors, plus

@@ -11,7 +11,7 @@
 //!
 //! The rows that hold bodies together (points, rotation locks, hinge axes, slide lines, rigid
 //! lengths) of joints sharing moving bodies are solved together and exactly
-//! (`joint_groups.rs`); limits, motors and springs one row at a time.
+//! (`joint_groups.rs`); limits, motors, springs and friction one row at a time.
 
 use super::joint_groups::{Accumulator, GroupRow, GroupSystem, MAX_GROUP_ROWS};
 use super::joint_parts::{
@@ -83,6 +83,8 @@ struct JointOptions {
     twist_limits: Option<[f32; 2]>,
     motor: Option<Motor>,
     spring: Option<Spring>,
+    /// Most friction torque (force for a prismatic joint), N·m or N.
+    friction: f32,
 }
 
 impl JointOptions {
@@ -147,6 +149,8 @@ struct Geometry {
     plane: Option<PlanePart>,
     axis_part: Option<AxisPart>,
     swing: Option<AxisPart>,
+    /// Ball joints with friction: the relative rotation's effective mass.
+    friction: Option<RotationPart>,
 }
 
 /// The rotation vector (axis times angle, rad) of a unit quaternion with `w ≥ 0`.
@@ -225,6 +229,9 @@ impl JointConstraint {
                     geometry.axis =
                         (axis + axis_b) / (1.0 + axis.dot(axis_b)).max(TWIST_RATE_FLOOR);
                     geometry.axis_part = Some(AxisPart::angular(bodies, geometry.axis));
+                }
+                if options.friction > 0.0 {
+                    geometry.friction = Some(RotationPart::new(bodies));
                 }
             }
             JointType::Revolute => {
@@ -341,13 +348,14 @@ impl JointConstraint {
     fn impulse_on_b(&self) -> (Vec3, Vec3) {
         let impulses = &self.impulses;
         let axis = self.geometry.axis;
-        let along_axis = impulses.lower - impulses.upper + impulses.motor;
+        let along_axis = impulses.lower - impulses.upper + impulses.motor + impulses.friction;
         match self.options.joint_type {
             JointType::Fixed => (impulses.linear, impulses.angular),
             JointType::Ball => (
                 impulses.linear,
                 axis * (impulses.twist_lower - impulses.twist_upper)
-                    - self.geometry.swing_axis * impulses.swing,
+                    - self.geometry.swing_axis * impulses.swing
+                    + impulses.friction_couple,
             ),
             JointType::Revolute => (impulses.linear, impulses.angular + axis * along_axis),
             JointType::Prismatic => (impulses.linear + axis * along_axis, impulses.angular),
@@ -377,9 +385,16 @@ impl JointConstraint {
         if let Some(axis) = &geometry.axis_part {
             let scalar = match self.options.joint_type {
                 JointType::Ball => impulses.twist_lower - impulses.twist_upper,
-                _ => impulses.axial + impulses.lower - impulses.upper + impulses.motor,
+                _ => {
+                    impulses.axial + impulses.lower - impulses.upper
+                        + impulses.motor
+                        + impulses.friction
+                }
             };
             axis.apply(bodies, v, scalar);
+        }
+        if geometry.friction.is_some() {
+            RotationPart::apply(bodies, v, impulses.friction_couple);
         }
         if let Some(swing) = &geometry.swing {
             swing.apply(bodies, v, -impulses.swing);
@@ -419,6 +434,10 @@ impl JointConstraint {
                 ),
                 None => {}
             }
+            if options.friction > 0.0 && options.joint_type != JointType::Ball {
+                let most = options.friction * h;
+                axis.solve_velocity_motor(bodies, v, 0.0, most, &mut impulses.friction);
+            }
             if let Some(spring) = options.spring {
                 axis.solve_spring(
                     bodies,
@@ -446,6 +465,10 @@ impl JointConstraint {
                 let error = position - self.frames.length;
                 axis.solve_equality(bodies, v, error, softness, &mut impulses.axial);
             }
+        }
+        if let Some(friction) = &geometry.friction {
+            let most = options.friction * h;
+            friction.solve_friction(bodies, v, most, &mut impulses.friction_couple);
         }
         if let (Some(swing), Some(limit)) = (&geometry.swing, options.swing_limit) {
             let gap = (limit - geometry.swing_angle, -1.0);
@@ -625,6 +648,7 @@ impl ConstraintKind for JointConstraints {
                     twist_limits: desc.twist_limits,
                     motor: desc.motor,
                     spring: desc.spring,
+                    friction: desc.friction,
                 },
                 frames: joint.frames,
                 solver,

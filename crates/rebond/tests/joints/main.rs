@@ -5,6 +5,7 @@ mod chains;
 #[path = "../common/mod.rs"]
 mod common;
 mod drives;
+mod friction;
 mod pendulums;
 mod reactions;
 
