@@ -492,8 +492,11 @@ def ragdoll_parts():
         ("torso", {"type": "box", "half_extents": [0.18, 0.3, 0.1]}, 25.0, [0.0, 1.25, 0.0], upright),
         ("head", {"type": "sphere", "radius": 0.12}, 5.0, [0.0, 1.70, 0.0], upright),
     ]
+    # Joint friction, N·m, a few percent of the weight torque of the parts each joint carries
+    # held out level, as the stiffness of real joints gives: without it a limb that its own
+    # body lets pass (an arm through the torso) swings on for ever and the piles never sleep.
     joints = [("neck", "ball", "torso", "head", [0.0, 1.57, 0.0], [0.0, 1.0, 0.0],
-               {"swing_limit": 0.7, "twist_limits": [-0.8, 0.8]})]
+               {"swing_limit": 0.7, "twist_limits": [-0.8, 0.8], "friction": 0.5})]
     for side, sign in [("left", 1.0), ("right", -1.0)]:
         parts += [
             (f"upper_arm_{side}", {"type": "capsule", "radius": 0.06, "half_height": 0.11}, 2.5,
@@ -509,13 +512,13 @@ def ragdoll_parts():
         # right-hand rule about these axes; both start straight, at their lower limit.
         joints += [
             (f"shoulder_{side}", "ball", "torso", f"upper_arm_{side}", [0.19 * sign, 1.47, 0.0],
-             [sign, 0.0, 0.0], {"swing_limit": 1.6, "twist_limits": [-0.7, 0.7]}),
+             [sign, 0.0, 0.0], {"swing_limit": 1.6, "twist_limits": [-0.7, 0.7], "friction": 0.5}),
             (f"elbow_{side}", "revolute", f"upper_arm_{side}", f"lower_arm_{side}",
-             [0.53 * sign, 1.47, 0.0], [0.0, -sign, 0.0], {"limits": [0.0, 2.5]}),
+             [0.53 * sign, 1.47, 0.0], [0.0, -sign, 0.0], {"limits": [0.0, 2.5], "friction": 0.3}),
             (f"hip_{side}", "ball", "torso", f"upper_leg_{side}", [0.1 * sign, 0.95, 0.0],
-             [0.0, -1.0, 0.0], {"swing_limit": 1.2, "twist_limits": [-0.5, 0.5]}),
+             [0.0, -1.0, 0.0], {"swing_limit": 1.2, "twist_limits": [-0.5, 0.5], "friction": 2.0}),
             (f"knee_{side}", "revolute", f"upper_leg_{side}", f"lower_leg_{side}",
-             [0.1 * sign, 0.51, 0.0], [1.0, 0.0, 0.0], {"limits": [0.0, 2.4]}),
+             [0.1 * sign, 0.51, 0.0], [1.0, 0.0, 0.0], {"limits": [0.0, 2.4], "friction": 1.0}),
         ]
     return parts, joints
 
@@ -542,15 +545,11 @@ def ragdolls():
                     return rounded(add(origin, rotate(turn, add(point, scaled(center, -1.0)))))
 
                 prefix = f"ragdoll{index}"
-                # Some angular damping stands in for the friction of real joints: without it a
-                # head or an arm lying on the ground rolls about its joint for ever (spheres and
-                # capsules roll without resistance), and the piles never fall asleep.
                 for name, shape, mass, position, rotation in parts:
                     bodies.append({
                         "name": f"{prefix}_{name}", "shape": shape, "mass": mass,
                         "position": place(position),
                         "rotation": rounded(quat_mul(turn, rotation), 6),
-                        "angular_damping": 1.0,
                     })
                 for name, joint_type, body_a, body_b, anchor, axis, extra in part_joints:
                     joint = {
