@@ -1,8 +1,9 @@
 //! How joints are drawn: a dot at each anchor, a red line between the anchors when a joint has
 //! come apart, the axis of a hinge or slider, and the limits: a revolute joint's two limit
 //! directions with a spoke fixed to `body_b` that turns between them, a ball joint's swing cone
-//! around its twist axis with `body_b`'s twist axis inside it, and a prismatic joint's range of
-//! slide. Broken joints are not drawn: they no longer hold anything.
+//! around its twist axis with `body_b`'s twist axis inside it, its twist limits as two spokes at
+//! the tip of `body_b`'s axis with a spoke fixed to `body_b` between them, and a prismatic joint's
+//! range of slide. Broken joints are not drawn: they no longer hold anything.
 
 use std::f32::consts::TAU;
 
@@ -17,6 +18,8 @@ const AXIS_LENGTH: f32 = 0.4;
 const SPOKE_LENGTH: f32 = 0.3;
 /// Anchors further apart than this, metres, are joined by a line.
 const SHOWN_GAP: f32 = 1.0e-3;
+/// Length of the spokes that show a ball joint's twist, metres.
+const TWIST_SPOKE_LENGTH: f32 = 0.15;
 /// Lines drawn on a ball joint's swing cone.
 const CONE_LINES: usize = 8;
 
@@ -73,6 +76,21 @@ pub fn push_joints(geometry: &mut DebugGeometry, world: &World, start: &World) {
                 lines(anchor, anchor + SPOKE_LENGTH * axis, JOINT_AXIS);
                 let tip_b = placement.anchor_b + SPOKE_LENGTH * placement.axis_b;
                 lines(placement.anchor_b, tip_b, JOINT_ANCHOR);
+                if let (Some([low, high]), Some(twist)) = (
+                    joint.desc().twist_limits,
+                    TwistSpokes::new(world, start, handle, joint, &placement),
+                ) {
+                    let axis_b = placement.axis_b;
+                    for angle in [low, high] {
+                        let direction = Quat::from_axis_angle(axis_b, angle) * twist.zero;
+                        lines(tip_b, tip_b + TWIST_SPOKE_LENGTH * direction, JOINT_LIMIT);
+                    }
+                    lines(
+                        tip_b,
+                        tip_b + TWIST_SPOKE_LENGTH * twist.body_b,
+                        JOINT_ANCHOR,
+                    );
+                }
                 if let Some(swing) = joint.desc().swing_limit {
                     let edge = Quat::from_axis_angle(axis.any_orthonormal_vector(), swing) * axis;
                     for line in 0..CONE_LINES {
@@ -121,22 +139,66 @@ impl HingeSpokes {
         } else {
             then.axis_a.any_orthonormal_vector()
         };
-        // The spoke as fixed in each body: in its frame as it stood, then turned as it stands.
-        let fixed_in = |body: Option<BodyHandle>| {
-            let then = rotation(start, body)?;
-            let now = rotation(world, body)?;
-            Some(now * (then.inverse() * spoke))
-        };
-        let zero = fixed_in(body_a)?;
         // Turning about the axis only: anything else is the joint's error, not its angle.
-        let square = |direction: Vec3| {
-            (direction - placement.axis_a * direction.dot(placement.axis_a)).normalize_or(direction)
-        };
+        let axis = placement.axis_a;
         Some(Self {
-            zero: square(zero),
-            body_b: square(fixed_in(Some(body_b))?),
+            zero: square_to(axis, fixed_in(world, start, body_a, spoke)?),
+            body_b: square_to(axis, fixed_in(world, start, Some(body_b), spoke)?),
         })
     }
+}
+
+/// The directions a ball joint's twist is shown by, world frame, both square to `body_b`'s twist
+/// axis: `zero`, a direction square to the axis fixed to `body_a` when the joint was added,
+/// carried onto `body_b`'s axis by the shortest turn (the swing), is zero twist; `body_b` is that
+/// direction as fixed to `body_b`, which turns from `zero` by the twist.
+struct TwistSpokes {
+    zero: Vec3,
+    body_b: Vec3,
+}
+
+impl TwistSpokes {
+    /// The spokes of the ball `joint` of `world` at `placement`, from its start in `start`;
+    /// `None` when `start` lacks the joint or one of its bodies.
+    fn new(
+        world: &World,
+        start: &World,
+        handle: JointHandle,
+        joint: &Joint,
+        placement: &JointPlacement,
+    ) -> Option<Self> {
+        let (body_a, body_b) = joint.bodies();
+        let spoke = start
+            .joint_placement(handle)
+            .ok()?
+            .axis_a
+            .any_orthonormal_vector();
+        let swing = Quat::from_rotation_arc(placement.axis_a, placement.axis_b);
+        let zero = swing * fixed_in(world, start, body_a, spoke)?;
+        let axis = placement.axis_b;
+        Some(Self {
+            zero: square_to(axis, zero),
+            body_b: square_to(axis, fixed_in(world, start, Some(body_b), spoke)?),
+        })
+    }
+}
+
+/// `direction` (world frame in `start`) as fixed to `body`: in its frame as it stood in `start`,
+/// then turned as it stands in `world`.
+fn fixed_in(
+    world: &World,
+    start: &World,
+    body: Option<BodyHandle>,
+    direction: Vec3,
+) -> Option<Vec3> {
+    let then = rotation(start, body)?;
+    let now = rotation(world, body)?;
+    Some(now * (then.inverse() * direction))
+}
+
+/// `direction` without its part along the unit `axis`, normalised (itself when along the axis).
+fn square_to(axis: Vec3, direction: Vec3) -> Vec3 {
+    (direction - axis * direction.dot(axis)).normalize_or(direction)
 }
 
 /// The rotation of `body` in `world`: the identity for the world itself (`None`).
@@ -171,7 +233,8 @@ mod tests {
             .expect("added");
         let swing = JointDesc::ball(None, ball, Vec3::new(3.0, 0.0, 0.0))
             .axis(Vec3::NEG_Y)
-            .swing_limit(0.4);
+            .swing_limit(0.4)
+            .twist_limits(-0.3, 0.6);
         world.add_joint(swing).expect("joined");
         (world, hinge)
     }
@@ -191,7 +254,7 @@ mod tests {
         assert_eq!(geometry.markers.len(), 4, "two anchors a joint");
         assert!(coloured(&geometry, JOINT_GAP).is_empty(), "nothing apart");
         let limits = coloured(&geometry, JOINT_LIMIT);
-        assert_eq!(limits.len(), 2 + CONE_LINES);
+        assert_eq!(limits.len(), 2 + 2 + CONE_LINES);
         // The hinge's limits turn the downward spoke by −0.5 and 1 rad about Z.
         for (segment, angle) in limits[..2].iter().zip([-0.5f32, 1.0]) {
             let direction = (segment.to - segment.from) / SPOKE_LENGTH;
@@ -201,8 +264,28 @@ mod tests {
                 "{direction} at {angle}"
             );
         }
+        // The ball's twist limits: two spokes square to its downward axis, at its tip, 0.9 rad
+        // apart, with the ball's own spoke at zero twist between them.
+        let spokes = &limits[2..4];
+        let tip = Vec3::new(3.0, -SPOKE_LENGTH, 0.0);
+        let [low, high] = [0, 1].map(|k| (spokes[k].to - spokes[k].from).normalize());
+        for (segment, direction) in spokes.iter().zip([low, high]) {
+            assert!(
+                (segment.from - tip).length() < 1e-5,
+                "from {}",
+                segment.from
+            );
+            assert!(
+                direction.dot(Vec3::Y).abs() < 1e-5,
+                "{direction} not square"
+            );
+        }
+        assert!((low.dot(high) - 0.9f32.cos()).abs() < 1e-4);
+        let own = coloured(&geometry, JOINT_ANCHOR)[2];
+        let own = (own.to - own.from).normalize();
+        assert!((own.dot(low) - 0.3f32.cos()).abs() < 1e-4, "{own}");
         // The ball's cone lines are 0.4 rad off its downward twist axis.
-        for segment in &limits[2..] {
+        for segment in &limits[4..] {
             let direction = (segment.to - segment.from).normalize();
             assert!((direction.dot(Vec3::NEG_Y) - 0.4f32.cos()).abs() < 1e-4);
         }
