@@ -108,8 +108,8 @@ pub(super) struct GroupSystem {
     /// Scratch: each moving body side of each row, `(body, row, side)`, sorted, so the rows
     /// sharing a body are neighbours: `A` is assembled from them alone.
     sides: Vec<(usize, usize, usize)>,
-    /// Scratch: `A_ii`, for the pivot test.
-    diagonal: Vec<f32>,
+    /// `1 / L_ii` (0 for a dependent row).
+    inverse_diagonal: Vec<f32>,
     /// Whether `sides` and `first` describe `rows`: which rows there are and which bodies they
     /// join stays the same through a step, only their Jacobians change.
     structure_known: bool,
@@ -117,6 +117,25 @@ pub(super) struct GroupSystem {
 
 /// Relative size below which a pivot is taken for zero: the row depends on the ones before it.
 const DEPENDENT_PIVOT: f32 = 1.0e-5;
+
+/// `Σ a_k b_k` over two slices of the same length, in four interleaved sums (so the compiler
+/// can keep them in one vector register), then added pairwise.
+fn dot(a: &[f32], b: &[f32]) -> f32 {
+    let mut sums = [0.0_f32; 4];
+    let (a_chunks, b_chunks) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f32 = a_chunks
+        .remainder()
+        .iter()
+        .zip(b_chunks.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in a_chunks.zip(b_chunks) {
+        for lane in 0..4 {
+            sums[lane] += x[lane] * y[lane];
+        }
+    }
+    (sums[0] + sums[1]) + (sums[2] + sums[3]) + tail
+}
 
 impl GroupSystem {
     /// Builds `A = J M⁻¹ Jᵀ` for `rows` and factors it. `A_ij` is non-zero only where rows `i`
@@ -144,25 +163,26 @@ impl GroupSystem {
                 }
             }
         }
-        self.diagonal.clear();
-        self.diagonal.extend((0..n).map(|i| self.factor[i * n + i]));
+        self.inverse_diagonal.clear();
         for i in 0..n {
-            for j in self.first[i]..=i {
-                let start = self.first[i].max(self.first[j]);
-                let row_i = &self.factor[i * n + start..i * n + j];
-                let row_j = &self.factor[j * n + start..j * n + j];
-                let sum = self.factor[i * n + j]
-                    - row_i.iter().zip(row_j).map(|(a, b)| a * b).sum::<f32>();
-                self.factor[i * n + j] = if i == j {
-                    if sum > DEPENDENT_PIVOT * self.diagonal[i] && sum > 0.0 {
-                        sum.sqrt()
-                    } else {
-                        f32::INFINITY
-                    }
-                } else {
-                    sum / self.factor[j * n + j]
-                };
+            let first_i = self.first[i];
+            let (done, rest) = self.factor.split_at_mut(i * n);
+            let row_i = &mut rest[..=i];
+            for j in first_i..i {
+                let start = first_i.max(self.first[j]);
+                let row_j = &done[j * n + start..j * n + j];
+                let sum = row_i[j] - dot(&row_i[start..j], row_j);
+                row_i[j] = sum * self.inverse_diagonal[j];
             }
+            let sum = row_i[i] - dot(&row_i[first_i..i], &row_i[first_i..i]);
+            // `L_ii = √sum`, kept as its inverse; a dependent row's is 0, so it gets no impulse.
+            let pivot = if sum > DEPENDENT_PIVOT * row_i[i] && sum > 0.0 {
+                sum.sqrt().recip()
+            } else {
+                0.0
+            };
+            row_i[i] = pivot;
+            self.inverse_diagonal.push(pivot);
         }
     }
 
@@ -210,17 +230,18 @@ impl GroupSystem {
                 .map(|row| row.velocity(states) + softness.bias_rate * row.error),
         );
         for i in 0..n {
-            let mut sum = self.work[i];
-            for k in self.first[i]..i {
-                sum -= self.factor[i * n + k] * self.work[k];
-            }
-            self.work[i] = sum / self.factor[i * n + i];
+            let first = self.first[i];
+            let row = &self.factor[i * n + first..i * n + i];
+            let sum = self.work[i] - dot(row, &self.work[first..i]);
+            self.work[i] = sum * self.inverse_diagonal[i];
         }
         for i in (0..n).rev() {
-            let value = self.work[i] / self.factor[i * n + i];
+            let value = self.work[i] * self.inverse_diagonal[i];
             self.work[i] = value;
-            for k in self.first[i]..i {
-                self.work[k] -= self.factor[i * n + k] * value;
+            let first = self.first[i];
+            let row = &self.factor[i * n + first..i * n + i];
+            for (work, factor) in self.work[first..i].iter_mut().zip(row) {
+                *work -= factor * value;
             }
         }
         for (row, value) in self.rows.iter().zip(&mut self.work) {
