@@ -294,6 +294,41 @@ fn every_shape_is_drawn_and_a_halfspace_is_a_ground_grid() {
 
 #[test]
 #[cfg_attr(not(rebond_has_xvfb), ignore = "needs xvfb-run (apt-get install xvfb)")]
+fn joints_are_drawn_with_their_anchors_axes_and_limits() {
+    // A bar on a limited hinge and a ball on a ball joint with swing and twist limits, both held
+    // to the world above a floor: the picture shows the bodies, and the joint colours of the
+    // palette (anchors green, axes magenta, limits lilac), drawn as unlit lines.
+    let dir = TestDir::new("view_joints");
+    let scene = dir.write(
+        "joints.json",
+        r#"{"bodies": [
+        {"name": "floor", "type": "static", "shape": {"type": "box", "half_extents": [6, 0.5, 6]},
+         "position": [0, -0.5, 0]},
+        {"name": "bar", "shape": {"type": "box", "half_extents": [0.1, 0.6, 0.1]},
+         "position": [-1, 1.4, 0]},
+        {"name": "bob", "shape": {"type": "sphere", "radius": 0.3}, "position": [1.5, 1.2, 0]}
+    ], "joints": [
+        {"type": "revolute", "body_b": "bar", "anchor": [-1, 2, 0], "axis": [0, 0, 1],
+         "limits": [-0.5, 1.0]},
+        {"type": "ball", "body_b": "bob", "anchor": [1.5, 2, 0], "axis": [0, -1, 0],
+         "swing_limit": 0.5, "twist_limits": [-0.4, 0.4]}
+    ]}"#,
+    );
+    let (stdout, picture) = screenshot(&dir, scene.as_os_str(), "10");
+    let found = assert_shows_scene(&stdout, &picture, 0.2);
+    assert_eq!(found, 2, "both bodies seen");
+    for (name, colour) in [
+        ("anchors", [150, 255, 80]),
+        ("axes", [255, 90, 220]),
+        ("limits", [180, 150, 255]),
+    ] {
+        let drawn = picture.pixels().filter(|&pixel| pixel == colour).count();
+        assert!(drawn >= 10, "{name}: {drawn} pixels of {colour:?}");
+    }
+}
+
+#[test]
+#[cfg_attr(not(rebond_has_xvfb), ignore = "needs xvfb-run (apt-get install xvfb)")]
 fn an_unwritable_screenshot_is_an_error_line() {
     let dir = TestDir::new("view_unwritable");
     let path = dir.path("missing-directory").join("frame.png");
