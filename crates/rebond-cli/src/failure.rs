@@ -46,10 +46,22 @@ pub enum Failure {
         /// The engine's reason.
         error: rebond::Error,
     },
-    /// `--record` names the scene file itself, which the record would overwrite.
-    RecordIsScene {
-        /// The record file as given.
+    /// An output option (`--record`, `--save-state`) names the command's input file (the scene,
+    /// or the state resumed from), which writing it would overwrite.
+    OverwritesInput {
+        /// The option, such as `--record`.
+        option: &'static str,
+        /// What the input is: `scene file` or `state file`.
+        input: &'static str,
+        /// The file as given.
         path: PathBuf,
+    },
+    /// A state file was read but is not a whole scene state of this version.
+    InvalidState {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong with it.
+        error: rebond::state::StateError,
     },
     /// `rebond view` in a build without the cargo feature `viewer`.
     #[cfg(not(feature = "viewer"))]
@@ -69,9 +81,9 @@ impl Failure {
     /// The process exit status for this failure.
     pub fn exit_status(&self) -> u8 {
         match self {
-            Self::InvalidScene { .. } => EXIT_INVALID_SCENE,
+            Self::InvalidScene { .. } | Self::InvalidState { .. } => EXIT_INVALID_SCENE,
             Self::Io { .. } | Self::UnknownScene { .. } | Self::Step { .. } => EXIT_IO,
-            Self::RecordIsScene { .. } => EXIT_USAGE,
+            Self::OverwritesInput { .. } => EXIT_USAGE,
             #[cfg(not(feature = "viewer"))]
             Self::NoViewer => EXIT_USAGE,
         }
@@ -97,12 +109,17 @@ impl fmt::Display for Failure {
                 step,
                 error,
             } => write!(formatter, "{source}: step {step} failed: {error}"),
-            Self::RecordIsScene { path } => write!(
+            Self::OverwritesInput {
+                option,
+                input,
+                path,
+            } => write!(
                 formatter,
-                "{}: --record names the scene file itself, which the record would overwrite; \
-                 choose another file",
+                "{}: {option} names the {input} itself, which it would overwrite; choose another \
+                 file",
                 path.display()
             ),
+            Self::InvalidState { path, error } => write!(formatter, "{}: {error}", path.display()),
             #[cfg(not(feature = "viewer"))]
             Self::NoViewer => write!(
                 formatter,

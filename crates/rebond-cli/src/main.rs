@@ -79,6 +79,14 @@ enum Command {
     /// 32-bit value, so two runs of a scene write byte-identical records; a value that is not
     /// finite, should a simulation blow up, is written as null.
     Run(RunArgs),
+    /// Go on from a state saved by `run --save-state` (or `resume --save-state`): exactly as if
+    /// the run had not stopped.
+    ///
+    /// Runs 10 s of simulated time unless --steps or --seconds says otherwise. The record starts
+    /// with the saved step and carries on its step numbers and times: its lines are byte for byte
+    /// those an uninterrupted run writes for the same steps. A file that is not a state, or is
+    /// damaged, cut short or of another format version, is one `error:` line (exit status 2).
+    Resume(ResumeArgs),
     /// Time the steps of a scene: 30 warm-up steps, then N timed steps (300 by default).
     ///
     /// Prints the median, min, max and interquartile spread of the wall-clock time of a step in
@@ -120,6 +128,13 @@ enum Command {
 struct RunArgs {
     #[arg(value_name = "SCENE", help = SCENE_HELP)]
     scene: PathBuf,
+    #[command(flatten)]
+    output: RunOutputArgs,
+}
+
+/// How long `run` and `resume` go on, and what they write.
+#[derive(Debug, Args)]
+struct RunOutputArgs {
     /// Number of steps to run [default: 10 s of simulated time, see --seconds]
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     steps: Option<u64>,
@@ -139,6 +154,20 @@ struct RunArgs {
         value_parser = clap::value_parser!(u64).range(1..)
     )]
     every: u64,
+    /// After the last step, save the whole scene (every body, joint, contact, warm-start impulse
+    /// and sleep timer, and the step reached) to FILE, for `rebond resume`
+    #[arg(long, value_name = "FILE")]
+    save_state: Option<PathBuf>,
+}
+
+/// Arguments of `rebond resume`.
+#[derive(Debug, Args)]
+struct ResumeArgs {
+    /// State file written by --save-state
+    #[arg(value_name = "STATE")]
+    state: PathBuf,
+    #[command(flatten)]
+    output: RunOutputArgs,
 }
 
 /// Arguments of `rebond bench`.
@@ -179,6 +208,22 @@ struct ViewArgs {
     steps: u64,
 }
 
+impl From<RunOutputArgs> for RunOptions {
+    fn from(arguments: RunOutputArgs) -> Self {
+        let length = match (arguments.steps, arguments.seconds) {
+            (Some(steps), _) => RunLength::Steps(steps),
+            (None, Some(seconds)) => RunLength::Seconds(seconds),
+            (None, None) => RunLength::Seconds(DEFAULT_RUN_SECONDS),
+        };
+        Self {
+            length,
+            record: arguments.record,
+            every: arguments.every,
+            save_state: arguments.save_state,
+        }
+    }
+}
+
 /// Parses `--seconds`: a finite, positive number.
 fn positive_seconds(text: &str) -> Result<f64, String> {
     match text.parse::<f64>() {
@@ -211,17 +256,10 @@ fn execute(command: Command) -> Result<String, CommandError> {
     match command {
         Command::Run(arguments) => {
             let source = SceneSource::resolve(&arguments.scene)?;
-            let length = match (arguments.steps, arguments.seconds) {
-                (Some(steps), _) => RunLength::Steps(steps),
-                (None, Some(seconds)) => RunLength::Seconds(seconds),
-                (None, None) => RunLength::Seconds(DEFAULT_RUN_SECONDS),
-            };
-            let options = RunOptions {
-                length,
-                record: arguments.record,
-                every: arguments.every,
-            };
-            Ok(run::run(&source, &options)?.to_string())
+            Ok(run::run(&source, &arguments.output.into())?.to_string())
+        }
+        Command::Resume(arguments) => {
+            Ok(run::resume(&arguments.state, &arguments.output.into())?.to_string())
         }
         Command::Bench(arguments) => {
             let source = SceneSource::resolve(&arguments.scene)?;

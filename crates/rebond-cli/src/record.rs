@@ -57,16 +57,7 @@ impl Recorder {
     /// Starts a record to be written to `path` (an existing file there is replaced at the end).
     pub fn create(path: &Path) -> Result<Self, Failure> {
         let cannot_create = |error| Failure::io(path, "cannot create record file", error);
-        if path.is_dir() {
-            return Err(cannot_create(io::Error::from(io::ErrorKind::IsADirectory)));
-        }
-        let Some(name) = path.file_name() else {
-            return Err(cannot_create(io::Error::from(io::ErrorKind::InvalidInput)));
-        };
-        let mut partial_name = OsString::from(".");
-        partial_name.push(name);
-        partial_name.push(format!(".partial-{}", std::process::id()));
-        let partial = path.with_file_name(partial_name);
+        let partial = partial_path(path).map_err(cannot_create)?;
         let file = File::create(&partial).map_err(cannot_create)?;
         Ok(Self {
             path: path.to_owned(),
@@ -129,6 +120,32 @@ impl Drop for Recorder {
     fn drop(&mut self) {
         let _ = fs::remove_file(&self.partial);
     }
+}
+
+/// The hidden file beside `path` that an output is written to before it takes `path`'s name.
+fn partial_path(path: &Path) -> io::Result<PathBuf> {
+    if path.is_dir() {
+        return Err(io::Error::from(io::ErrorKind::IsADirectory));
+    }
+    let Some(name) = path.file_name() else {
+        return Err(io::Error::from(io::ErrorKind::InvalidInput));
+    };
+    let mut partial_name = OsString::from(".");
+    partial_name.push(name);
+    partial_name.push(format!(".partial-{}", std::process::id()));
+    Ok(path.with_file_name(partial_name))
+}
+
+/// Writes `bytes` to `path` whole or not at all: to a hidden file beside it, renamed to `path`
+/// once written (a failed write removes the hidden file). `action` names the failure.
+pub fn write_whole(path: &Path, bytes: &[u8], action: &'static str) -> Result<(), Failure> {
+    let partial = partial_path(path).map_err(|error| Failure::io(path, action, error))?;
+    fs::write(&partial, bytes)
+        .and_then(|()| fs::rename(&partial, path))
+        .map_err(|error| {
+            let _ = fs::remove_file(&partial);
+            Failure::io(path, action, error)
+        })
 }
 
 /// Whether the state after `step` of `last_step` goes into the record: step 0, every `every`-th

@@ -1,4 +1,5 @@
-//! `rebond run`: steps a scene headless, optionally recording it, and summarises the run.
+//! `rebond run` and `rebond resume`: step a scene headless (from its start, or from a saved
+//! state), optionally recording it and saving its state at the end, and summarise the run.
 
 use std::fmt;
 use std::fs;
@@ -9,8 +10,9 @@ use std::time::{Duration, Instant};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use crate::failure::Failure;
-use crate::record::{is_recorded, Recorder};
+use crate::record::{is_recorded, write_whole, Recorder};
 use crate::source::SceneSource;
+use rebond::scene::Scene;
 
 /// How long to run.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,6 +53,29 @@ pub struct RunOptions {
     pub record: Option<PathBuf>,
     /// Record every this many steps (≥ 1).
     pub every: u64,
+    /// Where to save the scene's state after the last step, if anywhere.
+    pub save_state: Option<PathBuf>,
+}
+
+impl RunOptions {
+    /// Refuses outputs that name `input` (the scene file, or the state resumed from), which
+    /// writing them would overwrite.
+    fn refuse_overwriting(&self, input: &Path, what: &'static str) -> Result<(), Failure> {
+        let outputs = [
+            ("--record", &self.record),
+            ("--save-state", &self.save_state),
+        ];
+        for (option, output) in outputs {
+            if let Some(output) = output.as_deref().filter(|output| same_file(input, output)) {
+                return Err(Failure::OverwritesInput {
+                    option,
+                    input: what,
+                    path: output.to_owned(),
+                });
+            }
+        }
+        Ok(())
+    }
 }
 
 /// What a run did, printed on stdout.
@@ -87,40 +112,60 @@ impl fmt::Display for RunSummary {
     }
 }
 
-/// Loads the scene, starts the record once the scene is valid, runs, and summarises. A record
-/// that would overwrite the scene file is refused before anything runs.
+/// Loads the scene, starts the record once the scene is valid, runs, saves the state if asked,
+/// and summarises. Outputs that would overwrite the scene file are refused before anything runs.
 pub fn run(source: &SceneSource, options: &RunOptions) -> Result<RunSummary, Failure> {
-    if let (SceneSource::File(scene_path), Some(record)) = (source, &options.record) {
-        if same_file(scene_path, record) {
-            return Err(Failure::RecordIsScene {
-                path: record.clone(),
-            });
-        }
+    if let SceneSource::File(scene_path) = source {
+        options.refuse_overwriting(scene_path, "scene file")?;
     }
-    let mut scene = source.load()?;
+    let scene = source.load()?;
+    drive(source.label(), scene, 0, options)
+}
+
+/// Restores the scene saved in `state` (by `--save-state`) and goes on from its step: record
+/// lines carry on the step numbers and times, byte for byte as an uninterrupted run writes
+/// them. Outputs that would overwrite the state file are refused before anything runs.
+pub fn resume(state: &Path, options: &RunOptions) -> Result<RunSummary, Failure> {
+    options.refuse_overwriting(state, "state file")?;
+    let bytes = fs::read(state).map_err(|error| Failure::io(state, "cannot read state", error))?;
+    let (scene, step) = Scene::load_state(&bytes).map_err(|error| Failure::InvalidState {
+        path: state.to_owned(),
+        error,
+    })?;
+    drive(state.display().to_string(), scene, step, options)
+}
+
+/// Steps `scene` from step `first` for the options' length, recording and saving as asked.
+fn drive(
+    label: String,
+    mut scene: Scene,
+    first: u64,
+    options: &RunOptions,
+) -> Result<RunSummary, Failure> {
     let timestep = scene.timestep().seconds;
     let steps = options.length.steps(timestep);
+    let last = first.saturating_add(steps);
     let mut recorder = options
         .record
         .as_deref()
         .map(Recorder::create)
         .transpose()?;
     if let Some(recorder) = recorder.as_mut() {
-        recorder.write_step(0, &scene)?;
+        recorder.write_step(first, &scene)?;
     }
     let progress = io::stderr().is_terminal().then(|| progress_bar(steps));
     let energy_start = scene.world().total_energy();
     let mut stepping = Duration::ZERO;
-    for step in 1..=steps {
+    for step in first + 1..=last {
         let started = Instant::now();
         scene.step().map_err(|error| Failure::Step {
-            source: source.label(),
+            source: label.clone(),
             step,
             error,
         })?;
         stepping += started.elapsed();
         if let Some(recorder) = recorder.as_mut() {
-            if is_recorded(step, options.every, steps) {
+            if is_recorded(step, options.every, last) {
                 recorder.write_step(step, &scene)?;
             }
         }
@@ -134,9 +179,12 @@ pub fn run(source: &SceneSource, options: &RunOptions) -> Result<RunSummary, Fai
     if let Some(recorder) = recorder {
         recorder.finish()?;
     }
+    if let Some(path) = &options.save_state {
+        write_whole(path, &scene.save_state(last), "cannot write state")?;
+    }
     let world = scene.world();
     Ok(RunSummary {
-        scene: source.label(),
+        scene: label,
         steps,
         simulated_seconds: steps as f64 * timestep,
         bodies: world.body_count(),

@@ -3,6 +3,7 @@
 
 /// A slot index plus the generation the slot had when the item was inserted.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ArenaIndex {
     index: u32,
     generation: u32,
@@ -16,6 +17,7 @@ impl ArenaIndex {
 }
 
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Slot<T> {
     generation: u32,
     item: Option<T>,
@@ -23,6 +25,7 @@ struct Slot<T> {
 
 /// Items of type `T` in slots; iteration runs in slot order, so it is deterministic.
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Arena<T> {
     slots: Vec<Slot<T>>,
     free_slots: Vec<u32>,

@@ -17,6 +17,7 @@ use crate::shape::Shape;
 
 /// How a body moves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum BodyType {
     /// Moved by gravity, forces and contacts.
     Dynamic,
@@ -29,6 +30,7 @@ pub enum BodyType {
 /// Names one body of a [`crate::World`]. A handle to a removed body stays invalid forever, even
 /// after another body takes its slot.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BodyHandle(pub(crate) ArenaIndex);
 
 impl BodyHandle {
@@ -45,6 +47,7 @@ pub const DEFAULT_FRICTION: f32 = 0.5;
 
 /// Everything needed to create a body. Values are checked when the body is added to a world.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BodyDesc {
     /// Dynamic, static or kinematic.
     pub body_type: BodyType,
@@ -251,6 +254,7 @@ impl BodyDesc {
 
 /// A rigid body in a world.
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RigidBody {
     pub(crate) body_type: BodyType,
     pub(crate) shape: Shape,

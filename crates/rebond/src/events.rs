@@ -63,6 +63,7 @@ use crate::sorted::{merge_into, merged};
 
 /// Whether a pair started or stopped touching.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ContactEventKind {
     /// The pair touches during this step and did not during the previous one.
     Started,
@@ -72,6 +73,7 @@ pub enum ContactEventKind {
 
 /// Two bodies that started or stopped touching during the last step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ContactEvent {
     /// The body with the smaller handle.
     pub body_a: BodyHandle,
@@ -83,6 +85,7 @@ pub struct ContactEvent {
 
 /// A touching pair whose normal force exceeded its threshold during the last step.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ContactForceEvent {
     /// The body with the smaller handle.
     pub body_a: BodyHandle,
@@ -98,6 +101,7 @@ pub struct ContactForceEvent {
 
 /// Whether a body entered or left a sensor.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum SensorEventKind {
     /// The body's shape overlaps the sensor's now and did not at the previous step.
     Entered,
@@ -107,6 +111,7 @@ pub enum SensorEventKind {
 
 /// A body that entered or left a sensor during the last step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SensorEvent {
     /// The sensor.
     pub sensor: BodyHandle,
@@ -118,6 +123,7 @@ pub struct SensorEvent {
 
 /// The event lists and the state they are computed from, reused from step to step.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct EventTracker {
     /// Pairs touching during the last step, sorted; and during the step before.
     touching: Vec<(BodyHandle, BodyHandle)>,

@@ -23,6 +23,7 @@ use crate::body::BodyHandle;
 /// assert!(!ghost.interacts_with(player));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct InteractionGroups {
     /// The groups the body is in, one bit each.
     pub memberships: u32,
@@ -59,6 +60,7 @@ impl Default for InteractionGroups {
 
 /// Pairs of bodies told to ignore each other, smaller handle first, sorted, each once.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct IgnoredPairs {
     pairs: Vec<(BodyHandle, BodyHandle)>,
 }

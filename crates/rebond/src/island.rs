@@ -28,6 +28,7 @@ const END_OF_GROUP: usize = usize::MAX;
 
 /// The awake bodies, the sleeping groups, and the reused buffers of the island pass.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Islands {
     /// Slots of the awake dynamic bodies and of every kinematic body, ascending: the bodies a step
     /// moves, in the order the solver takes them.

@@ -33,7 +33,7 @@
 //! The modules, in pipeline order: [`shape`] (geometry and mass), bodies ([`BodyDesc`],
 //! [`RigidBody`]), collision detection and the solver (private), [`World`] (owns everything and
 //! steps it), with [`query`] (rays, shape casts, overlaps), [`events`] (contacts, forces,
-//! sensors) and [`scene`] (scene files).
+//! sensors), [`scene`] (scene files) and [`state`] (saving and restoring whole worlds, exactly).
 
 mod arena;
 mod body;
@@ -53,6 +53,8 @@ pub mod scene;
 pub mod shape;
 mod solver;
 mod sorted;
+#[cfg(feature = "serde")]
+pub mod state;
 mod world;
 
 pub use body::{BodyDesc, BodyHandle, BodyType, RigidBody};

@@ -4,6 +4,7 @@ use crate::math::{parallel_axis_shift, rotate_tensor, Mat3, Pose, Vec3};
 
 /// Mass, centre of mass and inertia of a solid, in its own (local) frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct MassProperties {
     /// Mass, kg.
     pub mass: f32,

@@ -4,6 +4,7 @@
 /// How two values, one from each surface, combine into the contact's value. Every rule gives `v`
 /// for two equal values `v`, except [`CombineRule::Multiply`] (`v²`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum CombineRule {
     /// `√(a b)`: a frictionless surface makes the contact frictionless. The default for friction
     /// (Box2D's and Box3D's).
@@ -34,6 +35,7 @@ impl CombineRule {
 
 /// The surface material of a body, or of a compound's child.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Material {
     /// Coulomb friction coefficient, ≥ 0.
     pub friction: f32,

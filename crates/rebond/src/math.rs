@@ -7,6 +7,7 @@ use crate::error::{Error, ErrorKind, Result};
 /// A rigid transform: a rotation followed by a translation. Maps local points to world points as
 /// `p_world = position + rotation · p_local`.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Pose {
     /// Translation, metres.
     pub position: Vec3,
@@ -74,6 +75,7 @@ impl Pose {
 
 /// An axis-aligned bounding box.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Aabb {
     /// Smallest corner.
     pub min: Vec3,

@@ -8,5 +8,6 @@ mod filtering;
 mod joints;
 mod records;
 mod scenes;
+mod state;
 #[cfg(feature = "viewer")]
 mod view;

@@ -292,7 +292,10 @@ fn a_record_naming_the_scene_file_is_refused_and_the_scene_kept() {
             record_path.as_os_str(),
         ]);
         let line = assert_one_error_line(&outcome, 2, &record_path);
-        assert!(line.contains("names the scene file itself"), "{line}");
+        assert!(
+            line.contains("--record names the scene file itself"),
+            "{line}"
+        );
         assert_eq!(fs::read_to_string(&scene).unwrap(), SCENE);
     }
 }

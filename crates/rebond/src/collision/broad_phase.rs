@@ -24,6 +24,7 @@ use crate::sorted::merge_into;
 /// one `u32` (the top bit set for the static tree) so that a pair of them takes 8 bytes. Ordered
 /// as (moving before static, then by id).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ProxyHandle(u32);
 
 /// The bit of [`ProxyHandle`] that says the proxy is in the static tree.
@@ -53,6 +54,7 @@ impl ProxyHandle {
 
 /// Where a proxy stands since the last [`BroadPhase::update_pairs`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 enum ProxyState {
     /// Fat box unchanged: its pairs are still right.
     Unchanged,
@@ -65,6 +67,7 @@ enum ProxyState {
 /// One overlapping pair: the two bodies' keys, smaller first, and their proxies in the same order,
 /// in 16 bytes. Lists of pairs are sorted by [`Pair::sort_key`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Pair {
     /// The keys packed into one integer, smaller key in the high half: orders pairs as their keys
     /// do, with one comparison instead of two.
@@ -93,6 +96,7 @@ impl Pair {
 
 /// One tree and the state of each of its proxies, indexed by [`ProxyId::index`].
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct TreeWithStates {
     tree: DynamicTree,
     states: Vec<ProxyState>,
@@ -120,6 +124,7 @@ impl TreeWithStates {
 /// Bodies are named by a `u32` key the caller chooses (the body's slot); keys must be unique among
 /// the live proxies. Buffers are kept from step to step, so a steady-state step does not allocate.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BroadPhase {
     static_side: TreeWithStates,
     moving_side: TreeWithStates,

@@ -22,6 +22,7 @@ const RECYCLE_MIN_HALF_ANGLE_COSINE: f32 = 0.999_961_9;
 /// Where a manifold was computed, so it can be rebuilt while the two bodies barely move relative
 /// to each other (as Jolt's body-pair cache does): every point follows the bodies' surfaces.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ManifoldFrame {
     /// Pose of body B in body A's frame when the manifold was computed.
     relative_pose: Pose,
@@ -102,6 +103,7 @@ impl PlacedBody {
 /// Names one contact: the two bodies (A before B) and the compound children involved (0 for a
 /// shape that is not a compound). Ordered, so contacts sort deterministically.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ContactKey {
     /// Body A.
     pub body_a: BodyHandle,
@@ -117,6 +119,7 @@ pub struct ContactKey {
 /// solver applied on it in the last step, N·s. Read it through its methods; its layout belongs to
 /// the contact cache.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Contact {
     /// Which bodies and children touch.
     pub(crate) key: ContactKey,
@@ -197,6 +200,7 @@ impl Contact {
 
 /// A contact parked while its bodies sleep, with what its query left.
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct ParkedContact {
     contact: Contact,
     part_cache: PartCache,
@@ -205,6 +209,7 @@ struct ParkedContact {
 /// This step's contacts, sorted by key, and last step's, kept to warm-start from; and the parked
 /// contacts, of pairs of which no body is awake.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ContactCache {
     current: Vec<Contact>,
     /// Contacts of pairs of which no body is awake (asleep, or asleep against static), sorted by

@@ -49,6 +49,7 @@ const INLINE_STACK_DEPTH: usize = 64;
 /// [`DynamicTree::create_proxy`] until [`DynamicTree::destroy_proxy`]. A destroyed proxy's index
 /// is later reused by a new proxy.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ProxyId(u32);
 
 impl ProxyId {
@@ -68,6 +69,7 @@ impl ProxyId {
 /// comparison is one instruction per corner instead of three. Holds the same values as the
 /// [`Aabb`] it comes from, and its arithmetic rounds the same way.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Bounds {
     min: Vec3A,
     max: Vec3A,
@@ -122,6 +124,7 @@ impl Bounds {
 
 /// One node of the tree: a leaf (a proxy) or an internal node with exactly two children.
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Node {
     /// Fat box for a leaf, union of the children's boxes for an internal node.
     bounds: Bounds,
@@ -148,6 +151,7 @@ impl Node {
 
 /// A dynamic AABB tree; see the [module documentation](self).
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DynamicTree {
     nodes: Vec<Node>,
     root: u32,

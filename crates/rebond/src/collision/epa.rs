@@ -64,6 +64,7 @@ const AXES: [Vec3; 6] = [
 
 /// How deep two overlapping solids A and B are, and along which direction.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Penetration {
     /// Unit world direction from A toward B: translating B by `depth · normal` separates them.
     pub normal: Vec3,
@@ -78,6 +79,7 @@ pub struct Penetration {
 
 /// Where two convex shapes touch, or nearly do, measured on their rounded surfaces.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ContactInfo {
     /// Unit world normal from A toward B.
     pub normal: Vec3,
@@ -109,6 +111,7 @@ where
 
 /// A triangle of the polytope, counter-clockwise seen from outside.
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Face {
     vertices: [usize; 3],
     /// The face across each edge `vertices[k] → vertices[k + 1]`.
@@ -143,6 +146,7 @@ fn edge_index(vertices: [usize; 3], from: usize, to: usize) -> Option<usize> {
 
 /// An edge of the rim of the faces a new vertex replaces, as it runs on a replaced face.
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct RimEdge {
     from: usize,
     to: usize,
@@ -155,6 +159,7 @@ struct RimEdge {
 /// The polytope EPA grows, with its scratch space: keep one to run many queries without
 /// allocating.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Polytope {
     vertices: Vec<SupportPoint>,
     faces: Vec<Face>,

@@ -49,6 +49,7 @@ const DEGENERACY: f32 = 1e-6;
 
 /// A point of the Minkowski difference `A − B`, with the points of A and B it was made from.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SupportPoint {
     /// Point of A farthest along the query direction.
     pub a: Vec3,
@@ -80,6 +81,7 @@ impl SupportPoint {
 /// Up to four support points of `A − B`, the simplex point closest to the origin, and its
 /// barycentric weights. After GJK every point has a positive weight.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Simplex {
     points: [SupportPoint; 4],
     /// `|w|` of each point, kept so that the scale costs no square root.
@@ -188,6 +190,7 @@ impl Simplex {
 /// `A − B`, a simplex from which GJK goes on. When the shapes have barely moved, it is within
 /// tolerance of the answer, and the first support point confirms it. Empty: start cold.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SimplexCache {
     /// Each vertex's point of A (A's frame) and of B (B's frame).
     local_points: [[Vec3; 2]; 4],
@@ -228,6 +231,7 @@ impl SimplexCache {
 
 /// A point of a simplex (scaled to unit size) as weights on some of its vertices.
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Barycentric {
     indices: [usize; 4],
     weights: [f32; 4],
@@ -375,6 +379,7 @@ impl Barycentric {
 
 /// The result of a GJK distance query.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Distance {
     /// Distance between the two solids, metres; zero when they overlap.
     pub distance: f32,

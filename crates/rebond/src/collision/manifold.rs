@@ -7,6 +7,7 @@ pub const MAX_MANIFOLD_POINTS: usize = 4;
 
 /// One contact point between two shapes.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ContactPoint {
     /// World position midway between the two surfaces, metres.
     pub position: Vec3,
@@ -22,6 +23,7 @@ pub struct ContactPoint {
 /// The contact between two convex shapes A and B: one normal and up to
 /// [`MAX_MANIFOLD_POINTS`] points.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Manifold {
     /// Unit world normal, pointing from shape A toward shape B.
     pub normal: Vec3,

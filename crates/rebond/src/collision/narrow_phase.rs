@@ -36,6 +36,7 @@ fn kind_rank(shape: &Shape) -> u8 {
 
 /// What a query between two convex parts leaves for the next query between the same parts.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum PartCache {
     /// Nothing: the next query starts cold.
     #[default]
@@ -94,6 +95,7 @@ impl<F: FnMut(u32, u32, Manifold)> PartContacts for ColdStart<F> {
 /// The narrow phase's scratch space, kept from pair to pair and from step to step so that a
 /// steady step allocates nothing: the polytope EPA grows.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct NarrowPhase {
     polytope: Polytope,
 }

@@ -42,6 +42,7 @@ pub(super) const BOX_EDGES: [([u8; 2], [u8; 2]); 12] = [
 /// A face plane in the polyhedron's frame: `normal · p = offset` on the face, `normal` unit and
 /// pointing out.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FacePlane {
     /// Unit outward normal.
     pub normal: Vec3,
@@ -52,6 +53,7 @@ pub struct FacePlane {
 /// An edge in the polyhedron's frame, with the outward normals of the two faces that meet there
 /// (the ends of the edge's arc on the Gauss map).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PolyhedronEdge {
     /// First end.
     pub start: Vec3,
@@ -353,6 +355,7 @@ pub(super) fn box_face_loop(half_extents: Vec3, face: usize, frame: &Frame) -> [
 /// A side plane of a box face in the box's frame: `sign · p[axis] = offset`, facing out of the
 /// face, so that clipping against it needs one coordinate instead of a dot product.
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct BoxFaceSide {
     axis: usize,
     sign: f32,
@@ -385,6 +388,7 @@ pub(super) fn box_face_sides(half_extents: Vec3, face: usize) -> [BoxFaceSide; 4
 
 /// A rigid transform as a rotation matrix and a translation: `rotation · p + translation`.
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct Frame {
     pub(super) rotation: Mat3,
     pub(super) translation: Vec3,

@@ -75,6 +75,7 @@ impl SupportMap for PosedPolyhedron<'_, '_> {
 
 /// An axis the contact can be built on.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 enum ContactAxis {
     /// A face of A is the reference.
     FaceOfA(FaceAxis),
@@ -404,6 +405,7 @@ const BOX_CLIP_VERTICES: usize = 8;
 
 /// A face of a box placed in the world.
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct BoxFace {
     half_extents: Vec3,
     face: usize,
@@ -464,6 +466,7 @@ fn box_face_contact(
 
 /// The faces a face contact is made of, for its ids.
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct FacePair {
     reference_is_b: bool,
     reference_face: usize,

@@ -24,6 +24,7 @@ const A_GROUP_CHUNK: usize = 64;
 /// A face of one polyhedron and how far the other lies beyond its plane (negative: how deep it
 /// reaches in), measured at the other's vertex deepest along the face's inward normal.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct FaceAxis {
     pub(super) face: usize,
     pub(super) separation: f32,
@@ -32,6 +33,7 @@ pub(super) struct FaceAxis {
 /// An edge of A and an edge of B, their axis in A's frame pointing from A to B, and the
 /// separation of the two edges along it.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct EdgeAxis {
     pub(super) edge_a: usize,
     pub(super) edge_b: usize,
@@ -172,6 +174,7 @@ fn keep_larger(best: &mut Option<EdgeAxis>, candidate: EdgeAxis) {
 /// An edge placed in A's frame: its first end, its direction and its face normals, negated for
 /// an edge of B (its arc on the Gauss map of the Minkowski difference A − B).
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct PlacedEdge {
     start: Vec3,
     direction: Vec3,

@@ -33,6 +33,7 @@ use std::f32::consts::PI;
 /// Names one joint of a [`crate::World`]. A handle to a removed joint stays invalid forever, even
 /// after another joint takes its slot.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct JointHandle(pub(crate) ArenaIndex);
 
 impl JointHandle {
@@ -44,6 +45,7 @@ impl JointHandle {
 
 /// What a joint holds; see the [module documentation](self).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum JointType {
     /// Holds the whole relative pose.
     Fixed,
@@ -73,6 +75,7 @@ impl JointType {
 
 /// A motor on a revolute joint's angle or a prismatic joint's slide.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Motor {
     /// Drives the speed towards `target_velocity` (rad/s or m/s) with at most `max_force`
     /// (N·m or N, ≥ 0; infinity allowed).
@@ -144,6 +147,7 @@ impl Motor {
 /// A distance joint's spring: force `−stiffness (d − length) − damping ḋ` along the line of the
 /// anchors.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Spring {
     /// N/m, ≥ 0.
     pub stiffness: f32,
@@ -154,6 +158,7 @@ pub struct Spring {
 /// Everything needed to create a joint. Values are checked when the joint is added to a world;
 /// an error names the field (`axis`, `motor.max_force`, ...).
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct JointDesc {
     /// What the joint holds.
     pub joint_type: JointType,
@@ -438,6 +443,7 @@ fn check_interval(field: &str, [min, max]: [f32; 2], range: Option<(f32, f32)>) 
 /// A joint in a world: its description, the frames it holds fixed to each body, and what it did
 /// in the last step.
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Joint {
     pub(crate) desc: JointDesc,
     pub(crate) frames: JointFrames,
@@ -503,6 +509,7 @@ impl Joint {
 
 /// Where a joint stands now, world frame: what [`crate::World::joint_placement`] returns.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct JointPlacement {
     /// The anchor fixed to `body_a` (or the world point), m.
     pub anchor_a: Vec3,
@@ -517,6 +524,7 @@ pub struct JointPlacement {
 
 /// A joint that broke during the last step, with the force and torque that broke it.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct JointBreakEvent {
     /// The joint; it stays in the world, broken, until removed.
     pub joint: JointHandle,

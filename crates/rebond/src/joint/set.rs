@@ -11,6 +11,7 @@ use crate::math::{Quat, Vec3};
 /// the relative rotation the angles are measured from. The world side (no `body_a`) has the
 /// identity pose, so its local values are world values.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct JointFrames {
     /// Anchor on `body_a` from its centre of mass, in its axes, m.
     pub local_anchor_a: Vec3,
@@ -28,6 +29,7 @@ pub(crate) struct JointFrames {
 /// What the solver keeps of a joint between steps to warm-start it: the impulses of the last
 /// substep, world frame, on `body_b` (`body_a` gets the opposite).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct JointImpulses {
     /// Point constraint (fixed, ball, revolute) or the prismatic's perpendicular one, N·s.
     pub linear: Vec3,
@@ -52,6 +54,7 @@ pub(crate) struct JointImpulses {
 /// A body side of a joint as the step starts: its handle, and its centre of mass and rotation
 /// (what the solver uses for a side that does not move this step).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct SidePose {
     pub slot: Option<usize>,
     pub center_of_mass: Vec3,
@@ -68,6 +71,7 @@ impl SidePose {
 
 /// Solver data of one joint, beside the joint.
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct JointSolverData {
     pub impulses: JointImpulses,
     pub poses: [SidePose; 2],
@@ -82,6 +86,7 @@ pub(crate) struct JointSolverData {
 
 /// Every joint of a world, with the pairs of bodies that joints keep from colliding.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct JointSet {
     joints: Arena<(Joint, JointSolverData)>,
     /// Pairs of bodies joined by at least one joint without `collide_connected`, smaller handle

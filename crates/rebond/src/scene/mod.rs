@@ -124,8 +124,13 @@ impl World {
     }
 }
 
+/// The first eight bytes of a scene's state ([`crate::state`]).
+#[cfg(feature = "serde")]
+const SCENE_MAGIC: &[u8; 8] = b"REBONDSC";
+
 /// Seconds per step, as written and as the engine steps with it.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Timestep {
     /// The scene's value in double precision; record times are `step × seconds`.
     pub seconds: f64,
@@ -135,6 +140,7 @@ pub struct Timestep {
 
 /// A body of a loaded scene.
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct SceneBody {
     /// Its unique name, used in records.
     name: String,
@@ -144,6 +150,7 @@ struct SceneBody {
 
 /// A joint of a loaded scene.
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct SceneJoint {
     /// Its unique name among joints, used in records.
     name: String,
@@ -156,6 +163,7 @@ struct SceneJoint {
 /// Stepping never removes a body or a joint (a broken joint stays, broken), so the handle of every
 /// scene body and joint stays valid unless removed through [`Scene::world_mut`].
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Scene {
     world: World,
     bodies: Vec<SceneBody>,
@@ -292,6 +300,21 @@ impl Scene {
             .iter()
             .find(|joint| joint.name == name)
             .map(|joint| joint.handle)
+    }
+
+    /// The scene as it stands after `step` steps, as bytes (the format of [`crate::state`], a
+    /// scene's header): its world, names and timestep. [`Scene::load_state`] restores it.
+    #[cfg(feature = "serde")]
+    pub fn save_state(&self, step: u64) -> Vec<u8> {
+        crate::state::encode(SCENE_MAGIC, &(step, self))
+    }
+
+    /// A scene saved by [`Scene::save_state`] and the step it was saved after; bytes that are not
+    /// a scene's state of this format version, or are cut short or damaged, are an error saying
+    /// which.
+    #[cfg(feature = "serde")]
+    pub fn load_state(bytes: &[u8]) -> Result<(Scene, u64), crate::state::StateError> {
+        crate::state::decode(SCENE_MAGIC, bytes).map(|(step, scene)| (scene, step))
     }
 
     /// The world, to change: set velocities, apply forces, add bodies.

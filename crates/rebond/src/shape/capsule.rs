@@ -8,6 +8,7 @@ use crate::math::{Aabb, Mat3, Pose, Vec3};
 
 /// A capsule along local Y.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Capsule {
     radius: f32,
     half_height: f32,

@@ -9,6 +9,7 @@ use super::Shape;
 /// One child of a compound: a convex shape, its pose in the body frame, and optionally a
 /// surface material of its own.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CompoundChild {
     /// Where the child sits in the body frame.
     pub pose: Pose,
@@ -47,6 +48,7 @@ impl CompoundChild {
 
 /// A rigid union of convex children.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Compound {
     children: Vec<CompoundChild>,
 }

@@ -52,6 +52,7 @@ const GRID_CELLS: f64 = (1u64 << 39) as f64;
 
 /// A planar face of a hull.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct HullFace {
     /// Unit outward normal.
     pub normal: Vec3,
@@ -66,6 +67,7 @@ pub struct HullFace {
 
 /// An edge of a hull between two faces.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct HullEdge {
     /// Indices into [`ConvexHull::vertices`] of the two ends, smaller first.
     pub vertices: [u32; 2],
@@ -83,6 +85,7 @@ pub struct HullEdge {
 /// faces, except where the cloud has features at the scale of the tolerance: two nearly coplanar
 /// faces may then meet along a slightly bent edge.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ConvexHull {
     vertices: Vec<Vec3>,
     faces: Vec<HullFace>,
@@ -113,6 +116,7 @@ pub struct ConvexHull {
 /// (second end less first), the unit outward normals `n₁, n₂` of its two faces (the ends of its
 /// arc on the Gauss map) and their dot product `n₁ · n₂`.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct EdgeLanes {
     pub(crate) start: [Vec4; 3],
     pub(crate) direction: [Vec4; 3],
@@ -170,6 +174,7 @@ impl EdgeLanes {
 /// Four face planes laid out by coordinate, a lane each (zero in lanes past the last face): unit
 /// outward normals and offsets, `normal · p = offset` on the face.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct FaceLanes {
     pub(crate) normal: [Vec4; 3],
     pub(crate) offset: Vec4,

@@ -6,6 +6,7 @@ use crate::math::{Aabb, Mat3, Pose, Vec3};
 
 /// A box centred on the body origin, aligned with the body axes.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Cuboid {
     half_extents: Vec3,
 }

@@ -8,6 +8,7 @@ use crate::math::{Aabb, Mat3, Pose, Vec3};
 
 /// A solid circular cylinder along local Y.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Cylinder {
     radius: f32,
     half_height: f32,

@@ -9,6 +9,7 @@ pub const HALFSPACE_EXTENT: f32 = 1.0e6;
 
 /// The points `p` with `n · p ≤ 0` in the body frame, with `n` the unit outward normal.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Halfspace {
     normal: Vec3,
 }

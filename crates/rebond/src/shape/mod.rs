@@ -27,6 +27,7 @@ use crate::math::{Aabb, Pose, Vec3};
 /// A collision shape. Built only through validated constructors, so every size is finite and
 /// positive.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Shape {
     /// A ball around the origin.
     Sphere(Sphere),

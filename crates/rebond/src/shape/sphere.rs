@@ -8,6 +8,7 @@ use crate::math::{Aabb, Mat3, Pose, Vec3};
 
 /// A ball of `radius` metres centred on the body origin.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Sphere {
     radius: f32,
 }

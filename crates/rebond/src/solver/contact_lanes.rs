@@ -102,6 +102,7 @@ const fn coupling_index(i: usize, j: usize) -> usize {
 /// What one point of four constraints asks of its normal impulse in the biased passes of a
 /// substep, from its separation at the substep's poses: `Δλ = mass (v_n + bias) − impulse_scale λ`.
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct PointTarget {
     /// m/s.
     bias: F32x4,
@@ -112,6 +113,7 @@ struct PointTarget {
 
 /// The normal part of one point of four constraints.
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct PointLanes {
     normal: JacobianLanes,
     base_separation: F32x4,
@@ -149,6 +151,7 @@ impl PointLanes {
 /// Four constraints of one colour, structure of arrays: built from the contacts, solved, and
 /// their impulses stored back into the contact cache, with no scalar constraint kept between.
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct ContactLanes {
     /// The contact of each lane, as an index into the contact cache; `usize::MAX` in empty lanes.
     contacts: [usize; LANES],

@@ -11,6 +11,7 @@ use crate::collision::contact_cache::{Contact, ContactCache};
 
 /// This step's contact constraints, in buffers reused from step to step.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct ContactConstraints {
     /// The solver bodies of each contact to solve, for the colouring, and its index in the
     /// contact cache.

@@ -37,6 +37,7 @@ const TWIST_RATE_FLOOR: f32 = 0.1;
 
 /// What the world's settings say about joints, for one step.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct JointSettings {
     /// The position correction's frequency, Hz, before the cap.
     pub hertz: f32,
@@ -56,6 +57,7 @@ impl JointSettings {
 
 /// This step's joint constraints, in a buffer reused from step to step.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct JointConstraints {
     constraints: Vec<JointConstraint>,
     softness: Softness,
@@ -76,6 +78,7 @@ pub(crate) struct JointConstraints {
 
 /// What of a joint's description the solve reads.
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct JointOptions {
     joint_type: JointType,
     limits: Option<[f32; 2]>,
@@ -106,6 +109,7 @@ impl JointOptions {
 
 /// One joint for this step.
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct JointConstraint {
     /// The joint's slot in the [`JointSet`].
     slot: usize,
@@ -128,6 +132,7 @@ struct JointConstraint {
 
 /// A joint at the poses of the current substep.
 #[derive(Debug, Clone, Copy, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Geometry {
     /// `p_B − p_A`, m.
     separation: Vec3,

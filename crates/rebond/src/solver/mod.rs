@@ -56,6 +56,7 @@ use stages::StepContext;
 /// What the contact solver reads and writes of one awake body, kept small and contiguous, in
 /// SIMD vectors (`Vec3A`, 16 bytes) so each vector operation of the solver is one instruction.
 #[derive(Debug, Clone, Copy, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct BodyState {
     /// m/s.
     pub linear_velocity: Vec3A,
@@ -70,6 +71,7 @@ pub(crate) struct BodyState {
 
 /// The rest of a body the step needs: pose, inertia and forces for integration.
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct BodyMotion {
     /// `1/m`; zero for kinematic bodies and for solver body 0, which stands for every static or
     /// sleeping body.
@@ -128,6 +130,7 @@ impl BodyMotion {
 
 /// Settings of one step.
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct StepSettings {
     pub dt: f32,
     pub substeps: u32,
@@ -140,6 +143,7 @@ pub(crate) struct StepSettings {
 /// The awake dynamic and kinematic bodies of a step, in solver order, in buffers reused from step
 /// to step. Solver body 0 stands for every static or sleeping body.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct SolverBodies {
     states: Vec<BodyState>,
     motions: Vec<BodyMotion>,
@@ -218,6 +222,7 @@ impl SolverBodies {
 /// Buffers reused from step to step, so a steady scene allocates nothing: the bodies, and the
 /// constraints of each kind. [`Solver::step`] (`stages.rs`) runs the stages over them.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Solver {
     bodies: SolverBodies,
     joints: JointConstraints,

@@ -35,6 +35,7 @@ pub const DEFAULT_MAX_LINEAR_SPEED: f32 = 1000.0;
 /// World-wide settings: what the step does, with units and defaults. Every value is checked
 /// when the world is made or the settings replaced; an error names the field.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct WorldSettings {
     /// Gravity, m/s², default `[0, −9.81, 0]`.
     pub gravity: Vec3,
@@ -130,6 +131,7 @@ impl WorldSettings {
 /// diagnostics, not part of the stable API.
 #[doc(hidden)]
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct StepWork {
     /// Bodies the step moved: awake dynamic and kinematic ones.
     pub bodies: usize,
@@ -155,6 +157,7 @@ pub struct StepWork {
 /// # Ok::<(), rebond::Error>(())
 /// ```
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct World {
     settings: WorldSettings,
     bodies: Arena<RigidBody>,

@@ -1,0 +1,150 @@
+//! Saving and restoring worlds: a restored world steps bit for bit as the saved one, and bytes
+//! that are not a whole state of this version are refused, never decoded.
+
+use rebond::scene::Scene;
+use rebond::state::{StateError, STATE_FORMAT_VERSION};
+use rebond::World;
+
+/// A scene with every shape and every joint kind, things falling, sliding, rolling, hanging,
+/// driven and asleep: a static floor, a sphere, a box, a capsule, a cylinder, a hull and a
+/// compound dropped on it; a fixed, a ball (limits, friction), a revolute (limits, motor), a
+/// prismatic (limits, motor) and two distance joints (spring, rope).
+const EVERY_KIND: &str = r#"{
+  "bodies": [
+    {"name": "floor", "type": "static", "shape": {"type": "box", "half_extents": [8, 0.5, 8]},
+     "position": [0, -0.5, 0], "friction": 0.6},
+    {"name": "plane", "type": "static", "shape": {"type": "halfspace", "normal": [0, 1, 0]},
+     "position": [0, -2, 0]},
+    {"name": "ball", "shape": {"type": "sphere", "radius": 0.3}, "position": [-3, 1, 0],
+     "linear_velocity": [2, 0, 0.5], "restitution": 0.4},
+    {"name": "crate", "shape": {"type": "box", "half_extents": [0.3, 0.2, 0.4]},
+     "position": [-1.5, 0.8, 1], "rotation": [0.1, 0.2, 0.0, 0.974679], "angular_velocity": [1, 2, 0]},
+    {"name": "pill", "shape": {"type": "capsule", "radius": 0.2, "half_height": 0.3},
+     "position": [0, 1.5, -1], "rotation": [0.0, 0.0, 0.7071068, 0.7071068]},
+    {"name": "drum", "shape": {"type": "cylinder", "radius": 0.3, "half_height": 0.2},
+     "position": [1.5, 0.6, -1], "angular_velocity": [0, 0, 3]},
+    {"name": "gem", "shape": {"type": "convex_hull", "points": [[-0.3, 0, -0.3], [0.3, 0, -0.3],
+     [0.3, 0, 0.3], [-0.3, 0, 0.3], [0, 0.5, 0]]}, "position": [3, 0.2, 1]},
+    {"name": "dumbbell", "shape": {"type": "compound", "children": [
+       {"shape": {"type": "sphere", "radius": 0.2}, "position": [-0.4, 0, 0]},
+       {"shape": {"type": "box", "half_extents": [0.2, 0.2, 0.2]}, "position": [0.4, 0, 0]}]},
+     "position": [0, 2.5, 2]},
+    {"name": "glued", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "position": [-1.5, 1.2, 1]},
+    {"name": "bob", "shape": {"type": "sphere", "radius": 0.2}, "position": [2, 3, 3]},
+    {"name": "door", "shape": {"type": "box", "half_extents": [0.5, 0.8, 0.05]}, "position": [-4, 1.5, -3]},
+    {"name": "slider", "shape": {"type": "box", "half_extents": [0.2, 0.2, 0.2]}, "position": [4, 2, -3]},
+    {"name": "spring_weight", "shape": {"type": "sphere", "radius": 0.15}, "position": [-2, 3, -4]},
+    {"name": "rope_end", "shape": {"type": "box", "half_extents": [0.15, 0.15, 0.15]}, "position": [1, 3, -5]}
+  ],
+  "joints": [
+    {"type": "fixed", "body_a": "crate", "body_b": "glued", "anchor": [-1.5, 1.0, 1]},
+    {"type": "ball", "body_b": "bob", "anchor": [2, 4, 3], "axis": [0, -1, 0],
+     "swing_limit": 0.8, "twist_limits": [-0.5, 0.5], "friction": 0.05},
+    {"type": "revolute", "body_b": "door", "anchor": [-4.5, 1.5, -3], "axis": [0, 1, 0],
+     "limits": [-1.5, 1.5], "motor": {"target_velocity": 1.0, "max_force": 20}},
+    {"type": "prismatic", "body_b": "slider", "anchor": [4, 2, -3], "axis": [1, 0.2, 0],
+     "limits": [-0.5, 1.0], "motor": {"target_position": 0.5, "stiffness": 50, "damping": 5}},
+    {"type": "distance", "body_b": "spring_weight", "anchor": [-2, 4, -4],
+     "spring": {"stiffness": 40, "damping": 0.5}},
+    {"type": "distance", "body_b": "rope_end", "anchor": [0, 4, -5], "anchor_b": [1, 3, -5],
+     "limits": [0, 1.6]}
+  ]
+}"#;
+
+/// Every body's pose, velocities and sleep, and every joint's force and torque, as bits.
+fn fingerprint(world: &World) -> Vec<u32> {
+    let mut bits = Vec::new();
+    for (_, body) in world.bodies() {
+        let vectors = [
+            body.position(),
+            body.linear_velocity(),
+            body.angular_velocity(),
+        ];
+        bits.extend(vectors.iter().flat_map(|v| v.to_array()).map(f32::to_bits));
+        bits.extend(body.rotation().to_array().map(f32::to_bits));
+        bits.push(u32::from(body.is_sleeping()));
+    }
+    for (_, joint) in world.joints() {
+        bits.extend(joint.force().to_array().map(f32::to_bits));
+        bits.extend(joint.torque().to_array().map(f32::to_bits));
+    }
+    bits.push(world.contact_count() as u32);
+    bits
+}
+
+fn stepped(mut world: World, steps: usize) -> World {
+    for _ in 0..steps {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    world
+}
+
+#[test]
+fn a_restored_world_steps_bit_for_bit_as_the_saved_one() {
+    // N + M steps in one go against N, save, restore, M, at several N: mid-fall, in the first
+    // contacts, and once things have come to rest (bodies asleep, contacts parked).
+    let start = Scene::from_json(EVERY_KIND.as_bytes())
+        .unwrap()
+        .world()
+        .clone();
+    for (saved_at, then) in [(1, 60), (45, 90), (400, 60)] {
+        let straight = stepped(start.clone(), saved_at + then);
+        let bytes = stepped(start.clone(), saved_at).save_state();
+        let restored = World::load_state(&bytes).unwrap();
+        let resumed = stepped(restored, then);
+        assert_eq!(
+            fingerprint(&resumed),
+            fingerprint(&straight),
+            "saved after {saved_at} steps, {then} more"
+        );
+    }
+    let rested = stepped(start, 400);
+    assert!(rested.sleeping_body_count() > 0, "something asleep to save");
+}
+
+#[test]
+fn bytes_that_are_not_a_whole_state_of_this_version_are_refused() {
+    let world = Scene::from_json(EVERY_KIND.as_bytes())
+        .unwrap()
+        .world()
+        .clone();
+    let bytes = stepped(world, 30).save_state();
+    let refuse = |bytes: &[u8]| World::load_state(bytes).map(|_| ()).unwrap_err();
+    assert_eq!(refuse(b"{\"bodies\": []}"), StateError::NotAState);
+    assert_eq!(refuse(b""), StateError::NotAState);
+    for cut in [6, 24] {
+        let expected = StateError::Truncated {
+            expected: 32,
+            found: cut as u64,
+        };
+        assert_eq!(refuse(&bytes[..cut]), expected, "header cut at {cut}");
+    }
+    for cut in [32, bytes.len() / 2, bytes.len() - 1] {
+        match refuse(&bytes[..cut]) {
+            StateError::Truncated { expected, found } => {
+                assert_eq!((expected, found), (bytes.len() as u64, cut as u64));
+            }
+            other => panic!("cut at {cut}: {other:?}"),
+        }
+    }
+    let mut longer = bytes.clone();
+    longer.push(0);
+    assert!(matches!(refuse(&longer), StateError::TrailingBytes { .. }));
+    let mut other_version = bytes.clone();
+    other_version[8..12].copy_from_slice(&(STATE_FORMAT_VERSION + 1).to_le_bytes());
+    assert_eq!(
+        refuse(&other_version),
+        StateError::OtherVersion {
+            found: STATE_FORMAT_VERSION + 1
+        }
+    );
+    let mut other_build = bytes.clone();
+    other_build[12] ^= 1;
+    assert_eq!(refuse(&other_build), StateError::OtherBuild);
+    // Any flipped bit in the world's bytes is caught by the checksum.
+    for position in [32, 100, bytes.len() / 2, bytes.len() - 1] {
+        let mut damaged = bytes.clone();
+        damaged[position] ^= 0x10;
+        assert_eq!(refuse(&damaged), StateError::Damaged, "byte {position}");
+    }
+}
