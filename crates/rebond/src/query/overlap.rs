@@ -28,7 +28,8 @@ pub(crate) fn shape_contains_point(shape: &Shape, pose: &Pose, point: Vec3) -> b
                 .iter()
                 .all(|face| face.normal.dot(local) <= face.offset),
             Shape::Halfspace(halfspace) => halfspace.normal().dot(local) <= 0.0,
-            Shape::Compound(_) => false,
+            Shape::HeightField(heightfield) => heightfield.is_below(local),
+            Shape::Compound(_) | Shape::TriMesh(_) => false,
         }
     })
 }

@@ -128,6 +128,7 @@ fn line_crossing(shape: &Shape, origin: Vec3, direction: Vec3) -> Option<Crossin
         Shape::Capsule(capsule) => capsule_crossing(capsule, origin, direction),
         Shape::Cylinder(cylinder) => cylinder_crossing(cylinder, origin, direction),
         Shape::ConvexHull(hull) => hull_crossing(hull, origin, direction),
+        Shape::Compound(_) | Shape::TriMesh(_) | Shape::HeightField(_) => None,
         Shape::Halfspace(halfspace) => {
             // Inside where n·(o + t d) ≤ 0.
             let height = halfspace.normal().dot(origin);
@@ -146,7 +147,6 @@ fn line_crossing(shape: &Shape, origin: Vec3, direction: Vec3) -> Option<Crossin
             }
             Some(crossing)
         }
-        Shape::Compound(_) => None,
     }
 }
 
