@@ -26,6 +26,7 @@
 
 mod convert;
 mod format;
+mod meshes;
 
 use std::collections::HashMap;
 use std::fmt;
@@ -40,6 +41,7 @@ use crate::math::Vec3;
 use crate::world::{World, WorldSettings};
 use convert::{body_desc, joint_desc, scalar, timestep, vector};
 use format::{JsonObject, SceneFile};
+use meshes::MeshFiles;
 
 /// Default seconds per step when a scene leaves `timestep` out.
 pub const DEFAULT_TIMESTEP: f64 = 1.0 / 60.0;
@@ -94,6 +96,22 @@ pub enum LoadError {
     },
     /// The file was read but is not a valid scene.
     Invalid(SceneError),
+    /// A mesh file the scene names (a `trimesh`'s `file`) could not be read or is not a valid
+    /// Wavefront OBJ file.
+    Mesh {
+        /// Where the scene names it, such as `bodies[0].shape.file`.
+        place: String,
+        /// The file, as resolved against the scene's folder.
+        path: PathBuf,
+        /// Why it could not be used.
+        message: String,
+    },
+}
+
+impl From<SceneError> for LoadError {
+    fn from(error: SceneError) -> Self {
+        Self::Invalid(error)
+    }
 }
 
 impl fmt::Display for LoadError {
@@ -103,6 +121,15 @@ impl fmt::Display for LoadError {
                 write!(formatter, "{}: cannot read scene: {error}", path.display())
             }
             Self::Invalid(error) => error.fmt(formatter),
+            Self::Mesh {
+                place,
+                path,
+                message,
+            } => write!(
+                formatter,
+                "{place}: cannot load mesh file {}: {message}",
+                path.display()
+            ),
         }
     }
 }
@@ -112,6 +139,7 @@ impl std::error::Error for LoadError {
         match self {
             Self::Read { error, .. } => Some(error),
             Self::Invalid(error) => Some(error),
+            Self::Mesh { .. } => None,
         }
     }
 }
@@ -164,18 +192,42 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// Reads, checks and loads the scene file at `path`. Nothing is stepped.
+    /// Reads, checks and loads the scene file at `path`; mesh files it names are found relative
+    /// to the scene file's folder. Nothing is stepped.
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self, LoadError> {
         let path = path.as_ref();
         let bytes = fs::read(path).map_err(|error| LoadError::Read {
             path: path.to_owned(),
             error,
         })?;
-        Self::from_json(&bytes).map_err(LoadError::Invalid)
+        let folder = path.parent().unwrap_or(Path::new(""));
+        Self::from_json_in(&bytes, folder)
     }
 
-    /// Parses and checks a scene given as JSON text and builds its world. Nothing is stepped.
+    /// Parses and checks a scene given as JSON text and builds its world; mesh files it names
+    /// are found relative to the working directory, and one that cannot be loaded is an error
+    /// at the place that names it. Nothing is stepped.
     pub fn from_json(bytes: &[u8]) -> Result<Self, SceneError> {
+        Self::from_json_in(bytes, Path::new("")).map_err(|error| match error {
+            LoadError::Invalid(error) => error,
+            LoadError::Mesh {
+                place,
+                path,
+                message,
+            } => SceneError::new(
+                place,
+                format!("cannot load mesh file {}: {message}", path.display()),
+            ),
+            LoadError::Read { path, error } => {
+                SceneError::new("", format!("cannot read {}: {error}", path.display()))
+            }
+        })
+    }
+
+    /// [`Scene::from_json`] with mesh files found relative to `folder`, and a mesh file that
+    /// cannot be loaded reported as [`LoadError::Mesh`].
+    pub fn from_json_in(bytes: &[u8], folder: &Path) -> Result<Self, LoadError> {
+        let files = MeshFiles { folder };
         let file = parse(bytes)?;
         let timestep = timestep(file.timestep)?;
         let gravity = match file.gravity {
@@ -190,7 +242,7 @@ impl Scene {
         if let Some(value) = file.restitution_threshold {
             settings.restitution_threshold = scalar("restitution_threshold", value)?;
         }
-        let mut world = World::new(settings)?;
+        let mut world = World::new(settings).map_err(SceneError::from)?;
         let mut bodies = Vec::with_capacity(file.bodies.len());
         let mut indices_by_name: HashMap<String, usize> = HashMap::new();
         for (index, entry) in file.bodies.iter().enumerate() {
@@ -199,9 +251,9 @@ impl Scene {
             if let Some(first) = indices_by_name.insert(name.clone(), index) {
                 let message =
                     format!("duplicate name \"{name}\": bodies[{first}] and {place} both have it");
-                return Err(SceneError::new(format!("{place}.name"), message));
+                return Err(SceneError::new(format!("{place}.name"), message).into());
             }
-            let desc = body_desc(entry, &place)?;
+            let desc = body_desc(entry, &place, &files)?;
             let handle = world
                 .add_body(desc)
                 .map_err(|error| SceneError::from(error.within(&place)))?;
@@ -228,7 +280,7 @@ impl Scene {
             if let Some(first) = joint_indices_by_name.insert(name.clone(), index) {
                 let message =
                     format!("duplicate name \"{name}\": joints[{first}] and {place} both have it");
-                return Err(SceneError::new(format!("{place}.name"), message));
+                return Err(SceneError::new(format!("{place}.name"), message).into());
             }
             let desc = joint_desc(entry, &place, |name| body_places.get(name).copied())?;
             let joint_type = desc.joint_type;
