@@ -41,12 +41,10 @@ const FEATURE_WEIGHT: f32 = 1.0e-4;
 /// the triangle, metres, besides the reach of a bent normal: f32 rounding of a point on an edge.
 const FOOT_TOLERANCE: f32 = 1.0e-5;
 
-/// A triangle in world space as a support map.
-struct TriangleSupport([Vec3; 3]);
-
-impl SupportMap for TriangleSupport {
+/// A triangle (in world space, for GJK) as a support map: its corner farthest along the direction.
+impl SupportMap for Triangle {
     fn support(&self, direction: Vec3) -> Vec3 {
-        let [a, b, c] = self.0;
+        let [a, b, c] = self.vertices;
         let (da, db, dc) = (a.dot(direction), b.dot(direction), c.dot(direction));
         if da >= db && da >= dc {
             a
@@ -75,7 +73,13 @@ pub fn collide_triangle(
     let face = if front { front_normal } else { -front_normal };
     let radius = shape.core_radius();
     let core = PosedCore::new(shape, pose);
-    let closest = closest_cores(triangle, shape, &core, face, margin + radius)?;
+    // A shape whose origin lies behind a heightfield's surface is in its solid, however deep.
+    let buried = one_sided && front_normal.dot(pose.position - a) < 0.0;
+    let closest = if buried {
+        None
+    } else {
+        closest_cores(triangle, shape, &core, face, margin + radius)?
+    };
     // Whether the deepest point lies on this triangle, so that the manifold may hold it.
     let mut deepest_here = true;
     let deepest = match closest {
@@ -165,8 +169,7 @@ fn closest_cores(
         let (on_triangle, _) = triangle.closest_point(core.pose.position);
         (on_triangle, core.pose.position)
     } else {
-        let support = TriangleSupport(triangle.vertices);
-        let found = gjk::distance_within(&support, core, &[], face, limit)?;
+        let found = gjk::distance_within(triangle, core, &[], face, limit)?;
         if found.overlapping {
             return Some(None);
         }

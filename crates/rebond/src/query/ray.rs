@@ -6,6 +6,7 @@
 //! the interval: entering ahead (`enter ≥ 0`) it hits at `enter`; starting inside
 //! (`enter < 0 ≤ leave`) it hits at zero if solid, at `leave` if hollow.
 
+use super::mesh::cast_ray_at_mesh;
 use super::{convex_parts, Ray};
 use crate::math::{Pose, Vec3};
 use crate::shape::{Capsule, ConvexHull, Cuboid, Cylinder, Shape};
@@ -21,8 +22,12 @@ pub(crate) struct ShapeRayHit {
 
 /// The first point where `ray` (validated: unit direction) meets `shape` placed at `pose`, within
 /// the ray's maximum distance. A compound is hit at the nearest of its children's hits (the
-/// first child among equals), each child being solid or hollow as the ray says.
+/// first child among equals), each child being solid or hollow as the ray says; a mesh or
+/// heightfield at its first triangle (see `query::mesh`).
 pub(crate) fn cast_ray_at_shape(shape: &Shape, pose: &Pose, ray: &Ray) -> Option<ShapeRayHit> {
+    if shape.is_triangulated() {
+        return cast_ray_at_mesh(shape, pose, ray);
+    }
     convex_parts(shape, *pose)
         .filter_map(|(part, part_pose)| cast_ray_at_convex(part, &part_pose, ray))
         .reduce(|best, hit| {

@@ -8,6 +8,11 @@ use super::trimesh::placed_bounds;
 use crate::error::{check_finite, check_positive, Error, ErrorKind, Result};
 use crate::math::{Aabb, Pose, Vec3};
 
+/// How far below its lowest sample a heightfield's bounding box reaches at least, metres: the
+/// box reaches down by the height range, or by this, whichever is more, so that bodies pushed
+/// below the surface are still found and pushed back up.
+pub const MIN_SOLID_DEPTH: f32 = 1.0;
+
 /// A grid of heights in the body frame: `rows × cols` samples, row `i` along +Z and column `j`
 /// along +X, sample `(i, j)` at `x = (j / (cols − 1) − ½) · sx`, `z = (i / (rows − 1) − ½) · sz`,
 /// `y = heights[i][j] · sy`. Solid below the surface. Cloning shares the heights.
@@ -59,9 +64,11 @@ impl HeightField {
                 (low.min(h), high.max(h))
             });
         let half = 0.5 * scale;
+        let (low, high) = (low * scale.y, high * scale.y);
+        let depth = (high - low).max(MIN_SOLID_DEPTH);
         let bounds = Aabb::new(
-            Vec3::new(-half.x, low * scale.y, -half.z),
-            Vec3::new(half.x, high * scale.y, half.z),
+            Vec3::new(-half.x, low - depth, -half.z),
+            Vec3::new(half.x, high, half.z),
         );
         if !(bounds.min.is_finite() && bounds.max.is_finite()) {
             return Err(Error::new("scale", ErrorKind::UnrepresentableSize));
@@ -176,7 +183,8 @@ impl HeightField {
             .is_some_and(|height| point.y <= height)
     }
 
-    /// The box around the heightfield in the body frame.
+    /// The box around the heightfield in the body frame: its samples, and the solid below them
+    /// down to the height range (at least [`MIN_SOLID_DEPTH`]) under the lowest sample.
     pub fn local_bounds(&self) -> Aabb {
         self.data.bounds
     }

@@ -22,7 +22,7 @@ pub(crate) use convex_hull::{EdgeLanes, FaceLanes};
 pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
 pub use halfspace::{Halfspace, HALFSPACE_EXTENT};
-pub use heightfield::HeightField;
+pub use heightfield::{HeightField, MIN_SOLID_DEPTH};
 pub use sphere::Sphere;
 pub use triangle::{Triangle, ACTIVE_EDGE_ANGLE};
 pub use trimesh::TriMesh;

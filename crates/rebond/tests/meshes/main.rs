@@ -7,6 +7,7 @@
 mod common;
 mod floors;
 mod geometry;
+mod queries;
 #[path = "../common/random.rs"]
 mod random;
 mod terrain;
