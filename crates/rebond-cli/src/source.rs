@@ -43,7 +43,12 @@ impl SceneSource {
         let loaded = match self {
             Self::File(path) => Scene::from_file(path),
             Self::Builtin(scene) => {
-                Scene::from_json(scene.json.as_bytes()).map_err(LoadError::from)
+                let files: Vec<(&str, &[u8])> = scene
+                    .files
+                    .iter()
+                    .map(|(name, contents)| (*name, contents.as_bytes()))
+                    .collect();
+                Scene::from_json_with_files(scene.json.as_bytes(), &files)
             }
         };
         loaded.map_err(|error| match error {

@@ -12,12 +12,15 @@ use super::convert::{scalar, vector};
 use super::format::ShapeEntry;
 use super::{join, LoadError, SceneError};
 
-/// Where the mesh files a scene names are found: the scene file's folder, or the working
-/// directory for a scene given as text.
+/// Where the mesh files a scene names are found: among files given with the scene (by the name
+/// the scene uses), else in the scene file's folder, or the working directory for a scene given
+/// as text.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct MeshFiles<'a> {
     /// The folder relative paths start from.
     pub(super) folder: &'a Path,
+    /// Files given with the scene: name as written in the scene, contents.
+    pub(super) given: &'a [(&'a str, &'a [u8])],
 }
 
 impl MeshFiles<'_> {
@@ -31,7 +34,10 @@ impl MeshFiles<'_> {
             path: path.clone(),
             message,
         };
-        let bytes = std::fs::read(&path).map_err(|error| failure(error.to_string()))?;
+        let bytes = match self.given.iter().find(|(name, _)| *name == file) {
+            Some((_, contents)) => contents.to_vec(),
+            None => std::fs::read(&path).map_err(|error| failure(error.to_string()))?,
+        };
         let options = tobj::LoadOptions {
             triangulate: true,
             single_index: true,

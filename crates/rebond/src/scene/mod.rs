@@ -227,7 +227,24 @@ impl Scene {
     /// [`Scene::from_json`] with mesh files found relative to `folder`, and a mesh file that
     /// cannot be loaded reported as [`LoadError::Mesh`].
     pub fn from_json_in(bytes: &[u8], folder: &Path) -> Result<Self, LoadError> {
-        let files = MeshFiles { folder };
+        Self::load(bytes, MeshFiles { folder, given: &[] })
+    }
+
+    /// [`Scene::from_json`] with the mesh files it names given as `(name, contents)` pairs, the
+    /// name as the scene writes it (for scenes embedded in a program with their OBJ files); a
+    /// file not among them is read relative to the working directory.
+    pub fn from_json_with_files(bytes: &[u8], files: &[(&str, &[u8])]) -> Result<Self, LoadError> {
+        Self::load(
+            bytes,
+            MeshFiles {
+                folder: Path::new(""),
+                given: files,
+            },
+        )
+    }
+
+    /// Parses, checks and builds a scene, reading mesh files through `files`.
+    fn load(bytes: &[u8], files: MeshFiles) -> Result<Self, LoadError> {
         let file = parse(bytes)?;
         let timestep = timestep(file.timestep)?;
         let gravity = match file.gravity {
