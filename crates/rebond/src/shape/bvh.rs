@@ -1,5 +1,6 @@
 //! A bounding-volume hierarchy over a static set of boxes (a mesh's triangles), built once by
-//! median splits and walked with a fixed stack: the midphase of a triangle mesh.
+//! halving runs of the boxes sorted along a Morton curve, and walked with a fixed stack: the
+//! midphase of a triangle mesh.
 //!
 //! Nodes are 32 bytes, laid out depth first: an inner node's first child follows it, the second
 //! sits at `second`. Leaves hold up to [`LEAF_SIZE`] items, so a mesh of `n` triangles has about
@@ -11,8 +12,8 @@ use crate::math::{Aabb, Vec3};
 /// the nodes for little gain in a query, as a leaf's boxes are tested one by one anyway.
 const LEAF_SIZE: usize = 4;
 
-/// Deepest hierarchy a walk can follow: median splits halve the items at every level, so 64
-/// levels hold far more than `u32::MAX` items.
+/// Deepest hierarchy a walk can follow: every level halves the items, so 64 levels hold far more
+/// than `u32::MAX` items.
 const MAX_DEPTH: usize = 64;
 
 /// One node: its box, and either its second child (inner) or its first item (leaf).
@@ -44,15 +45,39 @@ pub struct Bvh {
 }
 
 impl Bvh {
-    /// The hierarchy over `boxes` (item `i` has box `boxes[i]`). Each node splits its items at
-    /// the median of their centres along the longest axis of the centres' bounds, so building
-    /// costs `O(n log n)` and the depth is `log₂(n / 4)`.
+    /// The hierarchy over `boxes` (item `i` has box `boxes[i]`). The items are sorted once along
+    /// a Morton curve through their centres (30 bits, 10 per axis, over the centres' bounds), and
+    /// each node splits its run of the sorted items in half, so building costs one sort and
+    /// `O(n)` more, and the depth is `log₂(n / 4)`. Near items share leaves as in a median split
+    /// along the longest axis, give or take the curve's jumps.
     pub fn build(boxes: &[Aabb]) -> Self {
-        let mut order: Vec<u32> = (0..boxes.len() as u32).collect();
         let mut nodes = Vec::with_capacity(boxes.len().div_ceil(LEAF_SIZE) * 2);
-        if !boxes.is_empty() {
-            build_node(boxes, &mut order, 0, &mut nodes);
-        }
+        let Some(first) = boxes.first() else {
+            return Self::default();
+        };
+        let (low, high) = boxes
+            .iter()
+            .fold((first.center(), first.center()), |(low, high), b| {
+                let c = b.center();
+                (low.min(c), high.max(c))
+            });
+        let span = (high - low).max(Vec3::splat(f32::MIN_POSITIVE));
+        let mut keys: Vec<u64> = (0u32..)
+            .zip(boxes)
+            .map(|(index, b)| {
+                let cell =
+                    ((b.center() - low) / span * 1023.0).clamp(Vec3::ZERO, Vec3::splat(1023.0));
+                let code = spread_bits(cell.x as u32)
+                    | (spread_bits(cell.y as u32) << 1)
+                    | (spread_bits(cell.z as u32) << 2);
+                (u64::from(code) << 32) | u64::from(index)
+            })
+            .collect();
+        keys.sort_unstable();
+        let order: Vec<u32> = keys.into_iter().map(|key| key as u32).collect();
+        build_node(boxes, &order, 0, order.len(), &mut nodes);
+        // Halving leaves between 2 and 4 items, so the estimate above can fall short.
+        nodes.shrink_to_fit();
         Self { nodes, order }
     }
 
@@ -111,45 +136,51 @@ impl Bvh {
     }
 }
 
-/// Builds the subtree of `order[..]` (a slice of the whole order starting at `offset`) at the
-/// end of `nodes`, and returns nothing: its root is the node pushed first.
-fn build_node(boxes: &[Aabb], order: &mut [u32], offset: usize, nodes: &mut Vec<Node>) {
-    let centre = |item: u32| boxes[item as usize].center();
-    let mut bounds = boxes[order[0] as usize];
-    let mut centres = Aabb::new(centre(order[0]), centre(order[0]));
-    for &item in order.iter().skip(1) {
-        bounds = bounds.union(&boxes[item as usize]);
-        let c = centre(item);
-        centres = Aabb::new(centres.min.min(c), centres.max.max(c));
-    }
+/// The 10 low bits of `value` spread to every third bit (bit `k` to bit `3k`).
+fn spread_bits(value: u32) -> u32 {
+    let mut x = value & 0x3FF;
+    x = (x | (x << 16)) & 0x0300_00FF;
+    x = (x | (x << 8)) & 0x0300_F00F;
+    x = (x | (x << 4)) & 0x030C_30C3;
+    (x | (x << 2)) & 0x0924_9249
+}
+
+/// Builds the subtree of the items `order[start..end]` at the end of `nodes` (its root is the
+/// node pushed first) and returns its bounds.
+fn build_node(
+    boxes: &[Aabb],
+    order: &[u32],
+    start: usize,
+    end: usize,
+    nodes: &mut Vec<Node>,
+) -> Aabb {
     let here = nodes.len();
     nodes.push(Node {
-        min: bounds.min.to_array(),
-        max: bounds.max.to_array(),
-        index: offset as u32,
-        count: order.len() as u32,
+        min: [0.0; 3],
+        max: [0.0; 3],
+        index: start as u32,
+        count: (end - start) as u32,
     });
-    if order.len() <= LEAF_SIZE {
-        return;
-    }
-    let extent = centres.max - centres.min;
-    let axis = if extent.x >= extent.y && extent.x >= extent.z {
-        0
-    } else if extent.y >= extent.z {
-        1
+    let bounds = if end - start <= LEAF_SIZE {
+        let items = &order[start..end];
+        items
+            .iter()
+            .skip(1)
+            .fold(boxes[items[0] as usize], |bounds, &item| {
+                bounds.union(&boxes[item as usize])
+            })
     } else {
-        2
+        let middle = start + (end - start) / 2;
+        let first = build_node(boxes, order, start, middle, nodes);
+        let second_index = nodes.len() as u32;
+        let second = build_node(boxes, order, middle, end, nodes);
+        nodes[here].index = second_index;
+        nodes[here].count = 0;
+        first.union(&second)
     };
-    let middle = order.len() / 2;
-    order.select_nth_unstable_by(middle, |&a, &b| {
-        centre(a)[axis].total_cmp(&centre(b)[axis]).then(a.cmp(&b))
-    });
-    let (first, second) = order.split_at_mut(middle);
-    build_node(boxes, first, offset, nodes);
-    let second_index = nodes.len() as u32;
-    build_node(boxes, second, offset + middle, nodes);
-    nodes[here].index = second_index;
-    nodes[here].count = 0;
+    nodes[here].min = bounds.min.to_array();
+    nodes[here].max = bounds.max.to_array();
+    bounds
 }
 
 #[cfg(test)]

@@ -34,8 +34,8 @@ impl TriMesh {
     /// area. Errors: a non-finite vertex (field `vertices[i]`), an index out of range
     /// (`indices[k]`), or no triangle of positive area (`indices`).
     pub fn new(vertices: Vec<Vec3>, indices: &[[u32; 3]]) -> Result<Self> {
-        for (index, vertex) in vertices.iter().enumerate() {
-            check_finite_vector(&format!("vertices[{index}]"), *vertex)?;
+        if let Some(index) = vertices.iter().position(|vertex| !vertex.is_finite()) {
+            check_finite_vector(&format!("vertices[{index}]"), vertices[index])?;
         }
         let mut triangles = Vec::with_capacity(indices.len());
         for (index, triangle) in indices.iter().enumerate() {
@@ -161,7 +161,8 @@ fn mesh_edge_flags(vertices: &[Vec3], triangles: &[[u32; 3]]) -> Vec<u8> {
             edges.push((key, index * 3 + edge));
         }
     }
-    edges.sort_unstable();
+    // Only the key orders: runs of equal keys give the same flags in any order.
+    edges.sort_unstable_by_key(|&(key, _)| key);
     let mut flags = vec![0u8; triangles.len()];
     let corners = |triangle: usize| triangles[triangle].map(|i| vertices[i as usize]);
     let mut start = 0;
