@@ -74,21 +74,14 @@ impl MeshScratch {
             bounds.max + Vec3::splat(margin),
         );
         self.triangles.clear();
-        let one_sided = match mesh.shape {
-            Shape::TriMesh(trimesh) => {
-                trimesh.triangles_in(&bounds, |index| self.triangles.push(index));
-                self.triangles.sort_unstable();
-                false
-            }
-            Shape::HeightField(heightfield) => {
-                heightfield.triangles_in(&bounds, |index| self.triangles.push(index));
-                true
-            }
-            _ => return,
-        };
+        mesh.shape
+            .triangles_in(&bounds, |index| self.triangles.push(index));
+        // A mesh's hierarchy gives its triangles in leaf order.
+        self.triangles.sort_unstable();
+        let one_sided = matches!(mesh.shape, Shape::HeightField(_));
         self.manifolds.clear();
         for &index in &self.triangles {
-            let Some(local) = triangle_of(mesh.shape, index) else {
+            let Some(local) = mesh.shape.triangle(index) else {
                 continue;
             };
             let triangle = Triangle {
@@ -178,15 +171,6 @@ fn add_point(points: &mut Vec<ContactPoint>, start: usize, point: ContactPoint) 
         Some(twin) if point.separation < twin.separation => *twin = point,
         Some(_) => {}
         None => points.push(point),
-    }
-}
-
-/// Triangle `index` of a mesh or heightfield in its body frame.
-fn triangle_of(shape: &Shape, index: u32) -> Option<Triangle> {
-    match shape {
-        Shape::TriMesh(trimesh) => trimesh.triangle(index),
-        Shape::HeightField(heightfield) => heightfield.triangle(index),
-        _ => None,
     }
 }
 

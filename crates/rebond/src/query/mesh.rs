@@ -90,7 +90,7 @@ pub(crate) fn cast_ray_at_mesh(shape: &Shape, pose: &Pose, ray: &Ray) -> Option<
             mesh.triangles_where(
                 |bounds| segment_in_box(bounds, origin, direction, walk_reach.get()).is_some(),
                 |index| {
-                    offer(mesh.triangle(index), &mut best);
+                    offer(shape.triangle(index), &mut best);
                     if let Some((t, _)) = best {
                         walk_reach.set(t);
                     }
@@ -112,7 +112,7 @@ pub(crate) fn cast_ray_at_mesh(shape: &Shape, pose: &Pose, ray: &Ray) -> Option<
             )?;
             let (from, to) = (origin + direction * enter, origin + direction * leave);
             let span = Aabb::new(from.min(to), from.max(to));
-            heightfield.triangles_in(&span, |index| offer(heightfield.triangle(index), &mut best));
+            shape.triangles_in(&span, |index| offer(shape.triangle(index), &mut best));
         }
         _ => return None,
     }
@@ -144,12 +144,6 @@ pub(crate) fn part_overlaps_mesh(
         overlaps = collide_triangle(&triangle, one_sided, part, part_pose, 0.0)
             .is_some_and(|manifold| manifold.deepest_separation() <= 0.0);
     };
-    match shape {
-        Shape::TriMesh(mesh) => mesh.triangles_in(&bounds, |index| test(mesh.triangle(index))),
-        Shape::HeightField(heightfield) => {
-            heightfield.triangles_in(&bounds, |index| test(heightfield.triangle(index)));
-        }
-        _ => {}
-    }
+    shape.triangles_in(&bounds, |index| test(shape.triangle(index)));
     overlaps
 }

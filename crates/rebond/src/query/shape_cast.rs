@@ -78,21 +78,10 @@ fn cast_shape_at_mesh(sweep: &Sweep, target: &Shape, target_pose: &Pose) -> Opti
         };
         let path = Aabb::new(path.min.max(bounds.min), path.max.min(bounds.max));
         let mut triangles = Vec::new();
-        match target {
-            Shape::TriMesh(mesh) => mesh.triangles_in(&path, |index| triangles.push(index)),
-            Shape::HeightField(heightfield) => {
-                heightfield.triangles_in(&path, |index| triangles.push(index));
-            }
-            _ => {}
-        }
+        target.triangles_in(&path, |index| triangles.push(index));
         triangles.sort_unstable();
         for index in triangles {
-            let local = match target {
-                Shape::TriMesh(mesh) => mesh.triangle(index),
-                Shape::HeightField(heightfield) => heightfield.triangle(index),
-                _ => None,
-            };
-            let Some(local) = local else {
+            let Some(local) = target.triangle(index) else {
                 continue;
             };
             let triangle = Triangle {

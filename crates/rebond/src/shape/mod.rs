@@ -109,6 +109,27 @@ impl Shape {
         matches!(self, Shape::TriMesh(_) | Shape::HeightField(_))
     }
 
+    /// Triangle `index` of a mesh or heightfield in its body frame, with its edge flags; `None`
+    /// past the end or for any other shape.
+    pub fn triangle(&self, index: u32) -> Option<Triangle> {
+        match self {
+            Shape::TriMesh(mesh) => mesh.triangle(index),
+            Shape::HeightField(heightfield) => heightfield.triangle(index),
+            _ => None,
+        }
+    }
+
+    /// Calls `visit(k)` for the triangles `k` of a mesh or heightfield near `bounds` (body frame;
+    /// see [`TriMesh::triangles_in`] and [`HeightField::triangles_in`]); nothing for any other
+    /// shape.
+    pub fn triangles_in(&self, bounds: &Aabb, visit: impl FnMut(u32)) {
+        match self {
+            Shape::TriMesh(mesh) => mesh.triangles_in(bounds, visit),
+            Shape::HeightField(heightfield) => heightfield.triangles_in(bounds, visit),
+            _ => {}
+        }
+    }
+
     /// Whether every surface of the shape is flat (boxes, hulls, halfspaces, and compounds of
     /// them): its contact points are corners, edges and faces that turn with it. On a curved
     /// surface the point in contact changes as the body rolls.
