@@ -26,6 +26,7 @@
 
 mod convert;
 mod format;
+mod meshes;
 
 use std::collections::HashMap;
 use std::fmt;
@@ -41,6 +42,7 @@ use crate::joint::{Joint, JointHandle, JointType};
 use crate::world::{World, WorldSettings};
 use convert::{body_desc, joint_desc, scalar, timestep, vector};
 use format::{BodyEntry, JointEntry, JsonObject, SceneFile};
+use meshes::MeshFiles;
 
 /// Default seconds per step when a scene leaves `timestep` out.
 pub const DEFAULT_TIMESTEP: f64 = 1.0 / 60.0;
@@ -108,6 +110,22 @@ pub enum LoadError {
     },
     /// The file was read but is not a valid scene.
     Invalid(SceneError),
+    /// A mesh file the scene names (a `trimesh`'s `file`) could not be read or is not a valid
+    /// Wavefront OBJ file.
+    Mesh {
+        /// Where the scene names it, such as `bodies[0].shape.file`.
+        place: String,
+        /// The file, as resolved against the scene's folder.
+        path: PathBuf,
+        /// Why it could not be used.
+        message: String,
+    },
+}
+
+impl From<SceneError> for LoadError {
+    fn from(error: SceneError) -> Self {
+        Self::Invalid(error)
+    }
 }
 
 impl fmt::Display for LoadError {
@@ -117,6 +135,15 @@ impl fmt::Display for LoadError {
                 write!(formatter, "{}: cannot read scene: {error}", path.display())
             }
             Self::Invalid(error) => error.fmt(formatter),
+            Self::Mesh {
+                place,
+                path,
+                message,
+            } => write!(
+                formatter,
+                "{place}: cannot load mesh file {}: {message}",
+                path.display()
+            ),
         }
     }
 }
@@ -126,6 +153,7 @@ impl std::error::Error for LoadError {
         match self {
             Self::Read { error, .. } => Some(error),
             Self::Invalid(error) => Some(error),
+            Self::Mesh { .. } => None,
         }
     }
 }
@@ -182,18 +210,46 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// Reads, checks and loads the scene file at `path`. Nothing is stepped.
+    /// Reads, checks and loads the scene file at `path`; mesh files it names are found relative
+    /// to the scene file's folder. Nothing is stepped.
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self, LoadError> {
         let path = path.as_ref();
         let bytes = fs::read(path).map_err(|error| LoadError::Read {
             path: path.to_owned(),
             error,
         })?;
-        Self::from_json(&bytes).map_err(LoadError::Invalid)
+        let folder = path.parent().unwrap_or(Path::new(""));
+        Self::from_json_in(&bytes, folder)
     }
 
-    /// Parses and checks a scene given as JSON text and builds its world. Nothing is stepped.
+    /// Parses and checks a scene given as JSON text and builds its world; mesh files it names
+    /// are found relative to the working directory, and one that cannot be loaded is an error
+    /// at the place that names it. Nothing is stepped.
     pub fn from_json(bytes: &[u8]) -> Result<Self, SceneError> {
+        Self::from_json_in(bytes, Path::new("")).map_err(into_scene_error)
+    }
+
+    /// [`Scene::from_json`] with mesh files found relative to `folder`, and a mesh file that
+    /// cannot be loaded reported as [`LoadError::Mesh`].
+    pub fn from_json_in(bytes: &[u8], folder: &Path) -> Result<Self, LoadError> {
+        Self::load(bytes, MeshFiles { folder, given: &[] })
+    }
+
+    /// [`Scene::from_json`] with the mesh files it names given as `(name, contents)` pairs, the
+    /// name as the scene writes it (for scenes embedded in a program with their OBJ files); a
+    /// file not among them is read relative to the working directory.
+    pub fn from_json_with_files(bytes: &[u8], files: &[(&str, &[u8])]) -> Result<Self, LoadError> {
+        Self::load(
+            bytes,
+            MeshFiles {
+                folder: Path::new(""),
+                given: files,
+            },
+        )
+    }
+
+    /// Parses, checks and builds a scene, reading mesh files through `files`.
+    fn load(bytes: &[u8], files: MeshFiles) -> Result<Self, LoadError> {
         let JsonObject::<SceneFile>(file) = parse(bytes)?;
         let timestep = timestep(file.timestep)?;
         let gravity = match file.gravity {
@@ -209,7 +265,7 @@ impl Scene {
             settings.restitution_threshold = scalar("restitution_threshold", value)?;
         }
         let mut scene = Self {
-            world: World::new(settings)?,
+            world: World::new(settings).map_err(SceneError::from)?,
             bodies: Vec::with_capacity(file.bodies.len()),
             joints: Vec::new(),
             body_indices: HashMap::new(),
@@ -217,7 +273,7 @@ impl Scene {
             timestep,
         };
         for entry in &file.bodies {
-            scene.push_body(entry)?;
+            scene.push_body(entry, &files)?;
         }
         for entry in file.joints.as_deref().unwrap_or_default() {
             scene.push_joint(entry)?;
@@ -231,7 +287,11 @@ impl Scene {
     pub fn add_body_json(&mut self, bytes: &[u8]) -> Result<usize, SceneError> {
         let place = format!("bodies[{}]", self.bodies.len());
         let JsonObject(entry) = parse(bytes).map_err(|error| error.within(&place))?;
-        self.push_body(&entry)
+        let files = MeshFiles {
+            folder: Path::new(""),
+            given: &[],
+        };
+        self.push_body(&entry, &files).map_err(into_scene_error)
     }
 
     /// Adds a joint given as one entry of a scene's `joints` (a JSON object), checked exactly as
@@ -243,17 +303,18 @@ impl Scene {
         self.push_joint(&entry)
     }
 
-    /// Checks and adds one body entry after the others; returns its index.
-    fn push_body(&mut self, entry: &BodyEntry) -> Result<usize, SceneError> {
+    /// Checks and adds one body entry after the others, reading mesh files through `files`;
+    /// returns its index.
+    fn push_body(&mut self, entry: &BodyEntry, files: &MeshFiles) -> Result<usize, LoadError> {
         let index = self.bodies.len();
         let place = format!("bodies[{index}]");
         let name = entry.name.clone().unwrap_or_else(|| format!("body{index}"));
         if let Some(&first) = self.body_indices.get(&name) {
             let message =
                 format!("duplicate name \"{name}\": bodies[{first}] and {place} both have it");
-            return Err(SceneError::new(format!("{place}.name"), message));
+            return Err(SceneError::new(format!("{place}.name"), message).into());
         }
-        let desc = body_desc(entry, &place)?;
+        let desc = body_desc(entry, &place, files)?;
         let handle = self
             .world
             .add_body(desc)
@@ -380,6 +441,25 @@ fn joint_error(error: crate::Error, joint_type: JointType) -> SceneError {
         error.field,
         format!("required field is missing ({needing} needs it)"),
     )
+}
+
+/// A load error as a scene error at its place: a mesh file that cannot be loaded or read is
+/// reported where the scene names it.
+fn into_scene_error(error: LoadError) -> SceneError {
+    match error {
+        LoadError::Invalid(error) => error,
+        LoadError::Mesh {
+            place,
+            path,
+            message,
+        } => SceneError::new(
+            place,
+            format!("cannot load mesh file {}: {message}", path.display()),
+        ),
+        LoadError::Read { path, error } => {
+            SceneError::new("", format!("cannot read {}: {error}", path.display()))
+        }
+    }
 }
 
 /// Deserialises the file, turning serde errors into a place and a message.
