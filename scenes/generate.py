@@ -627,6 +627,141 @@ def cradle_hanging():
     write_scene("cradle_hanging.json", bodies, joints=joints)
 
 
+def mixed_shape(index, rng):
+    """One of five dropped shapes in turn: ball, box, capsule, cylinder, hull (a tetrahedron
+    with a cap)."""
+    kind = index % 5
+    if kind == 0:
+        return {"type": "sphere", "radius": 0.3}
+    if kind == 1:
+        return {"type": "box", "half_extents": [0.3, 0.2, 0.4]}
+    if kind == 2:
+        return {"type": "capsule", "radius": 0.2, "half_height": 0.3}
+    if kind == 3:
+        return {"type": "cylinder", "radius": 0.3, "half_height": 0.2}
+    return {"type": "convex_hull", "points": [
+        [0.4, 0.0, 0.0], [-0.2, 0.0, 0.35], [-0.2, 0.0, -0.35], [0.0, 0.5, 0.0],
+        [0.0, -0.3, 0.1]]}
+
+
+def terrain_height(u, v):
+    """Hills over the unit square: crossed sine waves in a bowl that rises to the sides."""
+    bowl = 12.0 * ((u - 0.5) ** 2 + (v - 0.5) ** 2)
+    return (1.2 * math.sin(u * 13.0) * math.cos(v * 11.0)
+            + 0.6 * math.sin(u * 5.0 + v * 7.0) + bowl)
+
+
+def terrain():
+    """500 mixed shapes poured on hilly terrain: a 256 x 256 heightfield over 128 m x 128 m."""
+    samples = 256
+    size = 128.0
+    heights = [[round(terrain_height(j / (samples - 1), i / (samples - 1)), 3)
+                for j in range(samples)] for i in range(samples)]
+    bodies = [{
+        "name": "terrain", "type": "static", "friction": 0.7,
+        "shape": {"type": "heightfield", "heights": heights, "scale": [size, 1.0, size]},
+    }]
+    rng = Lcg(256)
+    for index in range(500):
+        u = 0.3 + 0.4 * rng.next()
+        v = 0.3 + 0.4 * rng.next()
+        ground = terrain_height(u, v)
+        position = [(u - 0.5) * size, ground + 2.0 + 10.0 * rng.next(), (v - 0.5) * size]
+        axis = normalized([rng.symmetric(1.0), rng.symmetric(1.0), rng.symmetric(1.0) + 0.01])
+        bodies.append({
+            "name": f"shape_{index}", "shape": mixed_shape(index, rng),
+            "position": rounded(position), "rotation": rounded(axis_angle(axis, rng.next() * 6.0)),
+            "friction": 0.7,
+        })
+    write_scene("terrain.json", bodies, compact=True)
+
+
+class ObjWriter:
+    """Triangles for a Wavefront OBJ file, each box or wedge a closed solid."""
+
+    def __init__(self):
+        self.vertices = []
+        self.faces = []
+
+    def quad(self, a, b, c, d):
+        """A quad counter-clockwise seen from outside."""
+        base = len(self.vertices) + 1
+        self.vertices.extend([a, b, c, d])
+        self.faces.append([base, base + 1, base + 2, base + 3])
+
+    def box(self, low, high):
+        """A box from corner `low` to corner `high`."""
+        (x0, y0, z0), (x1, y1, z1) = low, high
+        self.quad([x0, y1, z0], [x0, y1, z1], [x1, y1, z1], [x1, y1, z0])
+        self.quad([x0, y0, z0], [x1, y0, z0], [x1, y0, z1], [x0, y0, z1])
+        self.quad([x0, y0, z1], [x1, y0, z1], [x1, y1, z1], [x0, y1, z1])
+        self.quad([x0, y0, z0], [x0, y1, z0], [x1, y1, z0], [x1, y0, z0])
+        self.quad([x1, y0, z0], [x1, y1, z0], [x1, y1, z1], [x1, y0, z1])
+        self.quad([x0, y0, z0], [x0, y0, z1], [x0, y1, z1], [x0, y1, z0])
+
+    def floor(self, half, cell):
+        """A floor at y = 0 of square cells, from -half to half along X and Z."""
+        count = int(round(2 * half / cell))
+        for i in range(count):
+            for j in range(count):
+                x0, z0 = -half + j * cell, -half + i * cell
+                x1, z1 = x0 + cell, z0 + cell
+                self.quad([x0, 0.0, z0], [x0, 0.0, z1], [x1, 0.0, z1], [x1, 0.0, z0])
+
+    def ramp(self, x0, x1, z0, z1, height):
+        """A wedge rising along +X from the floor at x0 to `height` at x1."""
+        self.quad([x0, 0.0, z0], [x0, 0.0, z1], [x1, height, z1], [x1, height, z0])
+        self.quad([x1, 0.0, z0], [x1, height, z0], [x1, height, z1], [x1, 0.0, z1])
+        self.quad([x0, 0.0, z0], [x1, 0.0, z0], [x1, 0.0, z1], [x0, 0.0, z1])
+        base = len(self.vertices) + 1
+        self.vertices.extend([[x0, 0.0, z1], [x1, 0.0, z1], [x1, height, z1],
+                              [x0, 0.0, z0], [x1, height, z0], [x1, 0.0, z0]])
+        self.faces.extend([[base, base + 1, base + 2], [base + 3, base + 4, base + 5]])
+
+    def write(self, file_name, comment):
+        lines = [f"# {comment}", "# written by scenes/generate.py"]
+        lines += ["v " + " ".join(f"{c:g}" for c in v) for v in self.vertices]
+        lines += ["f " + " ".join(str(i) for i in face) for face in self.faces]
+        (SCENES_DIR / file_name).write_text("\n".join(lines) + "\n", encoding="utf-8")
+
+
+def level():
+    """A room (level.obj): a 24 m floor of 2 m tiles, four walls, a flight of 8 stairs up to a
+    platform 2.4 m high, and a 15-degree ramp down from it; 150 mixed shapes dropped in."""
+    obj = ObjWriter()
+    half = 12.0
+    obj.floor(half, 2.0)
+    for low, high in [([-half - 0.5, 0.0, -half - 0.5], [half + 0.5, 3.0, -half]),
+                      ([-half - 0.5, 0.0, half], [half + 0.5, 3.0, half + 0.5]),
+                      ([-half - 0.5, 0.0, -half], [-half, 3.0, half]),
+                      ([half, 0.0, -half], [half + 0.5, 3.0, half])]:
+        obj.box(low, high)
+    rise, run, steps = 0.3, 0.5, 8
+    for step in range(steps):
+        x0 = -6.0 + step * run
+        obj.box([x0, 0.0, -11.0], [-6.0 + steps * run, (step + 1) * rise, -7.0])
+    platform = steps * rise
+    obj.box([-2.0, 0.0, -11.0], [2.0, platform, -7.0])
+    ramp_length = platform / math.tan(math.radians(15.0))
+    obj.ramp(2.0 + ramp_length, 2.0, -11.0, -7.0, platform)
+    obj.write("level.obj", "a room with stairs, a platform and a ramp")
+    bodies = [{
+        "name": "level", "type": "static", "friction": 0.6,
+        "shape": {"type": "trimesh", "file": "level.obj"},
+    }]
+    rng = Lcg(150)
+    for index in range(150):
+        position = [rng.symmetric(10.0), 4.0 + 6.0 * rng.next(), -9.0 + rng.symmetric(2.5)
+                    if index % 3 == 0 else rng.symmetric(10.0)]
+        axis = normalized([rng.symmetric(1.0), rng.symmetric(1.0), rng.symmetric(1.0) + 0.01])
+        bodies.append({
+            "name": f"shape_{index}", "shape": mixed_shape(index, rng),
+            "position": rounded(position), "rotation": rounded(axis_angle(axis, rng.next() * 6.0)),
+            "friction": 0.6,
+        })
+    write_scene("level.json", bodies)
+
+
 if __name__ == "__main__":
     showcase()
     pyramid()
@@ -641,3 +776,5 @@ if __name__ == "__main__":
     ragdolls()
     car()
     cradle_hanging()
+    terrain()
+    level()

@@ -4,7 +4,7 @@ use std::fmt;
 use std::io;
 use std::path::{Path, PathBuf};
 
-use rebond::scene::SceneError;
+use rebond::scene::{LoadError, SceneError};
 
 /// Exit status for a scene that is not valid (the contract's "bad input").
 pub const EXIT_INVALID_SCENE: u8 = 2;
@@ -31,6 +31,13 @@ pub enum Failure {
         action: &'static str,
         /// Why it failed.
         error: io::Error,
+    },
+    /// A mesh file the scene names could not be read or is not a valid OBJ file.
+    MeshFile {
+        /// The file path, or the built-in scene's label.
+        source: String,
+        /// Where the scene names the file, which file, and why it could not be used.
+        error: LoadError,
     },
     /// The scene argument is neither an existing file nor a built-in scene.
     UnknownScene {
@@ -82,7 +89,10 @@ impl Failure {
     pub fn exit_status(&self) -> u8 {
         match self {
             Self::InvalidScene { .. } | Self::InvalidState { .. } => EXIT_INVALID_SCENE,
-            Self::Io { .. } | Self::UnknownScene { .. } | Self::Step { .. } => EXIT_IO,
+            Self::Io { .. }
+            | Self::MeshFile { .. }
+            | Self::UnknownScene { .. }
+            | Self::Step { .. } => EXIT_IO,
             Self::OverwritesInput { .. } => EXIT_USAGE,
             #[cfg(not(feature = "viewer"))]
             Self::NoViewer => EXIT_USAGE,
@@ -99,6 +109,7 @@ impl fmt::Display for Failure {
                 action,
                 error,
             } => write!(formatter, "{}: {action}: {error}", path.display()),
+            Self::MeshFile { source, error } => write!(formatter, "{source}: {error}"),
             Self::UnknownScene { argument } => write!(
                 formatter,
                 "{argument}: cannot read scene: no such file, and no built-in scene of that name \

@@ -1,11 +1,10 @@
 //! Where a scene comes from: a file, or a built-in scene named on the command line.
 
-use std::fs;
 use std::path::{Path, PathBuf};
 
 use crate::builtin::{self, BuiltinScene};
 use crate::failure::Failure;
-use rebond::scene::Scene;
+use rebond::scene::{LoadError, Scene};
 
 /// The scene a command was given.
 #[derive(Debug, Clone)]
@@ -41,17 +40,27 @@ impl SceneSource {
 
     /// Reads, checks and loads the scene.
     pub fn load(&self) -> Result<Scene, Failure> {
-        let parsed = match self {
-            Self::File(path) => {
-                let bytes = fs::read(path)
-                    .map_err(|error| Failure::io(path, "cannot read scene", error))?;
-                Scene::from_json(&bytes)
+        let loaded = match self {
+            Self::File(path) => Scene::from_file(path),
+            Self::Builtin(scene) => {
+                let files: Vec<(&str, &[u8])> = scene
+                    .files
+                    .iter()
+                    .map(|(name, contents)| (*name, contents.as_bytes()))
+                    .collect();
+                Scene::from_json_with_files(scene.json.as_bytes(), &files)
             }
-            Self::Builtin(scene) => Scene::from_json(scene.json.as_bytes()),
         };
-        parsed.map_err(|error| Failure::InvalidScene {
-            source: self.label(),
-            error,
+        loaded.map_err(|error| match error {
+            LoadError::Read { path, error } => Failure::io(&path, "cannot read scene", error),
+            LoadError::Invalid(error) => Failure::InvalidScene {
+                source: self.label(),
+                error,
+            },
+            error @ LoadError::Mesh { .. } => Failure::MeshFile {
+                source: self.label(),
+                error,
+            },
         })
     }
 }

@@ -817,14 +817,18 @@ impl RigidBody {
 }
 
 /// Mass properties of a dynamic body and its inverse inertia, with every failure named: a
-/// halfspace (field `shape`); a shape whose mass or inertia is out of `f32`'s reach even at unit
+/// halfspace, triangle mesh or heightfield (field `shape`); a shape whose mass or inertia is out of `f32`'s reach even at unit
 /// density (`shape.radius`, `shape.half_extents`, …); otherwise a mass or inertia that is not
 /// positive and finite (field `mass` when given, `density` otherwise).
 fn dynamic_mass_properties(desc: &BodyDesc) -> Result<(MassProperties, Mat3)> {
-    let properties = desc
-        .shape
-        .mass_properties(desc.density)
-        .ok_or_else(|| Error::new("shape", ErrorKind::HalfspaceOnDynamicBody))?;
+    let properties = desc.shape.mass_properties(desc.density).ok_or_else(|| {
+        let kind = if desc.shape.is_triangulated() {
+            ErrorKind::MeshOnDynamicBody
+        } else {
+            ErrorKind::HalfspaceOnDynamicBody
+        };
+        Error::new("shape", kind)
+    })?;
     let properties = match desc.mass {
         Some(mass) => properties.scaled_to_mass(mass),
         None => properties,

@@ -23,6 +23,15 @@ pub enum ErrorKind {
     InvalidCompound(&'static str),
     /// A halfspace on a dynamic body: it has no finite mass.
     HalfspaceOnDynamicBody,
+    /// A triangle mesh or heightfield on a dynamic body: it has no volume or mass.
+    MeshOnDynamicBody,
+    /// A mesh index that names no vertex.
+    IndexOutOfRange { index: u32, len: usize },
+    /// A triangle mesh with no triangle of positive area.
+    EmptyMesh,
+    /// Heightfield rows that are too few (fewer than 2), too short (fewer than 2 samples) or of
+    /// unequal lengths.
+    InvalidHeightField,
     /// The body's mass would not be positive and finite.
     InvalidMass,
     /// A shape so small or so large that its mass or inertia cannot be represented in 32-bit
@@ -98,6 +107,18 @@ impl fmt::Display for ErrorKind {
                     "a halfspace is only allowed on static or kinematic bodies"
                 )
             }
+            Self::MeshOnDynamicBody => write!(
+                f,
+                "a trimesh or heightfield is only allowed on static or kinematic bodies"
+            ),
+            Self::IndexOutOfRange { index, len } => {
+                write!(f, "index {index} is out of range for {len} vertices")
+            }
+            Self::EmptyMesh => write!(f, "the mesh has no triangle of positive area"),
+            Self::InvalidHeightField => write!(
+                f,
+                "heightfield rows must be at least 2, each of the same length, at least 2"
+            ),
             Self::InvalidMass => write!(f, "mass of a dynamic body must be positive and finite"),
             Self::UnrepresentableSize => write!(
                 f,

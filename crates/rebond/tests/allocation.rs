@@ -1,7 +1,7 @@
 //! No allocation in a steady step (a project rule): a counting global allocator proves that once
 //! a scene has run long enough to size every buffer, stepping it again allocates nothing, with
-//! events and sensors, and in a scene of cylinders, hulls and capsules whose pairs go through GJK
-//! and EPA.
+//! events and sensors, in a scene of cylinders, hulls and capsules whose pairs go through GJK
+//! and EPA, and on triangle meshes and heightfields.
 
 mod common;
 
@@ -215,6 +215,69 @@ fn a_steady_step_of_cylinders_hulls_and_capsules_allocates_nothing() {
     allocations_of(|| {
         sweep(&mut world, &sweepers, 3.0, |_| {});
         sweep(&mut world, &sweepers, 3.0, |_| {});
+    });
+}
+
+/// Bodies resting and sliding on a mesh floor and a heightfield, and a kinematic box sweeping
+/// over them: the triangles found, their manifolds and the merged points reuse the narrow phase's
+/// buffers.
+#[test]
+fn a_steady_step_on_meshes_and_heightfields_allocates_nothing() {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    let (cells, size) = (12u32, 12.0);
+    let mut vertices = Vec::new();
+    for i in 0..=cells {
+        for j in 0..=cells {
+            let (x, z) = (j as f32 / cells as f32 - 0.5, i as f32 / cells as f32 - 0.5);
+            vertices.push(Vec3::new(x * size, 0.0, z * size));
+        }
+    }
+    let at = |i: u32, j: u32| i * (cells + 1) + j;
+    let indices: Vec<[u32; 3]> = (0..cells * cells)
+        .flat_map(|cell| {
+            let (i, j) = (cell / cells, cell % cells);
+            [
+                [at(i, j), at(i + 1, j), at(i + 1, j + 1)],
+                [at(i, j), at(i + 1, j + 1), at(i, j + 1)],
+            ]
+        })
+        .collect();
+    let floor = Shape::trimesh(vertices, &indices).unwrap();
+    world.add_body(BodyDesc::static_body(floor)).unwrap();
+    let heights: Vec<Vec<f32>> = (0..9)
+        .map(|i| (0..9).map(|j| 0.1 * ((i + j) % 3) as f32).collect())
+        .collect();
+    let terrain = Shape::heightfield(&heights, Vec3::new(8.0, 1.0, 8.0)).unwrap();
+    world
+        .add_body(BodyDesc::static_body(terrain).position(Vec3::new(0.0, 0.0, 12.0)))
+        .unwrap();
+    for (index, z) in [0.0f32, 12.0].into_iter().enumerate() {
+        for k in 0..4 {
+            let shape = if (k + index) % 2 == 0 {
+                Shape::cuboid(Vec3::splat(0.4)).unwrap()
+            } else {
+                pebble()
+            };
+            world
+                .add_body(
+                    BodyDesc::dynamic(shape)
+                        .position(Vec3::new(k as f32 * 1.3 - 2.0, 0.8, z))
+                        .can_sleep(false),
+                )
+                .unwrap();
+        }
+    }
+    let sweeper = world
+        .add_body(
+            BodyDesc::kinematic(Shape::cuboid(Vec3::splat(0.3)).unwrap())
+                .position(Vec3::new(-3.0, 0.35, 2.0)),
+        )
+        .unwrap();
+    sweep(&mut world, &[sweeper], 3.0, |_| {});
+    sweep(&mut world, &[sweeper], 3.0, |_| {});
+    allocations_of(|| {
+        sweep(&mut world, &[sweeper], 3.0, |_| {});
+        sweep(&mut world, &[sweeper], 3.0, |_| {});
     });
 }
 

@@ -221,7 +221,12 @@ impl Solid {
                 Vec3::new(radial.max(0.0), axial.max(0.0), 0.0).length()
             }
             Shape::ConvexHull(hull) => distance_to_hull(hull, local),
-            Shape::Compound(_) | Shape::Halfspace(_) => unreachable!("not generated"),
+            Shape::Compound(_)
+            | Shape::Halfspace(_)
+            | Shape::TriMesh(_)
+            | Shape::HeightField(_) => {
+                unreachable!("not generated")
+            }
         }
     }
 }

@@ -7,7 +7,7 @@ use rebond::World;
 
 /// A scene with every shape and every joint kind, things falling, sliding, rolling, hanging,
 /// driven and asleep: a static floor, a sphere, a box, a capsule, a cylinder, a hull and a
-/// compound dropped on it; a fixed, a ball (limits, friction), a revolute (limits, motor), a
+/// compound dropped on it; a heightfield and a triangle-mesh ramp with bodies rolling on them; a fixed, a ball (limits, friction), a revolute (limits, motor), a
 /// prismatic (limits, motor) and two distance joints (spring, rope).
 const EVERY_KIND: &str = r#"{
   "bodies": [
@@ -34,7 +34,17 @@ const EVERY_KIND: &str = r#"{
     {"name": "door", "shape": {"type": "box", "half_extents": [0.5, 0.8, 0.05]}, "position": [-4, 1.5, -3]},
     {"name": "slider", "shape": {"type": "box", "half_extents": [0.2, 0.2, 0.2]}, "position": [4, 2, -3]},
     {"name": "spring_weight", "shape": {"type": "sphere", "radius": 0.15}, "position": [-2, 3, -4]},
-    {"name": "rope_end", "shape": {"type": "box", "half_extents": [0.15, 0.15, 0.15]}, "position": [1, 3, -5]}
+    {"name": "rope_end", "shape": {"type": "box", "half_extents": [0.15, 0.15, 0.15]}, "position": [1, 3, -5]},
+    {"name": "hill", "type": "static", "shape": {"type": "heightfield", "scale": [6, 1, 6],
+     "heights": [[0, 0.2, 0, 0.1], [0.1, 0.8, 0.3, 0], [0, 0.4, 0.6, 0.2], [0.2, 0, 0.1, 0]]},
+     "position": [12, 0, 0]},
+    {"name": "roller", "shape": {"type": "sphere", "radius": 0.25}, "position": [12, 1.5, 0.3]},
+    {"name": "tumbler", "shape": {"type": "box", "half_extents": [0.2, 0.2, 0.2]}, "position": [11, 1.5, -1]},
+    {"name": "ramp", "type": "static", "shape": {"type": "trimesh",
+     "vertices": [[-2, 0, -2], [2, 1, -2], [2, 1, 2], [-2, 0, 2], [0, 0.5, 0]],
+     "indices": [[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]}, "position": [0, 0, 12]},
+    {"name": "skid", "shape": {"type": "capsule", "radius": 0.15, "half_height": 0.2},
+     "position": [0.5, 1.5, 12]}
   ],
   "joints": [
     {"type": "fixed", "body_a": "crate", "body_b": "glued", "anchor": [-1.5, 1.0, 1]},

@@ -295,3 +295,56 @@ fn a_static_body_moved_by_the_user_is_found_and_collided_where_it_now_is() {
     let height = world.body(ball).unwrap().position().y;
     assert!((height - 0.35).abs() < 0.01, "the ball is at y = {height}");
 }
+
+#[test]
+fn bodies_and_joints_added_as_json_are_checked_like_scene_entries() {
+    let mut scene = Scene::from_json(
+        br#"{"gravity": [0, 0, 0], "bodies": [{"name": "base",
+        "type": "static", "shape": {"type": "box", "half_extents": [1, 1, 1]}}]}"#,
+    )
+    .unwrap();
+    let arm = br#"{"name": "arm", "shape": {"type": "box", "half_extents": [0.5, 0.1, 0.1]},
+        "position": [1.5, 0, 0]}"#;
+    assert_eq!(scene.add_body_json(arm).unwrap(), 1);
+    let hinge = br#"{"type": "revolute", "body_a": "base", "body_b": "arm", "anchor": [1, 0, 0],
+        "axis": [0, 0, 1], "motor": {"target_velocity": 1, "max_force": 100}}"#;
+    assert_eq!(scene.add_joint_json(hinge).unwrap(), 0);
+    let names: Vec<&str> = scene.body_handles().map(|(name, _)| name).collect();
+    assert_eq!(names, ["base", "arm"]);
+    let joints: Vec<&str> = scene.joint_handles().map(|(name, _)| name).collect();
+    assert_eq!(joints, ["joint0"]);
+
+    // Errors name the place the entry would have in a scene file.
+    let error = scene
+        .add_body_json(br#"{"shape": {"type": "sphere", "radius": -1}}"#)
+        .unwrap_err();
+    assert_eq!(error.place, "bodies[2].shape.radius");
+    assert_eq!(error.message, "must be positive, got -1");
+    let error = scene.add_body_json(arm).unwrap_err();
+    assert_eq!(error.place, "bodies[2].name");
+    let error = scene
+        .add_body_json(br#"{"position": [0, 0, 0]}"#)
+        .unwrap_err();
+    assert_eq!(error.place, "bodies[2].shape");
+    assert!(error.message.starts_with("required field is missing"));
+    let error = scene.add_body_json(b"[1, 2]").unwrap_err();
+    assert_eq!(error.place, "bodies[2]");
+    let error = scene
+        .add_joint_json(br#"{"type": "ball", "body_b": "hand"}"#)
+        .unwrap_err();
+    assert_eq!(error.place, "joints[1].body_b");
+    assert_eq!(error.message, "no body is named \"hand\"");
+    // A refused entry adds nothing.
+    assert_eq!(scene.bodies().count(), 2);
+    assert_eq!(scene.joints().count(), 1);
+
+    for _ in 0..60 {
+        scene.step().unwrap();
+    }
+    let arm = scene.body_handle("arm").unwrap();
+    let spin = scene.world().body(arm).unwrap().angular_velocity();
+    assert!(
+        (spin.z - 1.0).abs() < 1e-3,
+        "the motor turns the arm: {spin}"
+    );
+}

@@ -1,11 +1,12 @@
 //! Triangle meshes of the shapes, in the body frame, with per-vertex normals for lighting.
 //! Round shapes (sphere, capsule, cylinder) are lathed about the Y axis from a profile; boxes and
-//! hulls are flat-shaded, one set of vertices per face. A halfspace has no mesh: the renderer
-//! draws it as a ground grid.
+//! hulls are flat-shaded, one set of vertices per face, and so are triangle meshes and
+//! heightfields, one set a triangle. A halfspace has no mesh: the renderer draws it as a ground
+//! grid.
 
 use std::f32::consts::{FRAC_PI_2, TAU};
 
-use rebond::shape::{Capsule, ConvexHull, Cuboid, Cylinder, Sphere};
+use rebond::shape::{Capsule, ConvexHull, Cuboid, Cylinder, Sphere, Triangle};
 use rebond::{Pose, Shape, Vec3};
 
 /// Segments around the Y axis of lathed shapes.
@@ -70,7 +71,32 @@ pub fn shape_mesh(shape: &Shape) -> Option<TriangleMesh> {
             mesh
         }
         Shape::Halfspace(_) => return None,
+        Shape::TriMesh(trimesh) => flat_triangles(
+            (0..trimesh.indices().len() as u32).filter_map(|index| trimesh.triangle(index)),
+        ),
+        Shape::HeightField(heightfield) => flat_triangles(
+            (0..heightfield.triangle_count()).filter_map(|index| heightfield.triangle(index)),
+        ),
     })
+}
+
+/// Flat-shaded triangles, each drawn from both sides (a mesh collides on both; a heightfield is
+/// seen from above).
+fn flat_triangles(triangles: impl Iterator<Item = Triangle>) -> TriangleMesh {
+    let mut mesh = TriangleMesh::default();
+    for triangle in triangles {
+        let Some(normal) = triangle.normal() else {
+            continue;
+        };
+        let [a, b, c] = triangle.vertices;
+        for (corners, facing) in [([a, b, c], normal), ([a, c, b], -normal)] {
+            let first = mesh.vertex(corners[0], facing);
+            mesh.vertex(corners[1], facing);
+            mesh.vertex(corners[2], facing);
+            mesh.indices.extend([first, first + 1, first + 2]);
+        }
+    }
+    mesh
 }
 
 /// One point of a lathe profile: distance from the Y axis, height, and the outward normal in

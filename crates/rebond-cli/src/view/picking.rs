@@ -67,6 +67,8 @@ pub fn ray_shape(ray: &Ray, shape: &Shape, pose: &Pose) -> Option<f32> {
             .filter_map(|child| ray_shape(&local, &child.shape, &child.pose))
             .min_by(f32::total_cmp),
         Shape::Halfspace(halfspace) => ray_halfspace(&local, halfspace),
+        // Level geometry is static: nothing to pick and drag.
+        Shape::TriMesh(_) | Shape::HeightField(_) => None,
     }
 }
 

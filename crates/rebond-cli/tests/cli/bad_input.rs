@@ -18,7 +18,7 @@ fn scene_with(body: &str) -> String {
 
 /// Runs `scene` with a record file and checks it is refused at `place` with a message
 /// containing `message`.
-fn assert_refused(test_name: &str, scene: &str, place: &str, message: &str) {
+pub fn assert_refused(test_name: &str, scene: &str, place: &str, message: &str) {
     let dir = TestDir::new(&format!("bad_input_{test_name}"));
     let scene_path = dir.write("scene.json", scene);
     let record_path = dir.path("record.jsonl");

@@ -3,7 +3,7 @@
 use crate::common::{rebond, rebond_in, TestDir};
 
 /// Every built-in scene the brief asks for, with its body count (ground included).
-const BUILTIN_SCENES: [(&str, usize); 13] = [
+const BUILTIN_SCENES: [(&str, usize); 15] = [
     ("showcase", 31),
     ("pyramid", 211),
     ("column", 11),
@@ -17,6 +17,8 @@ const BUILTIN_SCENES: [(&str, usize); 13] = [
     ("ragdolls", 301),
     ("car", 12),
     ("cradle_hanging", 6),
+    ("terrain", 501),
+    ("level", 151),
 ];
 
 /// The value of a `label  value` line of a summary.

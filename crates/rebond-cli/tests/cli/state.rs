@@ -38,10 +38,11 @@ fn lines_by_step(path: &Path) -> Vec<(u64, String)> {
 
 #[test]
 fn resuming_a_saved_state_writes_the_record_of_an_uninterrupted_run() {
-    // Built-in scenes with joints, contacts, sleeping and every shape: 120 steps in one go, or
-    // 50 steps saved, resumed for 40 and saved again, then resumed for 30. Every line the
-    // pieces write is the uninterrupted run's line for that step, byte for byte.
-    for scene in ["ragdolls", "car", "showcase"] {
+    // Built-in scenes with joints, contacts, sleeping, every convex shape and a triangle mesh:
+    // 120 steps in one go, or 50 steps saved, resumed for 40 and saved again, then resumed for
+    // 30. Every line the pieces write is the uninterrupted run's line for that step, byte for
+    // byte.
+    for scene in ["ragdolls", "car", "showcase", "level"] {
         let dir = TestDir::new(&format!("state_resume_{scene}"));
         let (whole, first, second, third) = (
             dir.path("whole.jsonl"),

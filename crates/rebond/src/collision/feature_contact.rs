@@ -9,7 +9,7 @@
 
 use std::f32::consts::TAU;
 
-use super::clipping::{clip_polygon, clip_segment, reduce_contacts, ClipVertex};
+use super::clipping::{clip_polygon, clip_segment, reduce_contacts, ClipFeature, ClipVertex};
 use super::epa::{ContactInfo, Polytope};
 use super::gjk::SimplexCache;
 use super::manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
@@ -69,10 +69,10 @@ const LARGER_FACE_RATIO: f32 = 1.01;
 const DUPLICATE_DISTANCE: f32 = 1.0e-3;
 
 /// The id of the deepest point found by GJK/EPA.
-const DEEPEST_POINT_ID: u32 = u32::MAX;
+pub(crate) const DEEPEST_POINT_ID: u32 = u32::MAX;
 
 /// A shape's supporting feature along a direction, in world space, on the shape's core.
-struct Feature {
+pub(crate) struct Feature {
     points: [Vec3; MAX_FEATURE_VERTICES],
     len: usize,
     /// Outward unit normal when the feature is a face (three or more points).
@@ -93,6 +93,19 @@ impl Feature {
             index,
             cap_square: None,
         }
+    }
+
+    /// The feature of `points` (one point, a segment, or a convex polygon counter-clockwise about
+    /// `face_normal`, which is ignored for fewer than three points), named `index` in ids.
+    pub(crate) fn of_points(index: u32, points: &[Vec3], face_normal: Vec3) -> Self {
+        let mut feature = Self::new(index);
+        for &point in points {
+            feature.push(point);
+        }
+        if feature.is_face() {
+            feature.face_normal = face_normal;
+        }
+        feature
     }
 
     fn push(&mut self, point: Vec3) {
@@ -137,7 +150,7 @@ impl Feature {
 }
 
 /// The supporting feature of `shape` at `pose` along world `direction` (unit).
-fn supporting_feature(shape: &Shape, pose: &Pose, direction: Vec3) -> Feature {
+pub(crate) fn supporting_feature(shape: &Shape, pose: &Pose, direction: Vec3) -> Feature {
     let local = pose.inverse_transform_vector(direction);
     match shape {
         Shape::Capsule(capsule) => {
@@ -202,7 +215,11 @@ fn supporting_feature(shape: &Shape, pose: &Pose, direction: Vec3) -> Feature {
             Some(polyhedron) => polyhedron_face(&polyhedron, pose, local),
             None => Feature::new(0),
         },
-        Shape::Sphere(_) | Shape::Compound(_) | Shape::Halfspace(_) => {
+        Shape::Sphere(_)
+        | Shape::Compound(_)
+        | Shape::Halfspace(_)
+        | Shape::TriMesh(_)
+        | Shape::HeightField(_) => {
             let mut feature = Feature::new(0);
             feature.push(pose.position);
             feature
@@ -254,6 +271,28 @@ pub fn collide_features(
     let deepest = polytope.contact_from(&core_a, &core_b, margin, simplex)?;
     let feature_a = supporting_feature(shape_a, pose_a, deepest.normal);
     let feature_b = supporting_feature(shape_b, pose_b, -deepest.normal);
+    let radii = [shape_a.core_radius(), shape_b.core_radius()];
+    Some(manifold_from_features(
+        &deepest, &feature_a, &feature_b, radii, margin, None,
+    ))
+}
+
+/// The manifold of two shapes whose deepest point is `deepest`, from their supporting features
+/// along its normal (`feature_a` along `n`, `feature_b` along `−n`) and their rounding radii:
+/// the feature clipping of [`collide_features`], for any pair of convex parts, triangles
+/// included. `triangle_sides` is `Some(sides)` when A is a triangle: its face, when aligned with
+/// the normal, is then always the reference (the larger face of B would make the triangle's
+/// corners and edge crossings the points), and the points made by its sides in `sides` (bit `j`
+/// for the side from its vertex `j` to `j + 1`: the edges it shares with neighbours on one plane)
+/// are dropped, since the surface goes on beyond them.
+pub(crate) fn manifold_from_features(
+    deepest: &ContactInfo,
+    feature_a: &Feature,
+    feature_b: &Feature,
+    radii: [f32; 2],
+    margin: f32,
+    triangle_sides: Option<u8>,
+) -> Manifold {
     let alignment_a = feature_a.face_normal.dot(deepest.normal);
     let alignment_b = -feature_b.face_normal.dot(deepest.normal);
     let use_a = feature_a.is_face() && alignment_a >= FACE_COSINE;
@@ -263,6 +302,7 @@ pub fn collide_features(
         margin,
     };
     let prefer_b = match (use_a, use_b) {
+        (true, _) if triangle_sides.is_some() => false,
         (true, true) if (alignment_a - alignment_b).abs() <= REFERENCE_PREFERENCE => {
             feature_b.area() > LARGER_FACE_RATIO * feature_a.area()
         }
@@ -270,10 +310,10 @@ pub fn collide_features(
         _ => use_b && !use_a,
     };
     let clipped = if use_a && !prefer_b {
-        clip_against_face(&feature_a, &feature_b, shape_b.core_radius(), 0, &limits)
+        let dropped_sides = triangle_sides.unwrap_or(0);
+        clip_against_face(feature_a, feature_b, radii[1], 0, &limits, dropped_sides)
     } else if use_b {
-        clip_against_face(&feature_b, &feature_a, shape_a.core_radius(), 1, &limits)
-            .map(Manifold::flipped)
+        clip_against_face(feature_b, feature_a, radii[0], 1, &limits, 0).map(Manifold::flipped)
     } else {
         None
     };
@@ -284,9 +324,9 @@ pub fn collide_features(
         .map(|point| point.separation)
         .fold(f32::INFINITY, f32::min);
     if deepest.separation < deepest_clipped_separation - DUPLICATE_DISTANCE {
-        add_deepest_point(&mut manifold, &deepest);
+        add_deepest_point(&mut manifold, deepest);
     }
-    Some(manifold)
+    manifold
 }
 
 fn midpoint(deepest: &ContactInfo) -> Vec3 {
@@ -329,19 +369,30 @@ struct SeparationLimits {
 /// point's height above the reference plane, but never deeper than `limits.deepest`: the reference
 /// normal may be up to 11° off the contact normal, along which the shapes overlap least, and
 /// would overstate the depth of a point near the reference face's rim. `side` (0: A holds the
-/// reference face, 1: B) and the feature indices go into the ids.
+/// reference face, 1: B) and the feature indices go into the ids. Points made by the reference's
+/// sides in `dropped_sides` (crossings of a side, corners between two such sides) are left out.
 fn clip_against_face(
     reference: &Feature,
     incident: &Feature,
     incident_radius: f32,
     side: u32,
     limits: &SeparationLimits,
+    dropped_sides: u8,
 ) -> Option<Manifold> {
     let normal = reference.face_normal;
     let plane_point = reference.points[0];
     let mut candidates = [ContactPoint::default(); 2 * MAX_FEATURE_VERTICES];
     let mut count = 0;
+    let dropped = |side: u8| side < 8 && dropped_sides & (1 << side) != 0;
     let mut offer = |vertex: &ClipVertex| {
+        let made_by_dropped_sides = match vertex.feature {
+            ClipFeature::IncidentVertex(_) => false,
+            ClipFeature::EdgeCrossing { side, .. } => dropped(side),
+            ClipFeature::SideCorner { first, second } => dropped(first) && dropped(second),
+        };
+        if made_by_dropped_sides {
+            return;
+        }
         let height = normal.dot(vertex.position - plane_point) - incident_radius;
         let separation = height.max(limits.deepest);
         if separation <= limits.margin && count < candidates.len() {

@@ -121,7 +121,7 @@ pub fn collide_halfspace(
                 }
             }
         }
-        Shape::Compound(_) | Shape::Halfspace(_) => {}
+        Shape::Compound(_) | Shape::Halfspace(_) | Shape::TriMesh(_) | Shape::HeightField(_) => {}
     }
     if candidates.len == 0 {
         return None;

@@ -41,6 +41,19 @@ impl Manifold {
         }
     }
 
+    /// Keeps only the points for which `keep` is true, in order.
+    pub fn retain(&mut self, mut keep: impl FnMut(&ContactPoint) -> bool) {
+        let mut kept = 0;
+        for index in 0..self.count {
+            let point = self.points[index];
+            if keep(&point) {
+                self.points[kept] = point;
+                kept += 1;
+            }
+        }
+        self.count = kept;
+    }
+
     /// Adds a point; returns false (and drops it) when the manifold is already full.
     pub fn push(&mut self, point: ContactPoint) -> bool {
         if self.count == MAX_MANIFOLD_POINTS {

@@ -12,10 +12,12 @@ pub mod feature_contact;
 pub mod gjk;
 pub mod halfspace;
 pub mod manifold;
+mod mesh_contact;
 pub mod narrow_phase;
 pub mod polyhedron;
 pub mod polyhedron_contact;
 mod separating_axis;
+pub mod triangle_contact;
 
 pub use manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
 

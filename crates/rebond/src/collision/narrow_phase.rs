@@ -15,6 +15,7 @@ use super::feature_contact::collide_features;
 use super::gjk::{self, SimplexCache};
 use super::halfspace::collide_halfspace;
 use super::manifold::Manifold;
+use super::mesh_contact::{MeshScratch, PlacedMesh};
 use super::polyhedron::Polyhedron;
 use super::polyhedron_contact::collide_polyhedra;
 use super::{LocalCore, PosedCore, RelativeCore};
@@ -31,6 +32,8 @@ fn kind_rank(shape: &Shape) -> u8 {
         Shape::Cylinder(_) => 4,
         Shape::ConvexHull(_) => 5,
         Shape::Compound(_) => 6,
+        Shape::TriMesh(_) => 7,
+        Shape::HeightField(_) => 8,
     }
 }
 
@@ -93,16 +96,19 @@ impl<F: FnMut(u32, u32, Manifold)> PartContacts for ColdStart<F> {
 }
 
 /// The narrow phase's scratch space, kept from pair to pair and from step to step so that a
-/// steady step allocates nothing: the polytope EPA grows.
+/// steady step allocates nothing: the polytope EPA grows, and the triangles and manifolds of mesh
+/// contacts.
 #[derive(Debug, Clone, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct NarrowPhase {
     polytope: Polytope,
+    mesh: MeshScratch,
 }
 
 impl NarrowPhase {
-    /// The manifold between two convex shapes (neither a compound), with the normal from A toward
-    /// B, or `None` when their surfaces are farther apart than `margin` metres.
+    /// The manifold between two convex shapes (neither a compound, a mesh nor a heightfield), with
+    /// the normal from A toward B, or `None` when their surfaces are farther apart than `margin`
+    /// metres.
     pub fn collide_convex(
         &mut self,
         shape_a: &Shape,
@@ -134,7 +140,8 @@ impl NarrowPhase {
                 .map(Manifold::flipped);
         }
         match (shape_a, shape_b) {
-            (Shape::Halfspace(_), Shape::Halfspace(_)) | (_, Shape::Compound(_)) => None,
+            (Shape::Halfspace(_), Shape::Halfspace(_))
+            | (_, Shape::Compound(_) | Shape::TriMesh(_) | Shape::HeightField(_)) => None,
             (Shape::Halfspace(halfspace), other) => {
                 collide_halfspace(halfspace, pose_a, other, pose_b, margin)
             }
@@ -181,10 +188,11 @@ impl NarrowPhase {
         }
     }
 
-    /// Every manifold between two shapes, compounds included, added to `contacts` for each pair
-    /// of convex parts in contact (child indices are 0 for a shape that is not a compound), in a
-    /// deterministic order, each query starting from what `contacts` kept for the parts. Parts
-    /// whose bounding boxes, grown by `margin`, do not overlap are skipped.
+    /// Every manifold between two shapes, compounds, meshes and heightfields included, added to
+    /// `contacts` for each pair of convex parts in contact (child indices are 0 for a shape that
+    /// is not a compound; on a mesh or heightfield, the index of the merged manifold, see
+    /// `mesh_contact`), in a deterministic order, each query starting from what `contacts` kept
+    /// for the parts. Parts whose bounding boxes, grown by `margin`, do not overlap are skipped.
     pub fn collide(
         &mut self,
         shape_a: &Shape,
@@ -194,6 +202,10 @@ impl NarrowPhase {
         margin: f32,
         contacts: &mut impl PartContacts,
     ) {
+        if shape_a.is_triangulated() || shape_b.is_triangulated() {
+            self.collide_mesh(shape_a, pose_a, shape_b, pose_b, margin, contacts);
+            return;
+        }
         let mut collide_parts = |child_a: u32,
                                  part_a: &Shape,
                                  part_pose_a: &Pose,
@@ -228,6 +240,52 @@ impl NarrowPhase {
             for_each_part(shape_b, pose_b, |child_b, part_b, part_pose_b| {
                 if bounds_a.overlaps(&part_b.aabb(&part_pose_b)) {
                     collide_parts(child_a, part_a, &part_pose_a, child_b, part_b, &part_pose_b);
+                }
+            });
+        });
+    }
+}
+
+impl NarrowPhase {
+    /// [`NarrowPhase::collide`] when A or B is a mesh or heightfield: each convex part of the
+    /// other shape against the mesh. Two meshes, or a mesh and a halfspace, never touch (both are
+    /// static or kinematic).
+    fn collide_mesh(
+        &mut self,
+        shape_a: &Shape,
+        pose_a: &Pose,
+        shape_b: &Shape,
+        pose_b: &Pose,
+        margin: f32,
+        contacts: &mut impl PartContacts,
+    ) {
+        let mesh_is_a = shape_a.is_triangulated();
+        let (mesh, other, other_pose) = if mesh_is_a {
+            (
+                PlacedMesh {
+                    shape: shape_a,
+                    pose: pose_a,
+                },
+                shape_b,
+                pose_b,
+            )
+        } else {
+            (
+                PlacedMesh {
+                    shape: shape_b,
+                    pose: pose_b,
+                },
+                shape_a,
+                pose_a,
+            )
+        };
+        let scratch = &mut self.mesh;
+        for_each_part(other, other_pose, |child, part, part_pose| {
+            scratch.collide(&mesh, part, &part_pose, margin, |group, manifold| {
+                if mesh_is_a {
+                    contacts.add(group, child, manifold, PartCache::Cold);
+                } else {
+                    contacts.add(child, group, manifold.flipped(), PartCache::Cold);
                 }
             });
         });

@@ -37,6 +37,7 @@
 //!   A body pushed off that course during the step (a bounce), or moved by the user since, may
 //!   be missed where it sticks out of its box, until the next step.
 
+mod mesh;
 mod overlap;
 mod ray;
 mod shape_cast;

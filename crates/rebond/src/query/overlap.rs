@@ -1,6 +1,7 @@
 //! Overlap tests against one shape: does it hold a point, does it overlap another shape.
 //! Touching counts as overlapping.
 
+use super::mesh::part_overlaps_mesh;
 use super::{convex_parts, world_support, PlacedHalfspace};
 use crate::collision::gjk;
 use crate::collision::PosedCore;
@@ -28,19 +29,33 @@ pub(crate) fn shape_contains_point(shape: &Shape, pose: &Pose, point: Vec3) -> b
                 .iter()
                 .all(|face| face.normal.dot(local) <= face.offset),
             Shape::Halfspace(halfspace) => halfspace.normal().dot(local) <= 0.0,
-            Shape::Compound(_) => false,
+            Shape::HeightField(heightfield) => heightfield.is_below(local),
+            Shape::Compound(_) | Shape::TriMesh(_) => false,
         }
     })
 }
 
 /// Whether `shape_a` at `pose_a` and `shape_b` at `pose_b` overlap or touch: for compounds,
-/// whether any two of their parts do.
+/// whether any two of their parts do; for a mesh or heightfield, whether a triangle touches a part
+/// of the other (two meshes never do: they are surfaces of static or kinematic bodies).
 pub(crate) fn shapes_overlap(
     shape_a: &Shape,
     pose_a: &Pose,
     shape_b: &Shape,
     pose_b: &Pose,
 ) -> bool {
+    match (shape_a.is_triangulated(), shape_b.is_triangulated()) {
+        (true, true) => return false,
+        (true, false) => {
+            return convex_parts(shape_b, *pose_b)
+                .any(|(part, part_pose)| part_overlaps_mesh(shape_a, pose_a, part, &part_pose))
+        }
+        (false, true) => {
+            return convex_parts(shape_a, *pose_a)
+                .any(|(part, part_pose)| part_overlaps_mesh(shape_b, pose_b, part, &part_pose))
+        }
+        (false, false) => {}
+    }
     convex_parts(shape_a, *pose_a).any(|(part_a, part_pose_a)| {
         let bounds_a = part_a.aabb(&part_pose_a);
         convex_parts(shape_b, *pose_b).any(|(part_b, part_pose_b)| {

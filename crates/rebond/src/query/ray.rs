@@ -6,6 +6,7 @@
 //! the interval: entering ahead (`enter ≥ 0`) it hits at `enter`; starting inside
 //! (`enter < 0 ≤ leave`) it hits at zero if solid, at `leave` if hollow.
 
+use super::mesh::cast_ray_at_mesh;
 use super::{convex_parts, Ray};
 use crate::math::{Pose, Vec3};
 use crate::shape::{Capsule, ConvexHull, Cuboid, Cylinder, Shape};
@@ -21,8 +22,12 @@ pub(crate) struct ShapeRayHit {
 
 /// The first point where `ray` (validated: unit direction) meets `shape` placed at `pose`, within
 /// the ray's maximum distance. A compound is hit at the nearest of its children's hits (the
-/// first child among equals), each child being solid or hollow as the ray says.
+/// first child among equals), each child being solid or hollow as the ray says; a mesh or
+/// heightfield at its first triangle (see `query::mesh`).
 pub(crate) fn cast_ray_at_shape(shape: &Shape, pose: &Pose, ray: &Ray) -> Option<ShapeRayHit> {
+    if shape.is_triangulated() {
+        return cast_ray_at_mesh(shape, pose, ray);
+    }
     convex_parts(shape, *pose)
         .filter_map(|(part, part_pose)| cast_ray_at_convex(part, &part_pose, ray))
         .reduce(|best, hit| {
@@ -128,6 +133,7 @@ fn line_crossing(shape: &Shape, origin: Vec3, direction: Vec3) -> Option<Crossin
         Shape::Capsule(capsule) => capsule_crossing(capsule, origin, direction),
         Shape::Cylinder(cylinder) => cylinder_crossing(cylinder, origin, direction),
         Shape::ConvexHull(hull) => hull_crossing(hull, origin, direction),
+        Shape::Compound(_) | Shape::TriMesh(_) | Shape::HeightField(_) => None,
         Shape::Halfspace(halfspace) => {
             // Inside where n·(o + t d) ≤ 0.
             let height = halfspace.normal().dot(origin);
@@ -146,7 +152,6 @@ fn line_crossing(shape: &Shape, origin: Vec3, direction: Vec3) -> Option<Crossin
             }
             Some(crossing)
         }
-        Shape::Compound(_) => None,
     }
 }
 

@@ -12,9 +12,9 @@
 
 use super::{convex_parts, world_support, PlacedHalfspace};
 use crate::collision::gjk::{self, SupportPoint};
-use crate::collision::{epa, PosedCore};
+use crate::collision::{epa, PosedCore, SupportMap};
 use crate::math::{Aabb, Pose, Vec3};
-use crate::shape::Shape;
+use crate::shape::{Shape, Triangle};
 
 /// Most distance queries per pair of parts. Advancement converges in a handful; this only bounds
 /// grazing passes, where it slows down, and reports them as misses.
@@ -61,6 +61,59 @@ pub(crate) struct Sweep<'a> {
     pub max_distance: f32,
 }
 
+/// The first contact of the sweep (a shape that is not a mesh) with the mesh or heightfield
+/// `target` at `target_pose`: each convex part against each triangle near its path.
+fn cast_shape_at_mesh(sweep: &Sweep, target: &Shape, target_pose: &Pose) -> Option<CastHit> {
+    let mut best: Option<CastHit> = None;
+    let to_local = target_pose.inverse();
+    for (part, part_pose) in convex_parts(sweep.shape, sweep.pose) {
+        let local_pose = to_local.mul_pose(&part_pose);
+        let local_direction = to_local.transform_vector(sweep.direction);
+        let reach = best.map_or(sweep.max_distance, |hit| hit.distance);
+        let path = swept_aabb(part, &local_pose, local_direction, reach);
+        let bounds = match target {
+            Shape::TriMesh(mesh) => mesh.local_bounds(),
+            Shape::HeightField(heightfield) => heightfield.local_bounds(),
+            _ => return None,
+        };
+        let path = Aabb::new(path.min.max(bounds.min), path.max.min(bounds.max));
+        let mut triangles = Vec::new();
+        target.triangles_in(&path, |index| triangles.push(index));
+        triangles.sort_unstable();
+        for index in triangles {
+            let Some(local) = target.triangle(index) else {
+                continue;
+            };
+            let triangle = Triangle {
+                vertices: local.vertices.map(|v| target_pose.transform_point(v)),
+                edge_flags: local.edge_flags,
+            };
+            let part_sweep = Sweep {
+                shape: part,
+                pose: part_pose,
+                direction: sweep.direction,
+                max_distance: best.map_or(sweep.max_distance, |hit| hit.distance),
+            };
+            let overlap = |moving: &PosedCore| CastHit {
+                distance: 0.0,
+                point: moving.pose.position,
+                normal: -sweep.direction,
+            };
+            let centre = triangle.vertices.iter().sum::<Vec3>() / 3.0;
+            let start = centre - part_pose.position;
+            let Some(hit) = advance(&part_sweep, &triangle, 0.0, start, overlap) else {
+                continue;
+            };
+            if hit.distance <= part_sweep.max_distance
+                && best.is_none_or(|best| hit.distance < best.distance)
+            {
+                best = Some(hit);
+            }
+        }
+    }
+    best
+}
+
 /// The box holding `shape` along its whole path from `pose`, `distance` metres along `direction`.
 fn swept_aabb(shape: &Shape, pose: &Pose, direction: Vec3, distance: f32) -> Aabb {
     let start = shape.aabb(pose);
@@ -77,12 +130,20 @@ fn swept_aabb(shape: &Shape, pose: &Pose, direction: Vec3, distance: f32) -> Aab
 }
 
 /// The first contact of the sweep with `target` at `target_pose`, within the sweep's distance.
-/// Compounds on either side are taken part by part (the first pair among equally near ones).
+/// Compounds on either side are taken part by part (the first pair among equally near ones); a
+/// mesh or heightfield target triangle by triangle (`query::mesh`). A swept mesh or heightfield
+/// meets nothing.
 pub(crate) fn cast_shape_at_shape(
     sweep: &Sweep,
     target: &Shape,
     target_pose: &Pose,
 ) -> Option<CastHit> {
+    if sweep.shape.is_triangulated() {
+        return None;
+    }
+    if target.is_triangulated() {
+        return cast_shape_at_mesh(sweep, target, target_pose);
+    }
     let mut best: Option<CastHit> = None;
     for (part, part_pose) in convex_parts(sweep.shape, sweep.pose) {
         for (target_part, target_part_pose) in convex_parts(target, *target_pose) {
@@ -123,27 +184,40 @@ fn cast_convex(sweep: &Sweep, target: &Shape, target_pose: &Pose) -> Option<Cast
         (_, Shape::Halfspace(fixed)) => {
             cast_shape_at_halfspace(sweep, &PlacedHalfspace::new(fixed, target_pose))
         }
-        _ => advance(sweep, target, target_pose),
+        _ => {
+            let target_core = PosedCore {
+                shape: target,
+                pose: target_pose,
+            };
+            let overlap = |moving: &PosedCore| start_overlap(moving, &target_core);
+            let start = target_pose.position - sweep.pose.position;
+            advance(sweep, &target_core, target.core_radius(), start, overlap)
+        }
     }?;
     (hit.distance <= sweep.max_distance).then_some(hit)
 }
 
-/// Conservative advancement of a bounded part towards a bounded target (module documentation).
-fn advance(sweep: &Sweep, target: &Shape, target_pose: &Pose) -> Option<CastHit> {
-    let target_core = PosedCore {
-        shape: target,
-        pose: target_pose,
-    };
-    let rounding = sweep.shape.core_radius() + target.core_radius();
+/// Conservative advancement of a bounded part towards a bounded target (module documentation):
+/// the target's core `target_core` (a shape's, or a triangle) with rounding `target_radius`,
+/// searched for first along `start_direction`; `overlap(moving)` answers when they overlap before
+/// moving.
+pub(super) fn advance<T: SupportMap>(
+    sweep: &Sweep,
+    target_core: &T,
+    target_radius: f32,
+    start_direction: Vec3,
+    overlap: impl Fn(&PosedCore) -> CastHit,
+) -> Option<CastHit> {
+    let rounding = sweep.shape.core_radius() + target_radius;
     let magnitude = sweep
         .pose
         .position
         .abs()
-        .max(target_pose.position.abs())
+        .max((sweep.pose.position + start_direction).abs())
         .max_element();
     let tolerance = CONTACT_TOLERANCE * (1.0 + magnitude);
     let mut travelled = 0.0;
-    let mut search_direction = target_pose.position - sweep.pose.position;
+    let mut search_direction = start_direction;
     let mut reliable_normal: Option<Vec3> = None;
     for _ in 0..MAX_ITERATIONS {
         let pose = Pose::new(
@@ -154,7 +228,7 @@ fn advance(sweep: &Sweep, target: &Shape, target_pose: &Pose) -> Option<CastHit>
             shape: sweep.shape,
             pose: &pose,
         };
-        let cores = gjk::distance_from_direction(&moving_core, &target_core, search_direction);
+        let cores = gjk::distance_from_direction(&moving_core, target_core, search_direction);
         // `closest` is the point of A − B nearest the origin: the cores are apart by its length,
         // along `normal` from A toward B.
         let closest = cores.simplex.closest_point();
@@ -164,9 +238,9 @@ fn advance(sweep: &Sweep, target: &Shape, target_pose: &Pose) -> Option<CastHit>
                 Some(estimate) => CastHit {
                     distance: travelled,
                     point: cores.point_b,
-                    normal: backed_off_normal(&moving_core, &target_core, estimate, scale),
+                    normal: backed_off_normal(&moving_core, target_core, estimate, scale),
                 },
-                None => start_overlap(&moving_core, &target_core),
+                None => overlap(&moving_core),
             });
         };
         let is_reliable = closest.length() >= RELIABLE_DIRECTION * scale;
@@ -176,12 +250,12 @@ fn advance(sweep: &Sweep, target: &Shape, target_pose: &Pose) -> Option<CastHit>
         // GJK's distance is an upper bound, precise only to its tolerance of the problem's size
         // (a large floor makes that large); the support point along `normal` gives a lower
         // bound, and advancing by a lower bound never overshoots.
-        let farthest = SupportPoint::new(&moving_core, &target_core, normal).w;
+        let farthest = SupportPoint::new(&moving_core, target_core, normal).w;
         let separation = -normal.dot(farthest) - rounding;
         let closing_speed = sweep.direction.dot(normal);
         if separation <= tolerance {
             if travelled == 0.0 && separation < 0.0 {
-                return Some(start_overlap(&moving_core, &target_core));
+                return Some(overlap(&moving_core));
             }
             // One last step, unchecked: like every step it cannot overshoot, and it takes the
             // remaining separation out of the answer.
@@ -194,11 +268,11 @@ fn advance(sweep: &Sweep, target: &Shape, target_pose: &Pose) -> Option<CastHit>
                 -normal
             } else {
                 let estimate = reliable_normal.unwrap_or(-sweep.direction);
-                backed_off_normal(&moving_core, &target_core, estimate, scale)
+                backed_off_normal(&moving_core, target_core, estimate, scale)
             };
             return Some(CastHit {
                 distance: travelled + last_step,
-                point: cores.point_b - target.core_radius() * normal,
+                point: cores.point_b - target_radius * normal,
                 normal: contact_normal,
             });
         }
@@ -217,7 +291,12 @@ fn advance(sweep: &Sweep, target: &Shape, target_pose: &Pose) -> Option<CastHit>
 /// The normal of the target, facing the moving shape, where two polytopes touch: their closest
 /// points there are too near for a reliable direction, so GJK runs again with the moving shape
 /// backed off along `estimate` (a unit vector away from the target) until it is reliable.
-fn backed_off_normal(moving: &PosedCore, target: &PosedCore, estimate: Vec3, scale: f32) -> Vec3 {
+fn backed_off_normal<T: SupportMap>(
+    moving: &PosedCore,
+    target: &T,
+    estimate: Vec3,
+    scale: f32,
+) -> Vec3 {
     let backed_off = Pose::new(
         moving.pose.position + BACK_OFF * RELIABLE_DIRECTION * scale * estimate,
         moving.pose.rotation,

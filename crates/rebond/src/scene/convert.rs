@@ -8,7 +8,8 @@ use crate::math::{Pose, Quat, Vec3};
 use crate::shape::{CompoundChild, Shape};
 
 use super::format::{BodyEntry, ChildEntry, JointEntry, MotorEntry, ShapeEntry, ShapeKind};
-use super::{join, SceneError, Timestep, DEFAULT_TIMESTEP};
+use super::meshes::{heightfield, trimesh, MeshFiles};
+use super::{join, LoadError, SceneError, Timestep, DEFAULT_TIMESTEP};
 
 /// Narrows a file number to `f32`, refusing one beyond the `f32` range.
 pub(super) fn scalar(place: &str, value: f64) -> Result<f32, SceneError> {
@@ -86,10 +87,15 @@ fn number(value: f64) -> String {
     }
 }
 
-/// The engine description of one body; errors are placed under `place` (`bodies[i]`).
-pub(super) fn body_desc(entry: &BodyEntry, place: &str) -> Result<BodyDesc, SceneError> {
+/// The engine description of one body; errors are placed under `place` (`bodies[i]`). Mesh files
+/// are read through `files`.
+pub(super) fn body_desc(
+    entry: &BodyEntry,
+    place: &str,
+    files: &MeshFiles,
+) -> Result<BodyDesc, LoadError> {
     let field = |name: &str| format!("{place}.{name}");
-    let shape = shape(&entry.shape, &field("shape"))?;
+    let shape = shape(&entry.shape, &field("shape"), files)?;
     let mut desc = BodyDesc::new(entry.kind.into(), shape);
     if let Some(value) = entry.position {
         desc.position = vector(&field("position"), value)?;
@@ -146,7 +152,7 @@ pub(super) fn body_desc(entry: &BodyEntry, place: &str) -> Result<BodyDesc, Scen
 }
 
 /// The engine shape of a shape entry; errors are placed under `place` (`bodies[i].shape`).
-fn shape(entry: &ShapeEntry, place: &str) -> Result<Shape, SceneError> {
+fn shape(entry: &ShapeEntry, place: &str, files: &MeshFiles) -> Result<Shape, LoadError> {
     let kind = entry.kind;
     if let Some(stray) = entry
         .present_fields()
@@ -164,7 +170,8 @@ fn shape(entry: &ShapeEntry, place: &str) -> Result<Shape, SceneError> {
                 "unknown field `{stray}` for a {} shape, expected `type`, {expected}",
                 kind.name()
             ),
-        ));
+        )
+        .into());
     }
     let required = |field: &'static str| {
         SceneError::new(
@@ -213,7 +220,9 @@ fn shape(entry: &ShapeEntry, place: &str) -> Result<Shape, SceneError> {
             let children = children
                 .iter()
                 .enumerate()
-                .map(|(index, child)| compound_child(child, &format!("{place}.children[{index}]")))
+                .map(|(index, child)| {
+                    compound_child(child, &format!("{place}.children[{index}]"), files)
+                })
                 .collect::<Result<Vec<_>, _>>()?;
             Shape::compound(children)
         }
@@ -221,12 +230,22 @@ fn shape(entry: &ShapeEntry, place: &str) -> Result<Shape, SceneError> {
             let normal = entry.normal.ok_or_else(|| required("normal"))?;
             Shape::halfspace(vector(&field("normal"), normal)?)
         }
+        ShapeKind::Trimesh => return trimesh(entry, place, files),
+        ShapeKind::Heightfield => {
+            let heights = entry.heights.as_ref().ok_or_else(|| required("heights"))?;
+            let scale = entry.scale.ok_or_else(|| required("scale"))?;
+            return Ok(heightfield(heights, scale, place)?);
+        }
     };
-    shape.map_err(|error| SceneError::from(error.within(place)))
+    shape.map_err(|error| SceneError::from(error.within(place)).into())
 }
 
 /// One child of a compound; errors are placed under `place` (`...children[i]`).
-fn compound_child(entry: &ChildEntry, place: &str) -> Result<CompoundChild, SceneError> {
+fn compound_child(
+    entry: &ChildEntry,
+    place: &str,
+    files: &MeshFiles,
+) -> Result<CompoundChild, LoadError> {
     let position = match entry.position {
         Some(value) => vector(&format!("{place}.position"), value)?,
         None => Vec3::ZERO,
@@ -236,7 +255,7 @@ fn compound_child(entry: &ChildEntry, place: &str) -> Result<CompoundChild, Scen
         None => Quat::IDENTITY,
     };
     let mut child = CompoundChild::new(
-        shape(&entry.shape, &format!("{place}.shape"))?,
+        shape(&entry.shape, &format!("{place}.shape"), files)?,
         Pose::new(position, rotation),
     );
     if let Some(value) = entry.friction {

@@ -131,6 +131,8 @@ pub(super) enum ShapeKind {
     ConvexHull,
     Compound,
     Halfspace,
+    Trimesh,
+    Heightfield,
 }
 
 impl ShapeKind {
@@ -144,10 +146,13 @@ impl ShapeKind {
             Self::ConvexHull => "convex_hull",
             Self::Compound => "compound",
             Self::Halfspace => "halfspace",
+            Self::Trimesh => "trimesh",
+            Self::Heightfield => "heightfield",
         }
     }
 
-    /// The fields this shape type takes besides `type`; all of them are required.
+    /// The fields this shape type takes besides `type` (which of them are required is checked
+    /// when the shape is built).
     pub(super) fn fields(self) -> &'static [&'static str] {
         match self {
             Self::Sphere => &["radius"],
@@ -156,6 +161,8 @@ impl ShapeKind {
             Self::ConvexHull => &["points"],
             Self::Compound => &["children"],
             Self::Halfspace => &["normal"],
+            Self::Trimesh => &["vertices", "indices", "file", "scale"],
+            Self::Heightfield => &["heights", "scale"],
         }
     }
 }
@@ -172,6 +179,11 @@ pub(super) struct ShapeEntry {
     pub(super) points: Option<Vec<[f64; 3]>>,
     pub(super) children: Option<Vec<JsonObject<ChildEntry>>>,
     pub(super) normal: Option<[f64; 3]>,
+    pub(super) vertices: Option<Vec<[f64; 3]>>,
+    pub(super) indices: Option<Vec<[u32; 3]>>,
+    pub(super) file: Option<String>,
+    pub(super) scale: Option<[f64; 3]>,
+    pub(super) heights: Option<Vec<Vec<f64>>>,
 }
 
 impl ShapeEntry {
@@ -184,6 +196,11 @@ impl ShapeEntry {
             ("points", self.points.is_some()),
             ("children", self.children.is_some()),
             ("normal", self.normal.is_some()),
+            ("vertices", self.vertices.is_some()),
+            ("indices", self.indices.is_some()),
+            ("file", self.file.is_some()),
+            ("scale", self.scale.is_some()),
+            ("heights", self.heights.is_some()),
         ]
         .into_iter()
         .filter_map(|(field, present)| present.then_some(field))

@@ -26,6 +26,7 @@
 
 mod convert;
 mod format;
+mod meshes;
 
 use std::collections::HashMap;
 use std::fmt;
@@ -33,13 +34,15 @@ use std::fs;
 use std::io;
 use std::path::{Path, PathBuf};
 
+use serde::de::DeserializeOwned;
+
 use crate::body::{BodyHandle, RigidBody};
 use crate::error::ErrorKind;
 use crate::joint::{Joint, JointHandle, JointType};
-use crate::math::Vec3;
 use crate::world::{World, WorldSettings};
 use convert::{body_desc, joint_desc, scalar, timestep, vector};
-use format::{JsonObject, SceneFile};
+use format::{BodyEntry, JointEntry, JsonObject, SceneFile};
+use meshes::MeshFiles;
 
 /// Default seconds per step when a scene leaves `timestep` out.
 pub const DEFAULT_TIMESTEP: f64 = 1.0 / 60.0;
@@ -61,6 +64,19 @@ impl SceneError {
             place: place.into(),
             message: message.into(),
         }
+    }
+}
+
+impl SceneError {
+    /// The same error, seen from one level up: a place within a body entry becomes a place within
+    /// `bodies[2]`. A line and column in the text stays as it is.
+    fn within(mut self, prefix: &str) -> Self {
+        if self.place.is_empty() || self.place == "top level" {
+            self.place = prefix.to_owned();
+        } else if !self.place.starts_with("line ") {
+            self.place = join(prefix, &self.place);
+        }
+        self
     }
 }
 
@@ -94,6 +110,22 @@ pub enum LoadError {
     },
     /// The file was read but is not a valid scene.
     Invalid(SceneError),
+    /// A mesh file the scene names (a `trimesh`'s `file`) could not be read or is not a valid
+    /// Wavefront OBJ file.
+    Mesh {
+        /// Where the scene names it, such as `bodies[0].shape.file`.
+        place: String,
+        /// The file, as resolved against the scene's folder.
+        path: PathBuf,
+        /// Why it could not be used.
+        message: String,
+    },
+}
+
+impl From<SceneError> for LoadError {
+    fn from(error: SceneError) -> Self {
+        Self::Invalid(error)
+    }
 }
 
 impl fmt::Display for LoadError {
@@ -103,6 +135,15 @@ impl fmt::Display for LoadError {
                 write!(formatter, "{}: cannot read scene: {error}", path.display())
             }
             Self::Invalid(error) => error.fmt(formatter),
+            Self::Mesh {
+                place,
+                path,
+                message,
+            } => write!(
+                formatter,
+                "{place}: cannot load mesh file {}: {message}",
+                path.display()
+            ),
         }
     }
 }
@@ -112,6 +153,7 @@ impl std::error::Error for LoadError {
         match self {
             Self::Read { error, .. } => Some(error),
             Self::Invalid(error) => Some(error),
+            Self::Mesh { .. } => None,
         }
     }
 }
@@ -168,23 +210,57 @@ pub struct Scene {
     world: World,
     bodies: Vec<SceneBody>,
     joints: Vec<SceneJoint>,
+    /// Index in `bodies` by name (not saved: rebuilt from `bodies` when a state is loaded).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    body_indices: HashMap<String, usize>,
+    /// Index in `joints` by name (as `body_indices`).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    joint_indices: HashMap<String, usize>,
     timestep: Timestep,
 }
 
 impl Scene {
-    /// Reads, checks and loads the scene file at `path`. Nothing is stepped.
+    /// Reads, checks and loads the scene file at `path`; mesh files it names are found relative
+    /// to the scene file's folder. Nothing is stepped.
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self, LoadError> {
         let path = path.as_ref();
         let bytes = fs::read(path).map_err(|error| LoadError::Read {
             path: path.to_owned(),
             error,
         })?;
-        Self::from_json(&bytes).map_err(LoadError::Invalid)
+        let folder = path.parent().unwrap_or(Path::new(""));
+        Self::from_json_in(&bytes, folder)
     }
 
-    /// Parses and checks a scene given as JSON text and builds its world. Nothing is stepped.
+    /// Parses and checks a scene given as JSON text and builds its world; mesh files it names
+    /// are found relative to the working directory, and one that cannot be loaded is an error
+    /// at the place that names it. Nothing is stepped.
     pub fn from_json(bytes: &[u8]) -> Result<Self, SceneError> {
-        let file = parse(bytes)?;
+        Self::from_json_in(bytes, Path::new("")).map_err(into_scene_error)
+    }
+
+    /// [`Scene::from_json`] with mesh files found relative to `folder`, and a mesh file that
+    /// cannot be loaded reported as [`LoadError::Mesh`].
+    pub fn from_json_in(bytes: &[u8], folder: &Path) -> Result<Self, LoadError> {
+        Self::load(bytes, MeshFiles { folder, given: &[] })
+    }
+
+    /// [`Scene::from_json`] with the mesh files it names given as `(name, contents)` pairs, the
+    /// name as the scene writes it (for scenes embedded in a program with their OBJ files); a
+    /// file not among them is read relative to the working directory.
+    pub fn from_json_with_files(bytes: &[u8], files: &[(&str, &[u8])]) -> Result<Self, LoadError> {
+        Self::load(
+            bytes,
+            MeshFiles {
+                folder: Path::new(""),
+                given: files,
+            },
+        )
+    }
+
+    /// Parses, checks and builds a scene, reading mesh files through `files`.
+    fn load(bytes: &[u8], files: MeshFiles) -> Result<Self, LoadError> {
+        let JsonObject::<SceneFile>(file) = parse(bytes)?;
         let timestep = timestep(file.timestep)?;
         let gravity = match file.gravity {
             Some(gravity) => vector("gravity", gravity)?,
@@ -198,59 +274,93 @@ impl Scene {
         if let Some(value) = file.restitution_threshold {
             settings.restitution_threshold = scalar("restitution_threshold", value)?;
         }
-        let mut world = World::new(settings)?;
-        let mut bodies = Vec::with_capacity(file.bodies.len());
-        let mut indices_by_name: HashMap<String, usize> = HashMap::new();
-        for (index, entry) in file.bodies.iter().enumerate() {
-            let place = format!("bodies[{index}]");
-            let name = entry.name.clone().unwrap_or_else(|| format!("body{index}"));
-            if let Some(first) = indices_by_name.insert(name.clone(), index) {
-                let message =
-                    format!("duplicate name \"{name}\": bodies[{first}] and {place} both have it");
-                return Err(SceneError::new(format!("{place}.name"), message));
-            }
-            let desc = body_desc(entry, &place)?;
-            let handle = world
-                .add_body(desc)
-                .map_err(|error| SceneError::from(error.within(&place)))?;
-            bodies.push(SceneBody { name, handle });
-        }
-        // Where each body stands as loaded, for the joints' default anchors: taken before the
-        // joints are added, since adding needs the world mutably.
-        let body_places: HashMap<&str, (BodyHandle, Vec3)> = bodies
-            .iter()
-            .filter_map(|body| {
-                let position = world.body(body.handle).ok()?.position();
-                Some((body.name.as_str(), (body.handle, position)))
-            })
-            .collect();
-        let entries = file.joints.as_deref().unwrap_or_default();
-        let mut joints = Vec::with_capacity(entries.len());
-        let mut joint_indices_by_name: HashMap<String, usize> = HashMap::new();
-        for (index, entry) in entries.iter().enumerate() {
-            let place = format!("joints[{index}]");
-            let name = entry
-                .name
-                .clone()
-                .unwrap_or_else(|| format!("joint{index}"));
-            if let Some(first) = joint_indices_by_name.insert(name.clone(), index) {
-                let message =
-                    format!("duplicate name \"{name}\": joints[{first}] and {place} both have it");
-                return Err(SceneError::new(format!("{place}.name"), message));
-            }
-            let desc = joint_desc(entry, &place, |name| body_places.get(name).copied())?;
-            let joint_type = desc.joint_type;
-            let handle = world
-                .add_joint(desc)
-                .map_err(|error| joint_error(error.within(&place), joint_type))?;
-            joints.push(SceneJoint { name, handle });
-        }
-        Ok(Self {
-            world,
-            bodies,
-            joints,
+        let mut scene = Self {
+            world: World::new(settings).map_err(SceneError::from)?,
+            bodies: Vec::with_capacity(file.bodies.len()),
+            joints: Vec::new(),
+            body_indices: HashMap::new(),
+            joint_indices: HashMap::new(),
             timestep,
-        })
+        };
+        for entry in &file.bodies {
+            scene.push_body(entry, &files)?;
+        }
+        for entry in file.joints.as_deref().unwrap_or_default() {
+            scene.push_joint(entry)?;
+        }
+        Ok(scene)
+    }
+
+    /// Adds a body given as one entry of a scene's `bodies` (a JSON object), checked exactly as
+    /// the loader checks it, after the bodies already there; returns its index in scene order.
+    /// An error names the place the body would have in the file (`bodies[2].shape.radius`).
+    pub fn add_body_json(&mut self, bytes: &[u8]) -> Result<usize, SceneError> {
+        let place = format!("bodies[{}]", self.bodies.len());
+        let JsonObject(entry) = parse(bytes).map_err(|error| error.within(&place))?;
+        let files = MeshFiles {
+            folder: Path::new(""),
+            given: &[],
+        };
+        self.push_body(&entry, &files).map_err(into_scene_error)
+    }
+
+    /// Adds a joint given as one entry of a scene's `joints` (a JSON object), checked exactly as
+    /// the loader checks it, after the joints already there; returns its index in scene order.
+    /// Default anchors are where the bodies stand now.
+    pub fn add_joint_json(&mut self, bytes: &[u8]) -> Result<usize, SceneError> {
+        let place = format!("joints[{}]", self.joints.len());
+        let JsonObject(entry) = parse(bytes).map_err(|error| error.within(&place))?;
+        self.push_joint(&entry)
+    }
+
+    /// Checks and adds one body entry after the others, reading mesh files through `files`;
+    /// returns its index.
+    fn push_body(&mut self, entry: &BodyEntry, files: &MeshFiles) -> Result<usize, LoadError> {
+        let index = self.bodies.len();
+        let place = format!("bodies[{index}]");
+        let name = entry.name.clone().unwrap_or_else(|| format!("body{index}"));
+        if let Some(&first) = self.body_indices.get(&name) {
+            let message =
+                format!("duplicate name \"{name}\": bodies[{first}] and {place} both have it");
+            return Err(SceneError::new(format!("{place}.name"), message).into());
+        }
+        let desc = body_desc(entry, &place, files)?;
+        let handle = self
+            .world
+            .add_body(desc)
+            .map_err(|error| SceneError::from(error.within(&place)))?;
+        self.body_indices.insert(name.clone(), index);
+        self.bodies.push(SceneBody { name, handle });
+        Ok(index)
+    }
+
+    /// Checks and adds one joint entry after the others; returns its index. The bodies' places,
+    /// for default anchors, are where they stand now.
+    fn push_joint(&mut self, entry: &JointEntry) -> Result<usize, SceneError> {
+        let index = self.joints.len();
+        let place = format!("joints[{index}]");
+        let name = entry
+            .name
+            .clone()
+            .unwrap_or_else(|| format!("joint{index}"));
+        if let Some(&first) = self.joint_indices.get(&name) {
+            let message =
+                format!("duplicate name \"{name}\": joints[{first}] and {place} both have it");
+            return Err(SceneError::new(format!("{place}.name"), message));
+        }
+        let find_body = |name: &str| {
+            let handle = self.bodies[*self.body_indices.get(name)?].handle;
+            Some((handle, self.world.body(handle).ok()?.position()))
+        };
+        let desc = joint_desc(entry, &place, find_body)?;
+        let joint_type = desc.joint_type;
+        let handle = self
+            .world
+            .add_joint(desc)
+            .map_err(|error| joint_error(error.within(&place), joint_type))?;
+        self.joint_indices.insert(name.clone(), index);
+        self.joints.push(SceneJoint { name, handle });
+        Ok(index)
     }
 
     /// The world holding every body of the scene.
@@ -302,6 +412,20 @@ impl Scene {
             .map(|joint| joint.handle)
     }
 
+    /// Every body's name and handle, in scene order, removed bodies included.
+    pub fn body_handles(&self) -> impl Iterator<Item = (&str, BodyHandle)> {
+        self.bodies
+            .iter()
+            .map(|body| (body.name.as_str(), body.handle))
+    }
+
+    /// Every joint's name and handle, in scene order, removed joints included.
+    pub fn joint_handles(&self) -> impl Iterator<Item = (&str, JointHandle)> {
+        self.joints
+            .iter()
+            .map(|joint| (joint.name.as_str(), joint.handle))
+    }
+
     /// The scene as it stands after `step` steps, as bytes (the format of [`crate::state`], a
     /// scene's header): its world, names and timestep. [`Scene::load_state`] restores it.
     #[cfg(feature = "serde")]
@@ -314,7 +438,14 @@ impl Scene {
     /// which.
     #[cfg(feature = "serde")]
     pub fn load_state(bytes: &[u8]) -> Result<(Scene, u64), crate::state::StateError> {
-        crate::state::decode(SCENE_MAGIC, bytes).map(|(step, scene)| (scene, step))
+        let (step, mut scene): (u64, Scene) = crate::state::decode(SCENE_MAGIC, bytes)?;
+        scene.body_indices = (scene.bodies.iter().enumerate())
+            .map(|(index, body)| (body.name.clone(), index))
+            .collect();
+        scene.joint_indices = (scene.joints.iter().enumerate())
+            .map(|(index, joint)| (joint.name.clone(), index))
+            .collect();
+        Ok((scene, step))
     }
 
     /// The world, to change: set velocities, apply forces, add bodies.
@@ -344,14 +475,32 @@ fn joint_error(error: crate::Error, joint_type: JointType) -> SceneError {
     )
 }
 
+/// A load error as a scene error at its place: a mesh file that cannot be loaded or read is
+/// reported where the scene names it.
+fn into_scene_error(error: LoadError) -> SceneError {
+    match error {
+        LoadError::Invalid(error) => error,
+        LoadError::Mesh {
+            place,
+            path,
+            message,
+        } => SceneError::new(
+            place,
+            format!("cannot load mesh file {}: {message}", path.display()),
+        ),
+        LoadError::Read { path, error } => {
+            SceneError::new("", format!("cannot read {}: {error}", path.display()))
+        }
+    }
+}
+
 /// Deserialises the file, turning serde errors into a place and a message.
-fn parse(bytes: &[u8]) -> Result<SceneFile, SceneError> {
+fn parse<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, SceneError> {
     let mut deserializer = serde_json::Deserializer::from_slice(bytes);
-    let JsonObject(file) =
-        serde_path_to_error::deserialize(&mut deserializer).map_err(|error| {
-            out_of_range_number(bytes, error.inner())
-                .unwrap_or_else(|| serde_error(error.path().to_string(), error.inner()))
-        })?;
+    let file = serde_path_to_error::deserialize(&mut deserializer).map_err(|error| {
+        out_of_range_number::<T>(bytes, error.inner())
+            .unwrap_or_else(|| serde_error(error.path().to_string(), error.inner()))
+    })?;
     deserializer
         .end()
         .map_err(|error| serde_error(String::new(), &error))?;
@@ -361,7 +510,10 @@ fn parse(bytes: &[u8]) -> Result<SceneFile, SceneError> {
 /// The place of a number too large even for `f64` (`1e999`), which stops serde_json's reader
 /// before it knows the field: the file is read again with the number replaced by `[]`, which no
 /// numeric field takes, so that this second reading fails at the number with its path.
-fn out_of_range_number(bytes: &[u8], error: &serde_json::Error) -> Option<SceneError> {
+fn out_of_range_number<T: DeserializeOwned>(
+    bytes: &[u8],
+    error: &serde_json::Error,
+) -> Option<SceneError> {
     if !error.to_string().starts_with("number out of range") {
         return None;
     }
@@ -371,7 +523,7 @@ fn out_of_range_number(bytes: &[u8], error: &serde_json::Error) -> Option<SceneE
     patched.extend_from_slice(b"[]");
     patched.extend_from_slice(&bytes[token.end..]);
     let mut deserializer = serde_json::Deserializer::from_slice(&patched);
-    let retry = serde_path_to_error::deserialize::<_, JsonObject<SceneFile>>(&mut deserializer);
+    let retry = serde_path_to_error::deserialize::<_, T>(&mut deserializer);
     let error = retry.err()?;
     let at = byte_offset(&patched, error.inner().line(), error.inner().column())?;
     if !(token.start..=token.start + 1).contains(&at) {

@@ -85,6 +85,9 @@ impl Compound {
             let reason = match child.shape {
                 Shape::Compound(_) => Some("a child may not be a compound"),
                 Shape::Halfspace(_) => Some("a child may not be a halfspace"),
+                Shape::TriMesh(_) | Shape::HeightField(_) => {
+                    Some("a child may not be a trimesh or heightfield")
+                }
                 _ => None,
             };
             if let Some(reason) = reason {

@@ -3,13 +3,17 @@
 //! Every convex shape has a support function `support(d)`: the point of the shape farthest along
 //! `d`, which the narrow phase's GJK and EPA are built on.
 
+mod bvh;
 mod capsule;
 mod compound;
 mod convex_hull;
 mod cuboid;
 mod cylinder;
 mod halfspace;
+mod heightfield;
 mod sphere;
+mod triangle;
+mod trimesh;
 
 pub use capsule::Capsule;
 pub use compound::{Compound, CompoundChild};
@@ -18,7 +22,10 @@ pub(crate) use convex_hull::{EdgeLanes, FaceLanes};
 pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
 pub use halfspace::{Halfspace, HALFSPACE_EXTENT};
+pub use heightfield::{HeightField, MIN_SOLID_DEPTH};
 pub use sphere::Sphere;
+pub use triangle::{Triangle, ACTIVE_EDGE_ANGLE};
+pub use trimesh::TriMesh;
 
 use crate::error::Result;
 use crate::mass::MassProperties;
@@ -43,6 +50,11 @@ pub enum Shape {
     Compound(Compound),
     /// Everything below a plane through the origin (static and kinematic bodies only).
     Halfspace(Halfspace),
+    /// A triangle mesh, colliding on both sides of each triangle (static and kinematic bodies
+    /// only).
+    TriMesh(TriMesh),
+    /// A grid of heights, solid below its surface (static and kinematic bodies only).
+    HeightField(HeightField),
 }
 
 impl Shape {
@@ -81,12 +93,54 @@ impl Shape {
         Halfspace::new(normal).map(Shape::Halfspace)
     }
 
+    /// A triangle mesh of `vertices` (metres) and counter-clockwise `indices`; see
+    /// [`TriMesh::new`].
+    pub fn trimesh(vertices: Vec<Vec3>, indices: &[[u32; 3]]) -> Result<Shape> {
+        TriMesh::new(vertices, indices).map(Shape::TriMesh)
+    }
+
+    /// A heightfield of `heights` rows scaled by `scale`; see [`HeightField::new`].
+    pub fn heightfield(heights: &[Vec<f32>], scale: Vec3) -> Result<Shape> {
+        HeightField::new(heights, scale).map(Shape::HeightField)
+    }
+
+    /// Whether the shape is a triangle mesh or a heightfield: made of triangles, collided
+    /// triangle by triangle.
+    pub fn is_triangulated(&self) -> bool {
+        matches!(self, Shape::TriMesh(_) | Shape::HeightField(_))
+    }
+
+    /// Triangle `index` of a mesh or heightfield in its body frame, with its edge flags; `None`
+    /// past the end or for any other shape.
+    pub fn triangle(&self, index: u32) -> Option<Triangle> {
+        match self {
+            Shape::TriMesh(mesh) => mesh.triangle(index),
+            Shape::HeightField(heightfield) => heightfield.triangle(index),
+            _ => None,
+        }
+    }
+
+    /// Calls `visit(k)` for the triangles `k` of a mesh or heightfield near `bounds` (body frame;
+    /// see [`TriMesh::triangles_in`] and [`HeightField::triangles_in`]); nothing for any other
+    /// shape.
+    pub fn triangles_in(&self, bounds: &Aabb, visit: impl FnMut(u32)) {
+        match self {
+            Shape::TriMesh(mesh) => mesh.triangles_in(bounds, visit),
+            Shape::HeightField(heightfield) => heightfield.triangles_in(bounds, visit),
+            _ => {}
+        }
+    }
+
     /// Whether every surface of the shape is flat (boxes, hulls, halfspaces, and compounds of
     /// them): its contact points are corners, edges and faces that turn with it. On a curved
     /// surface the point in contact changes as the body rolls.
     pub(crate) fn is_polyhedral(&self) -> bool {
         match self {
-            Shape::Cuboid(_) | Shape::ConvexHull(_) | Shape::Halfspace(_) => true,
+            Shape::Cuboid(_)
+            | Shape::ConvexHull(_)
+            | Shape::Halfspace(_)
+            | Shape::TriMesh(_)
+            | Shape::HeightField(_) => true,
             Shape::Sphere(_) | Shape::Capsule(_) | Shape::Cylinder(_) => false,
             Shape::Compound(compound) => compound
                 .children()
@@ -100,7 +154,8 @@ impl Shape {
         !matches!(self, Shape::Halfspace(_))
     }
 
-    /// Mass properties for a uniform `density` (kg/m³), or `None` for a halfspace.
+    /// Mass properties for a uniform `density` (kg/m³), or `None` for a halfspace, a triangle
+    /// mesh or a heightfield.
     pub fn mass_properties(&self, density: f32) -> Option<MassProperties> {
         match self {
             Shape::Sphere(sphere) => Some(sphere.mass_properties(density)),
@@ -109,7 +164,7 @@ impl Shape {
             Shape::Cylinder(cylinder) => Some(cylinder.mass_properties(density)),
             Shape::ConvexHull(hull) => Some(hull.mass_properties(density)),
             Shape::Compound(compound) => Some(compound.mass_properties(density)),
-            Shape::Halfspace(_) => None,
+            Shape::Halfspace(_) | Shape::TriMesh(_) | Shape::HeightField(_) => None,
         }
     }
 
@@ -126,6 +181,8 @@ impl Shape {
             Shape::ConvexHull(_) => "points",
             Shape::Compound(_) => "children",
             Shape::Halfspace(_) => "normal",
+            Shape::TriMesh(_) => "vertices",
+            Shape::HeightField(_) => "heights",
         }
     }
 
@@ -145,11 +202,14 @@ impl Shape {
             Shape::ConvexHull(hull) => hull.aabb(pose),
             Shape::Compound(compound) => compound.aabb(pose),
             Shape::Halfspace(halfspace) => halfspace.aabb(pose),
+            Shape::TriMesh(mesh) => mesh.aabb(pose),
+            Shape::HeightField(heightfield) => heightfield.aabb(pose),
         }
     }
 
     /// Radius of a ball about the shape's origin that holds the whole shape, metres (the
-    /// smallest such ball for every shape but a compound); infinite for a halfspace.
+    /// smallest such ball for every shape but a compound, a mesh and a heightfield, which give
+    /// the ball around their body-frame box's corners); infinite for a halfspace.
     pub fn bounding_radius(&self) -> f32 {
         match self {
             Shape::Sphere(sphere) => sphere.radius(),
@@ -163,6 +223,8 @@ impl Shape {
                 .map(|child| child.pose.position.length() + child.shape.bounding_radius())
                 .fold(0.0, f32::max),
             Shape::Halfspace(_) => f32::INFINITY,
+            Shape::TriMesh(mesh) => corner_reach(&mesh.local_bounds()),
+            Shape::HeightField(heightfield) => corner_reach(&heightfield.local_bounds()),
         }
     }
 
@@ -178,7 +240,7 @@ impl Shape {
 
     /// Support point of the shape's core (the shape shrunk by [`Shape::core_radius`]): a
     /// sphere's centre, an end of a capsule's segment, or the shape's own support point. A
-    /// halfspace has no core and gives the origin.
+    /// halfspace, mesh or heightfield has no core and gives the origin.
     pub fn core_support(&self, direction: Vec3) -> Vec3 {
         match self {
             Shape::Sphere(_) => Vec3::ZERO,
@@ -195,7 +257,8 @@ impl Shape {
     }
 
     /// The local point of the shape farthest along local `direction`; `None` for a halfspace, which
-    /// is unbounded. For a compound this is the support of the hull of its children.
+    /// is unbounded, and for a mesh or heightfield, which are not convex. For a compound this is
+    /// the support of the hull of its children.
     pub fn support(&self, direction: Vec3) -> Option<Vec3> {
         match self {
             Shape::Sphere(sphere) => Some(sphere.support(direction)),
@@ -204,7 +267,12 @@ impl Shape {
             Shape::Cylinder(cylinder) => Some(cylinder.support(direction)),
             Shape::ConvexHull(hull) => Some(hull.support(direction)),
             Shape::Compound(compound) => Some(compound.support(direction)),
-            Shape::Halfspace(_) => None,
+            Shape::Halfspace(_) | Shape::TriMesh(_) | Shape::HeightField(_) => None,
         }
     }
+}
+
+/// Distance from the origin to the farthest corner of `bounds`, metres.
+fn corner_reach(bounds: &Aabb) -> f32 {
+    bounds.min.abs().max(bounds.max.abs()).length()
 }

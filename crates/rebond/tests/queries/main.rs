@@ -289,6 +289,22 @@ fn pieces(shape: &Shape, pose: &Pose, grow: f64) -> Vec<Piece> {
             .iter()
             .flat_map(|child| pieces(&child.shape, &pose.mul_pose(&child.pose), grow))
             .collect(),
+        // Surfaces: their own triangles, which growing does not change.
+        Shape::TriMesh(mesh) => {
+            let place = |index: u32| to_f64(pose.transform_point(mesh.vertices()[index as usize]));
+            vec![Piece::Mesh(
+                mesh.indices()
+                    .iter()
+                    .map(|triangle| triangle.map(place))
+                    .collect(),
+            )]
+        }
+        Shape::HeightField(heightfield) => vec![Piece::Mesh(
+            (0..heightfield.triangle_count())
+                .filter_map(|index| heightfield.triangle(index))
+                .map(|triangle| triangle.vertices.map(|v| to_f64(pose.transform_point(v))))
+                .collect(),
+        )],
     }
 }
 

@@ -23,7 +23,9 @@ fn signed_distance(shape: &Shape, pose: &Pose, point: Vec3) -> Option<f64> {
             Some(radial.max(0.0).hypot(axial.max(0.0)) + radial.max(axial).min(0.0))
         }
         Shape::Halfspace(halfspace) => Some(local.dot(to_f64(halfspace.normal()))),
-        Shape::ConvexHull(_) | Shape::Compound(_) => None,
+        Shape::ConvexHull(_) | Shape::Compound(_) | Shape::TriMesh(_) | Shape::HeightField(_) => {
+            None
+        }
     }
 }
 

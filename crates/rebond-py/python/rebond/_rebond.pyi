@@ -1,0 +1,177 @@
+"""Typed stubs of the native module; everything here is re-exported by ``rebond``."""
+
+import os
+from typing import Any, Iterable, Literal, Mapping, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+Vector = Union[Sequence[float], npt.ArrayLike]
+Scene = Union[str, "os.PathLike[str]", Mapping[str, Any], "World"]
+BodyRef = Union[str, int]
+FloatArray = npt.NDArray[np.float32]
+
+class SceneError(ValueError):
+    """A scene, body or joint that is not valid; the message names the place of the bad value."""
+
+class StepError(RuntimeError):
+    """The engine refused to step: ``step N failed: ...``, as the command line says."""
+
+class RayHit:
+    """Where a ray met a body."""
+
+    @property
+    def body(self) -> int:
+        """The body's index in scene order."""
+    @property
+    def name(self) -> str:
+        """The body's name."""
+    @property
+    def point(self) -> list[float]:
+        """The point hit, world, m."""
+    @property
+    def normal(self) -> list[float]:
+        """The unit normal there, facing the ray."""
+    @property
+    def distance(self) -> float:
+        """Distance from the ray's origin, m."""
+
+class World:
+    """A simulated world: bodies, joints, and the scene's timestep."""
+
+    def __init__(
+        self,
+        gravity: Optional[Vector] = None,
+        timestep: Optional[float] = None,
+        substeps: Optional[int] = None,
+    ) -> None:
+        """An empty world; defaults as in a scene file ((0, -9.81, 0), 1/60 s, 8)."""
+    @staticmethod
+    def from_scene(scene: Scene) -> "World":
+        """The world of a scene file (path) or of a dict in the scene format."""
+    def add_body(
+        self,
+        shape: Mapping[str, Any],
+        *,
+        name: Optional[str] = ...,
+        type: Literal["dynamic", "static", "kinematic"] = ...,
+        position: Vector = ...,
+        rotation: Vector = ...,
+        linear_velocity: Vector = ...,
+        angular_velocity: Vector = ...,
+        density: float = ...,
+        mass: float = ...,
+        friction: float = ...,
+        restitution: float = ...,
+        force: Vector = ...,
+        force_point: Vector = ...,
+        torque: Vector = ...,
+        linear_damping: float = ...,
+        angular_damping: float = ...,
+        can_sleep: bool = ...,
+        sensor: bool = ...,
+        collision_groups: Mapping[str, int] = ...,
+    ) -> int:
+        """Adds a body (the fields of a scene body); returns its index."""
+    def add_joint(
+        self,
+        type: Literal["fixed", "ball", "revolute", "prismatic", "distance"],
+        *,
+        body_b: BodyRef,
+        body_a: Optional[BodyRef] = ...,
+        name: Optional[str] = ...,
+        anchor: Vector = ...,
+        anchor_b: Vector = ...,
+        axis: Vector = ...,
+        limits: Sequence[float] = ...,
+        swing_limit: float = ...,
+        twist_limits: Sequence[float] = ...,
+        motor: Mapping[str, float] = ...,
+        length: float = ...,
+        spring: Mapping[str, float] = ...,
+        collide_connected: bool = ...,
+        friction: float = ...,
+        break_force: float = ...,
+        break_torque: float = ...,
+    ) -> int:
+        """Adds a joint (the fields of a scene joint, bodies by name or index); returns its index."""
+    def step(self, n: int = 1) -> None:
+        """Advances the world by ``n`` steps, without the GIL."""
+    def copy(self) -> "World":
+        """A copy that steps on exactly as this world would."""
+    @property
+    def timestep(self) -> float:
+        """Seconds per step."""
+    @property
+    def body_count(self) -> int:
+        """Number of bodies."""
+    def __len__(self) -> int: ...
+    def body_names(self) -> list[str]:
+        """Body names in scene order, the order of every array."""
+    def joint_names(self) -> list[str]:
+        """Joint names in scene order."""
+    def motor_names(self) -> list[str]:
+        """Names of the joints with a motor, the order of ``set_motor_targets``."""
+    def positions(self) -> FloatArray:
+        """Body origins, m: (bodies, 3)."""
+    def rotations(self) -> FloatArray:
+        """Rotations as quaternions (x, y, z, w): (bodies, 4)."""
+    def linear_velocities(self) -> FloatArray:
+        """Velocities of the centres of mass, m/s: (bodies, 3)."""
+    def angular_velocities(self) -> FloatArray:
+        """Angular velocities, rad/s: (bodies, 3)."""
+    def set_linear_velocities(self, a: npt.ArrayLike) -> None:
+        """Sets every body's linear velocity, m/s: (bodies, 3)."""
+    def set_angular_velocities(self, a: npt.ArrayLike) -> None:
+        """Sets every body's angular velocity, rad/s: (bodies, 3)."""
+    def apply_forces(self, a: npt.ArrayLike) -> None:
+        """Adds a force at each centre of mass, N, for the next step only: (bodies, 3)."""
+    def set_motor_targets(self, a: npt.ArrayLike) -> None:
+        """Sets each motor's target velocity or position: (motors,)."""
+    def ray_cast(
+        self, origin: Vector, direction: Vector, max_distance: float = ...
+    ) -> Optional[RayHit]:
+        """The nearest body the ray meets within ``max_distance`` m, or ``None``."""
+
+class Batch:
+    """``count`` copies of one world, stepped in parallel on every core without the GIL."""
+
+    def __init__(self, scene: Scene, count: int) -> None:
+        """Copies of a scene file (path), a dict in the scene format, or a ``World``."""
+    @property
+    def count(self) -> int:
+        """Number of worlds."""
+    @property
+    def timestep(self) -> float:
+        """Seconds per step."""
+    @property
+    def body_count(self) -> int:
+        """Number of bodies in each world."""
+    def __len__(self) -> int: ...
+    def body_names(self) -> list[str]: ...
+    def joint_names(self) -> list[str]: ...
+    def motor_names(self) -> list[str]: ...
+    def step(self, n: int = 1) -> None:
+        """Advances every world by ``n`` steps, in parallel, without the GIL."""
+    def reset(self, indices: Optional[Union[int, Iterable[int]]] = None) -> None:
+        """Puts the worlds at ``indices`` (all when ``None``) back in their starting state."""
+    def world(self, index: int) -> World:
+        """A copy of one world of the batch."""
+    def positions(self) -> FloatArray:
+        """(count, bodies, 3)."""
+    def rotations(self) -> FloatArray:
+        """(count, bodies, 4), x, y, z, w."""
+    def linear_velocities(self) -> FloatArray:
+        """(count, bodies, 3)."""
+    def angular_velocities(self) -> FloatArray:
+        """(count, bodies, 3)."""
+    def set_linear_velocities(self, a: npt.ArrayLike) -> None:
+        """(count, bodies, 3)."""
+    def set_angular_velocities(self, a: npt.ArrayLike) -> None:
+        """(count, bodies, 3)."""
+    def apply_forces(self, a: npt.ArrayLike) -> None:
+        """(count, bodies, 3), for the next step only."""
+    def set_motor_targets(self, a: npt.ArrayLike) -> None:
+        """(count, motors)."""

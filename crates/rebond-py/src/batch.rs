@@ -1,0 +1,245 @@
+//! `rebond.Batch`: copies of one world stepped in parallel on every core, without the GIL.
+
+use numpy::PyArrayDyn;
+use pyo3::exceptions::{PyIndexError, PyValueError};
+use pyo3::prelude::*;
+use rayon::prelude::*;
+
+use crate::arrays::{input, output};
+use crate::errors::StepError;
+use crate::sim::{Input, Quantity, Sim};
+use crate::world::{load_scene, step_count, World};
+
+/// `count` copies of one world, stepped in parallel; arrays have a leading batch axis.
+///
+/// Each copy steps exactly as a world of its own would: a batch of N gives bit for bit the
+/// states of N separate worlds stepped one by one.
+#[pyclass(module = "rebond")]
+pub struct Batch {
+    /// The world every copy starts from, and `reset` returns to.
+    initial: Sim,
+    /// The copies.
+    sims: Vec<Sim>,
+}
+
+#[pymethods]
+impl Batch {
+    /// `count` copies of `scene`: a path to a scene file, a dict in the scene format, or a
+    /// `World` (copied in its current state).
+    #[new]
+    fn new(scene: &Bound<'_, PyAny>, count: i64) -> PyResult<Self> {
+        let Some(count) = usize::try_from(count).ok().filter(|&count| count > 0) else {
+            return Err(PyValueError::new_err(format!(
+                "count: must be at least 1, got {count}"
+            )));
+        };
+        let initial = load_scene(scene)?;
+        let sims = vec![initial.clone(); count];
+        Ok(Self { initial, sims })
+    }
+
+    /// Number of worlds.
+    #[getter]
+    fn count(&self) -> usize {
+        self.sims.len()
+    }
+
+    fn __len__(&self) -> usize {
+        self.sims.len()
+    }
+
+    /// Seconds per step.
+    #[getter]
+    fn timestep(&self) -> f64 {
+        self.initial.timestep()
+    }
+
+    /// Number of bodies in each world.
+    #[getter]
+    fn body_count(&self) -> usize {
+        self.initial.body_count()
+    }
+
+    /// Body names in scene order.
+    fn body_names(&self) -> Vec<String> {
+        self.initial.body_names()
+    }
+
+    /// Joint names in scene order.
+    fn joint_names(&self) -> Vec<String> {
+        self.initial.joint_names()
+    }
+
+    /// Names of the joints with a motor, in the order of `set_motor_targets`.
+    fn motor_names(&self) -> Vec<String> {
+        self.initial.motor_names()
+    }
+
+    /// Advances every world by `n` steps, in parallel on all cores, without the GIL. A failed
+    /// step raises `StepError` for the first failing world (`world 3: step 12 failed: ...`);
+    /// the other worlds have still stepped.
+    #[pyo3(signature = (n = 1))]
+    fn step(&mut self, py: Python<'_>, n: i64) -> PyResult<()> {
+        let n = step_count(n)?;
+        let sims = &mut self.sims;
+        let results: Vec<Result<(), String>> =
+            py.allow_threads(|| sims.par_iter_mut().map(|sim| sim.step(n)).collect());
+        for (index, result) in results.into_iter().enumerate() {
+            if let Err(message) = result {
+                return Err(StepError::new_err(format!("world {index}: {message}")));
+            }
+        }
+        Ok(())
+    }
+
+    /// Puts the worlds at `indices` (all when `None`) back in their starting state.
+    #[pyo3(signature = (indices = None))]
+    fn reset(&mut self, indices: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
+        let Some(indices) = indices else {
+            for sim in &mut self.sims {
+                sim.clone_from(&self.initial);
+            }
+            return Ok(());
+        };
+        let indices: Vec<i64> = match indices.extract::<i64>() {
+            Ok(single) => vec![single],
+            Err(_) => indices
+                .try_iter()?
+                .map(|item| item.and_then(|item| item.extract::<i64>()))
+                .collect::<PyResult<_>>()
+                .map_err(|error| {
+                    PyValueError::new_err(format!("indices: expected whole numbers: {error}"))
+                })?,
+        };
+        let count = self.sims.len();
+        let mut checked = Vec::with_capacity(indices.len());
+        for (place, &index) in indices.iter().enumerate() {
+            match usize::try_from(index).ok().filter(|&index| index < count) {
+                Some(index) => checked.push(index),
+                None => {
+                    return Err(PyIndexError::new_err(format!(
+                        "indices[{place}]: {index} is not a world of this batch (0 to {})",
+                        count - 1
+                    )))
+                }
+            }
+        }
+        for index in checked {
+            self.sims[index].clone_from(&self.initial);
+        }
+        Ok(())
+    }
+
+    /// A copy of world `index` as a `World`.
+    fn world(&self, index: i64) -> PyResult<World> {
+        usize::try_from(index)
+            .ok()
+            .and_then(|index| self.sims.get(index))
+            .map(|sim| World { sim: sim.clone() })
+            .ok_or_else(|| {
+                PyIndexError::new_err(format!(
+                    "index: {index} is not a world of this batch (0 to {})",
+                    self.sims.len() - 1
+                ))
+            })
+    }
+
+    /// Body origins, m: float32 array (count, bodies, 3).
+    fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<f32>>> {
+        self.read(py, Quantity::Position)
+    }
+
+    /// Rotations (x, y, z, w): float32 array (count, bodies, 4).
+    fn rotations<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<f32>>> {
+        self.read(py, Quantity::Rotation)
+    }
+
+    /// Velocities of the centres of mass, m/s: float32 array (count, bodies, 3).
+    fn linear_velocities<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<f32>>> {
+        self.read(py, Quantity::LinearVelocity)
+    }
+
+    /// Angular velocities, rad/s: float32 array (count, bodies, 3).
+    fn angular_velocities<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<f32>>> {
+        self.read(py, Quantity::AngularVelocity)
+    }
+
+    /// Sets every body's linear velocity in every world: array (count, bodies, 3).
+    fn set_linear_velocities(&mut self, py: Python<'_>, a: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.write(py, a, Input::LinearVelocity, "set_linear_velocities")
+    }
+
+    /// Sets every body's angular velocity in every world: array (count, bodies, 3).
+    fn set_angular_velocities(&mut self, py: Python<'_>, a: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.write(py, a, Input::AngularVelocity, "set_angular_velocities")
+    }
+
+    /// Adds forces for the next step only: array (count, bodies, 3).
+    fn apply_forces(&mut self, py: Python<'_>, a: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.write(py, a, Input::Force, "apply_forces")
+    }
+
+    /// Sets every motor's target in every world: array (count, motors).
+    fn set_motor_targets(&mut self, py: Python<'_>, a: &Bound<'_, PyAny>) -> PyResult<()> {
+        let motors = self.initial.motor_count();
+        let shape = [self.sims.len(), motors];
+        let values = input(a, &shape, "set_motor_targets", "(count, motors)")?;
+        let sims = &mut self.sims;
+        let result = py.allow_threads(|| {
+            sims.par_iter_mut()
+                .zip(values.par_chunks(motors.max(1)))
+                .try_for_each(|(sim, targets)| sim.set_motor_targets(targets))
+        });
+        result.map_err(|error| PyValueError::new_err(format!("set_motor_targets: {error}")))
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Batch(count={}, bodies={}, timestep={})",
+            self.sims.len(),
+            self.initial.body_count(),
+            self.initial.timestep()
+        )
+    }
+}
+
+impl Batch {
+    /// One per-body quantity of every world, (count, bodies, width).
+    fn read<'py>(
+        &self,
+        py: Python<'py>,
+        quantity: Quantity,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f32>>> {
+        let bodies = self.initial.body_count();
+        let per_world = bodies * quantity.width();
+        let mut values = vec![0.0; self.sims.len() * per_world];
+        let sims = &self.sims;
+        py.allow_threads(|| {
+            values
+                .par_chunks_mut(per_world.max(1))
+                .zip(sims.par_iter())
+                .for_each(|(out, sim)| sim.read(quantity, out));
+        });
+        output(py, values, &[self.sims.len(), bodies, quantity.width()])
+    }
+
+    /// One per-body input to every world, from (count, bodies, 3).
+    fn write(
+        &mut self,
+        py: Python<'_>,
+        a: &Bound<'_, PyAny>,
+        what: Input,
+        name: &str,
+    ) -> PyResult<()> {
+        let bodies = self.initial.body_count();
+        let shape = [self.sims.len(), bodies, 3];
+        let values = input(a, &shape, name, "(count, bodies, 3)")?;
+        let sims = &mut self.sims;
+        let result = py.allow_threads(|| {
+            sims.par_iter_mut()
+                .zip(values.par_chunks((bodies * 3).max(1)))
+                .try_for_each(|(sim, chunk)| sim.write(what, chunk))
+        });
+        result.map_err(|error| PyValueError::new_err(format!("{name}: {error}")))
+    }
+}

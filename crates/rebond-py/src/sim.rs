@@ -1,0 +1,219 @@
+//! One simulated world as Python sees it: a loaded scene with its bodies and motors in scene
+//! order, and the number of steps taken. `World` owns one, `Batch` many.
+
+use rebond::scene::Scene;
+use rebond::{BodyHandle, JointHandle, Motor, Vec3};
+
+/// A per-body quantity that the getters read.
+#[derive(Debug, Clone, Copy)]
+pub enum Quantity {
+    /// Body origin, m.
+    Position,
+    /// Rotation quaternion, x, y, z, w.
+    Rotation,
+    /// Velocity of the centre of mass, m/s.
+    LinearVelocity,
+    /// Angular velocity, rad/s.
+    AngularVelocity,
+}
+
+impl Quantity {
+    /// Numbers per body.
+    pub fn width(self) -> usize {
+        match self {
+            Self::Rotation => 4,
+            _ => 3,
+        }
+    }
+}
+
+/// A per-body vector that the setters write.
+#[derive(Debug, Clone, Copy)]
+pub enum Input {
+    /// Replaces the velocity of the centre of mass, m/s.
+    LinearVelocity,
+    /// Replaces the angular velocity, rad/s.
+    AngularVelocity,
+    /// Adds a force at the centre of mass for the next step, N.
+    Force,
+}
+
+/// A world with its scene's names, stepped with the scene's timestep.
+#[derive(Debug, Clone)]
+pub struct Sim {
+    scene: Scene,
+    /// The scene file's path, which error messages start with; `None` for dicts and `World()`.
+    source: Option<String>,
+    /// Body handles in scene order.
+    bodies: Vec<BodyHandle>,
+    /// Joints with a motor, in scene order.
+    motors: Vec<JointHandle>,
+    /// Steps taken so far.
+    steps: u64,
+}
+
+impl Sim {
+    /// A world for `scene`, with `source` for error messages.
+    pub fn new(scene: Scene, source: Option<String>) -> Self {
+        let mut sim = Self {
+            scene,
+            source,
+            bodies: Vec::new(),
+            motors: Vec::new(),
+            steps: 0,
+        };
+        sim.refresh();
+        sim
+    }
+
+    /// Reads the body and motor lists again after a body or joint was added.
+    pub fn refresh(&mut self) {
+        self.bodies = self
+            .scene
+            .body_handles()
+            .map(|(_, handle)| handle)
+            .collect();
+        let world = self.scene.world();
+        self.motors = self
+            .scene
+            .joint_handles()
+            .filter(|&(_, handle)| {
+                world
+                    .joint(handle)
+                    .is_ok_and(|joint| joint.desc().motor.is_some())
+            })
+            .map(|(_, handle)| handle)
+            .collect();
+    }
+
+    /// The scene, to add bodies and joints.
+    pub fn scene_mut(&mut self) -> &mut Scene {
+        &mut self.scene
+    }
+
+    /// The scene.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// Where error messages say the world comes from.
+    pub fn source(&self) -> Option<&str> {
+        self.source.as_deref()
+    }
+
+    /// Number of bodies.
+    pub fn body_count(&self) -> usize {
+        self.bodies.len()
+    }
+
+    /// Number of joints with a motor.
+    pub fn motor_count(&self) -> usize {
+        self.motors.len()
+    }
+
+    /// Body names in scene order.
+    pub fn body_names(&self) -> Vec<String> {
+        self.scene
+            .body_handles()
+            .map(|(name, _)| name.to_owned())
+            .collect()
+    }
+
+    /// Joint names in scene order.
+    pub fn joint_names(&self) -> Vec<String> {
+        self.scene
+            .joint_handles()
+            .map(|(name, _)| name.to_owned())
+            .collect()
+    }
+
+    /// Names of the joints with a motor, in scene order: the order of `set_motor_targets`.
+    pub fn motor_names(&self) -> Vec<String> {
+        self.scene
+            .joint_handles()
+            .filter(|(_, handle)| self.motors.contains(handle))
+            .map(|(name, _)| name.to_owned())
+            .collect()
+    }
+
+    /// The index in scene order of the body `handle`.
+    pub fn body_index(&self, handle: BodyHandle) -> Option<usize> {
+        self.bodies.iter().position(|&body| body == handle)
+    }
+
+    /// Seconds per step.
+    pub fn timestep(&self) -> f64 {
+        self.scene.timestep().seconds
+    }
+
+    /// Steps `count` times; the error is the command line's `step N failed: ...`, N counted from
+    /// the world's first step.
+    pub fn step(&mut self, count: u64) -> Result<(), String> {
+        for _ in 0..count {
+            self.steps += 1;
+            if let Err(error) = self.scene.step() {
+                let message = format!("step {} failed: {error}", self.steps);
+                return Err(crate::errors::with_source(self.source(), message));
+            }
+        }
+        Ok(())
+    }
+
+    /// Writes `quantity` of every body into `out`, `width` numbers a body.
+    pub fn read(&self, quantity: Quantity, out: &mut [f32]) {
+        let world = self.scene.world();
+        let width = quantity.width();
+        for (&handle, slot) in self.bodies.iter().zip(out.chunks_exact_mut(width)) {
+            let Ok(body) = world.body(handle) else {
+                slot.fill(f32::NAN);
+                continue;
+            };
+            match quantity {
+                Quantity::Position => slot.copy_from_slice(&body.position().to_array()),
+                Quantity::Rotation => slot.copy_from_slice(&body.rotation().to_array()),
+                Quantity::LinearVelocity => {
+                    slot.copy_from_slice(&body.linear_velocity().to_array());
+                }
+                Quantity::AngularVelocity => {
+                    slot.copy_from_slice(&body.angular_velocity().to_array());
+                }
+            }
+        }
+    }
+
+    /// Applies `input` to every body, three numbers a body, already checked finite.
+    pub fn write(&mut self, input: Input, values: &[f32]) -> Result<(), rebond::Error> {
+        let world = self.scene.world_mut();
+        for (&handle, value) in self.bodies.iter().zip(values.chunks_exact(3)) {
+            let value = Vec3::new(value[0], value[1], value[2]);
+            let body = world.body_mut(handle)?;
+            match input {
+                Input::LinearVelocity => body.set_linear_velocity(value)?,
+                Input::AngularVelocity => body.set_angular_velocity(value)?,
+                Input::Force => body.apply_force(value)?,
+            }
+        }
+        Ok(())
+    }
+
+    /// Sets each motor's target (velocity or position, as the motor is), already checked finite.
+    pub fn set_motor_targets(&mut self, targets: &[f32]) -> Result<(), rebond::Error> {
+        let world = self.scene.world_mut();
+        for (&handle, &target) in self.motors.iter().zip(targets) {
+            let Some(motor) = world.joint(handle)?.desc().motor else {
+                continue;
+            };
+            let motor = match motor {
+                Motor::Velocity { max_force, .. } => Motor::velocity(target, max_force),
+                Motor::Position {
+                    stiffness,
+                    damping,
+                    max_force,
+                    ..
+                } => Motor::position(target, stiffness, damping, max_force),
+            };
+            world.set_joint_motor(handle, Some(motor))?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,189 @@
+//! Contacts of convex shapes with triangle meshes and heightfields: the midphase (the mesh's
+//! hierarchy, or the heightfield's grid) finds the triangles near the shape, each triangle gives
+//! a manifold (`triangle_contact`), and the manifolds that share a normal are merged into one of
+//! at most four points.
+//!
+//! Merging is what makes a mesh behave like one surface for the solver: a box resting on a floor
+//! of many triangles gets one manifold of four points (chosen by where they lie on the floor, so
+//! the same corners are kept from step to step) instead of a manifold per triangle under it. Each
+//! point's id mixes the triangle's index into the id of its features, so warm starting follows a
+//! point as long as it stays on its triangle; the one point of a rounded shape (a sphere's lowest
+//! point) keeps its id across triangles, so a rolling ball keeps its impulse.
+
+use super::clipping::reduce_contacts_on_face;
+use super::feature_contact::DEEPEST_POINT_ID;
+use super::manifold::{ContactPoint, Manifold};
+use super::triangle_contact::collide_triangle;
+use crate::math::{Aabb, Pose, Vec3};
+use crate::shape::{Shape, Triangle};
+
+/// Manifolds whose normals are within this cosine (1.8°) merge into one: coplanar triangles, and
+/// the gentle bends whose edges are not active (under 5°), give one surface.
+const MERGE_COSINE: f32 = 0.9995;
+
+/// Two points of one merged manifold closer than this, metres, are one point (the deeper is kept):
+/// a point on an edge shared by two triangles is found by both.
+const SAME_POINT_DISTANCE: f32 = 1.0e-3;
+
+/// A mesh or heightfield placed in the world.
+pub(crate) struct PlacedMesh<'a> {
+    /// The shape: [`Shape::TriMesh`] or [`Shape::HeightField`].
+    pub shape: &'a Shape,
+    /// Its pose.
+    pub pose: &'a Pose,
+}
+
+/// One group of manifolds with a shared normal, its points in `MeshScratch::points`.
+#[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+struct Group {
+    normal: Vec3,
+    start: usize,
+    len: usize,
+}
+
+/// Scratch space of mesh contacts, kept from query to query so that a steady step allocates
+/// nothing.
+#[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct MeshScratch {
+    triangles: Vec<u32>,
+    manifolds: Vec<(u32, Manifold)>,
+    groups: Vec<Group>,
+    points: Vec<ContactPoint>,
+}
+
+impl MeshScratch {
+    /// The manifolds between `mesh` and the convex `part` at `part_pose` (normals from the mesh
+    /// toward the part), each handed to `emit(group, manifold)` with `group` counting the merged
+    /// manifolds from 0, in a deterministic order: triangles by index, groups by their first
+    /// triangle.
+    pub(crate) fn collide(
+        &mut self,
+        mesh: &PlacedMesh,
+        part: &Shape,
+        part_pose: &Pose,
+        margin: f32,
+        mut emit: impl FnMut(u32, Manifold),
+    ) {
+        if part.is_triangulated() || !part.is_bounded() {
+            return;
+        }
+        let local_pose = mesh.pose.inverse().mul_pose(part_pose);
+        let bounds = part.aabb(&local_pose);
+        let bounds = Aabb::new(
+            bounds.min - Vec3::splat(margin),
+            bounds.max + Vec3::splat(margin),
+        );
+        self.triangles.clear();
+        mesh.shape
+            .triangles_in(&bounds, |index| self.triangles.push(index));
+        // A mesh's hierarchy gives its triangles in leaf order.
+        self.triangles.sort_unstable();
+        let one_sided = matches!(mesh.shape, Shape::HeightField(_));
+        self.manifolds.clear();
+        for &index in &self.triangles {
+            let Some(local) = mesh.shape.triangle(index) else {
+                continue;
+            };
+            let triangle = Triangle {
+                vertices: local
+                    .vertices
+                    .map(|vertex| mesh.pose.transform_point(vertex)),
+                edge_flags: local.edge_flags,
+            };
+            if let Some(manifold) = collide_triangle(&triangle, one_sided, part, part_pose, margin)
+            {
+                self.manifolds.push((index, manifold));
+            }
+        }
+        self.merge();
+        let tangent_axis = mesh.pose.transform_vector(Vec3::X);
+        for (group_index, group) in (0u32..).zip(&self.groups) {
+            let points = &self.points[group.start..group.start + group.len];
+            let normal = group.normal;
+            let tangent = (tangent_axis - normal * normal.dot(tangent_axis))
+                .try_normalize()
+                .unwrap_or_else(|| normal.any_orthonormal_vector());
+            emit(
+                group_index,
+                reduce_contacts_on_face(normal, tangent, points),
+            );
+        }
+    }
+
+    /// Groups `manifolds` by normal into `groups` and `points`, giving each point an id with its
+    /// triangle's index mixed in and merging points found twice.
+    fn merge(&mut self) {
+        self.groups.clear();
+        self.points.clear();
+        let Self {
+            manifolds,
+            groups,
+            points,
+            ..
+        } = self;
+        // Each group's points stay together: groups are filled one after the other.
+        let mut taken = 0;
+        while taken < manifolds.len() {
+            let normal = manifolds[taken].1.normal;
+            let start = points.len();
+            for (triangle, manifold) in manifolds.iter() {
+                if manifold.normal.dot(normal) < MERGE_COSINE || manifold.is_empty() {
+                    continue;
+                }
+                for point in manifold.points() {
+                    let id = if point.id == DEEPEST_POINT_ID {
+                        point.id
+                    } else {
+                        mix_id(*triangle, point.id)
+                    };
+                    add_point(points, start, ContactPoint { id, ..*point });
+                }
+            }
+            if points.len() > start {
+                groups.push(Group {
+                    normal,
+                    start,
+                    len: points.len() - start,
+                });
+            }
+            // Mark the merged manifolds as used by emptying them, then find the next unused one.
+            for (_, manifold) in manifolds.iter_mut() {
+                if manifold.normal.dot(normal) >= MERGE_COSINE {
+                    *manifold = Manifold::new(manifold.normal);
+                }
+            }
+            while taken < manifolds.len() && manifolds[taken].1.is_empty() {
+                taken += 1;
+            }
+        }
+    }
+}
+
+/// Adds `point` to the group starting at `start`, or, when the group holds a point within
+/// [`SAME_POINT_DISTANCE`] or of the same id, keeps the deeper of the two.
+fn add_point(points: &mut Vec<ContactPoint>, start: usize, point: ContactPoint) {
+    let twin = points[start..].iter_mut().find(|other| {
+        other.id == point.id
+            || other.position.distance_squared(point.position)
+                < SAME_POINT_DISTANCE * SAME_POINT_DISTANCE
+    });
+    match twin {
+        Some(twin) if point.separation < twin.separation => *twin = point,
+        Some(_) => {}
+        None => points.push(point),
+    }
+}
+
+/// A point id made unique across triangles: the feature id and the triangle's index mixed by a
+/// multiplicative hash (Knuth's 2654435761), never [`DEEPEST_POINT_ID`]. Two points of one
+/// manifold sharing an id would only share a warm start.
+fn mix_id(triangle: u32, id: u32) -> u32 {
+    let mixed = id ^ triangle.wrapping_add(1).wrapping_mul(2_654_435_761);
+    if mixed == DEEPEST_POINT_ID {
+        0
+    } else {
+        mixed
+    }
+}

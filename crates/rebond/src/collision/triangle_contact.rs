@@ -1,0 +1,240 @@
+//! Contacts of a convex shape with one triangle of a mesh or heightfield.
+//!
+//! A triangle is flat, so EPA would degenerate on it, and its edges are shared with neighbours, so
+//! an edge normal is often a "ghost" of a surface that goes on flat. The contact is therefore
+//! built in three steps:
+//!
+//! 1. The closest points of the triangle and of the shape's core (GJK; a sphere's by the closed
+//!    form). When the cores overlap, or the shape lies behind a heightfield's surface, the normal
+//!    is the face normal and the depth is the shape's deepest point below the triangle's plane.
+//! 2. Internal edges: when the closest point of the triangle is on an edge or corner that is not
+//!    active on that side (see [`Triangle`]) and the normal is not the face normal, the normal
+//!    becomes the face normal, with the separation measured along it from the triangle's closest
+//!    point: the neighbour across a flat or concave edge holds the shape on its own face, so the
+//!    edge must not push sideways (Jolt's internal-edge removal and Box3D's triangle manifolds
+//!    rest on the same idea). The deepest point then sits under the shape's closest point, and is
+//!    left out when that foot lies off the triangle (the neighbour under it makes that point);
+//!    a shape beside or behind the plane there gets no contact.
+//! 3. Points: the triangle's supporting feature (its face, an edge or a corner) and the shape's
+//!    are clipped against each other as for any convex pair
+//!    (`feature_contact::manifold_from_features`).
+
+use super::epa::ContactInfo;
+use super::feature_contact::{
+    manifold_from_features, supporting_feature, Feature, DEEPEST_POINT_ID,
+};
+use super::gjk;
+use super::manifold::Manifold;
+use super::{PosedCore, SupportMap};
+use crate::math::{Pose, Vec3};
+use crate::shape::{Shape, Triangle, ACTIVE_EDGE_ANGLE};
+
+/// A normal within this cosine of the face normal (0.8°) is taken as the face normal: closer
+/// than GJK's precision on a shape resting flat.
+const FACE_NORMAL_COSINE: f32 = 0.9999;
+
+/// A barycentric weight below this puts the closest point on the edge or corner it names:
+/// relative to the triangle, so a millimetre on a 10 m triangle.
+const FEATURE_WEIGHT: f32 = 1.0e-4;
+
+/// A contact snapped to the face normal is kept when the point under the shape lies this close to
+/// the triangle, metres, besides the reach of a bent normal: f32 rounding of a point on an edge.
+const FOOT_TOLERANCE: f32 = 1.0e-5;
+
+/// A triangle (in world space, for GJK) as a support map: its corner farthest along the direction.
+impl SupportMap for Triangle {
+    fn support(&self, direction: Vec3) -> Vec3 {
+        let [a, b, c] = self.vertices;
+        let (da, db, dc) = (a.dot(direction), b.dot(direction), c.dot(direction));
+        if da >= db && da >= dc {
+            a
+        } else if db >= dc {
+            b
+        } else {
+            c
+        }
+    }
+}
+
+/// The manifold between `triangle` (world space) and the convex `shape` at `pose` (not a
+/// compound, halfspace, mesh or heightfield), with the normal from the triangle toward the shape,
+/// or `None` beyond `margin`. A `one_sided` triangle (of a heightfield) is solid behind its front;
+/// otherwise the side facing the shape's origin is the face that collides.
+pub fn collide_triangle(
+    triangle: &Triangle,
+    one_sided: bool,
+    shape: &Shape,
+    pose: &Pose,
+    margin: f32,
+) -> Option<Manifold> {
+    let front_normal = triangle.normal()?;
+    let [a, _, _] = triangle.vertices;
+    let front = one_sided || front_normal.dot(pose.position - a) >= 0.0;
+    let face = if front { front_normal } else { -front_normal };
+    let radius = shape.core_radius();
+    let core = PosedCore::new(shape, pose);
+    // A shape whose origin lies behind a heightfield's surface is in its solid, however deep.
+    let buried = one_sided && front_normal.dot(pose.position - a) < 0.0;
+    let closest = if buried {
+        None
+    } else {
+        closest_cores(triangle, shape, &core, face, margin + radius)?
+    };
+    // Whether the deepest point lies on this triangle, so that the manifold may hold it.
+    let mut deepest_here = true;
+    let deepest = match closest {
+        Some((on_triangle, on_shape)) => {
+            let offset = on_shape - on_triangle;
+            let distance = offset.length();
+            let normal = offset / distance;
+            let (_, weights) = triangle.closest_point(on_triangle);
+            if normal.dot(face) >= FACE_NORMAL_COSINE || on_active_feature(triangle, weights, front)
+            {
+                ContactInfo {
+                    normal,
+                    separation: distance - radius,
+                    point_a: on_triangle,
+                    point_b: on_shape - normal * radius,
+                }
+            } else {
+                // Snapped to the face: the deepest point sits under the shape's closest point.
+                let height = face.dot(offset);
+                if height <= 0.0 {
+                    return None;
+                }
+                let surface = on_shape - face * radius;
+                let foot = surface - face * face.dot(surface - a);
+                deepest_here = holds_foot(triangle, foot, distance);
+                ContactInfo {
+                    normal: face,
+                    separation: height - radius,
+                    point_a: foot,
+                    point_b: surface,
+                }
+            }
+        }
+        None => {
+            let lowest = core.support(-face) - face * radius;
+            let separation = face.dot(lowest - a);
+            let foot = lowest - face * separation;
+            deepest_here = holds_foot(triangle, foot, 0.0);
+            ContactInfo {
+                normal: face,
+                separation,
+                point_a: foot,
+                point_b: lowest,
+            }
+        }
+    };
+    if deepest.separation > margin {
+        return None;
+    }
+    let feature_a = triangle_feature(triangle, face, deepest.normal, deepest.point_a);
+    let feature_b = supporting_feature(shape, pose, -deepest.normal);
+    let mut manifold = manifold_from_features(
+        &deepest,
+        &feature_a,
+        &feature_b,
+        [0.0, radius],
+        margin,
+        Some(inactive_sides(triangle, face, front)),
+    );
+    if !deepest_here {
+        manifold.retain(|point| point.id != DEEPEST_POINT_ID);
+    }
+    (!manifold.is_empty()).then_some(manifold)
+}
+
+/// Whether the point `foot` of the triangle's plane, under a point of the shape `distance` from
+/// the triangle, belongs to the triangle: on it, or within the sideways reach of a normal bent by
+/// up to `ACTIVE_EDGE_ANGLE` (past a convex edge bent that little, neither triangle would
+/// otherwise hold the shape). Off it, the neighbour under the foot makes that point.
+fn holds_foot(triangle: &Triangle, foot: Vec3, distance: f32) -> bool {
+    let (nearest, _) = triangle.closest_point(foot);
+    let reach = distance * ACTIVE_EDGE_ANGLE.sin() + FOOT_TOLERANCE;
+    nearest.distance_squared(foot) <= reach * reach
+}
+
+/// The closest points of the triangle and the shape's core when they are apart by less than
+/// `limit`: `Some(Some((on_triangle, on_core)))`; `Some(None)` when the cores overlap, or the
+/// core lies behind a one-sided `face` (a point below the plane); `None` when apart by more.
+fn closest_cores(
+    triangle: &Triangle,
+    shape: &Shape,
+    core: &PosedCore,
+    face: Vec3,
+    limit: f32,
+) -> Option<Option<(Vec3, Vec3)>> {
+    let (on_triangle, on_core) = if let Shape::Sphere(_) = shape {
+        let (on_triangle, _) = triangle.closest_point(core.pose.position);
+        (on_triangle, core.pose.position)
+    } else {
+        let found = gjk::distance_within(triangle, core, &[], face, limit)?;
+        if found.overlapping {
+            return Some(None);
+        }
+        (found.point_a, found.point_b)
+    };
+    let offset = on_core - on_triangle;
+    if offset.length_squared() > limit * limit {
+        return None;
+    }
+    let plane_height = face.dot(on_core - triangle.vertices[0]);
+    if offset.length() <= f32::EPSILON * limit.max(1.0) || plane_height < 0.0 {
+        return Some(None);
+    }
+    Some(Some((on_triangle, on_core)))
+}
+
+/// Whether the point of the triangle with barycentric `weights` lies on an edge active on that
+/// side (`front`), or on a corner one of whose edges is.
+fn on_active_feature(triangle: &Triangle, weights: [f32; 3], front: bool) -> bool {
+    // Weight k zero: the point is on edge (k + 1) % 3, opposite corner k.
+    let on_edge = |edge: usize| weights[(edge + 2) % 3] < FEATURE_WEIGHT;
+    (0..3).any(|edge| on_edge(edge) && triangle.edge_active(edge, front))
+}
+
+/// The sides of the triangle's face polygon (as [`triangle_feature`] orders it about `face`)
+/// whose edges are not active on that side: bit `j` for the side from polygon vertex `j` to
+/// `j + 1`.
+fn inactive_sides(triangle: &Triangle, face: Vec3, front: bool) -> u8 {
+    let [a, b, c] = triangle.vertices;
+    // Counter-clockwise about the face, sides follow edges 0, 1, 2; turned over, the polygon
+    // a, c, b runs along edges 2, 1, 0.
+    let edges = if face.dot((b - a).cross(c - a)) >= 0.0 {
+        [0, 1, 2]
+    } else {
+        [2, 1, 0]
+    };
+    (0..3)
+        .filter(|&side| !triangle.edge_active(edges[side], front))
+        .fold(0, |sides, side| sides | (1 << side))
+}
+
+/// The triangle's supporting feature along the contact `normal`: its face (index 0,
+/// counter-clockwise about `face`) when the normal is the face normal, otherwise the feature
+/// holding `point`, its closest point to the shape: an edge (1 + edge) or a corner (4 + corner).
+fn triangle_feature(triangle: &Triangle, face: Vec3, normal: Vec3, point: Vec3) -> Feature {
+    let [a, b, c] = triangle.vertices;
+    let (_, weights) = triangle.closest_point(point);
+    let small = weights.map(|weight| weight < FEATURE_WEIGHT);
+    let on_face = normal.dot(face) >= FACE_NORMAL_COSINE;
+    match small {
+        _ if on_face => {
+            let corners = if face.dot((b - a).cross(c - a)) >= 0.0 {
+                [a, b, c]
+            } else {
+                [a, c, b]
+            };
+            Feature::of_points(0, &corners, face)
+        }
+        [true, true, _] => Feature::of_points(6, &[c], face),
+        [true, _, true] => Feature::of_points(5, &[b], face),
+        [_, true, true] => Feature::of_points(4, &[a], face),
+        // Weight k zero: edge (k + 1) % 3.
+        [true, false, false] => Feature::of_points(2, &[b, c], face),
+        [false, true, false] => Feature::of_points(3, &[c, a], face),
+        [false, false, true] => Feature::of_points(1, &[a, b], face),
+        [false, false, false] => Feature::of_points(0, &[point], face),
+    }
+}

@@ -1,0 +1,51 @@
+//! Triangle meshes and heightfields against closed forms: balls roll and boxes slide across the
+//! edges between triangles as on one plane, a box slides down a tilted heightfield at
+//! `g (sin θ − μ cos θ)`, a fast ball stops at a wall of two triangles, shapes poured on a terrain
+//! rest on it, and geometry is shared, not copied.
+
+#[path = "../common/mod.rs"]
+mod common;
+mod floors;
+mod geometry;
+mod queries;
+#[path = "../common/random.rs"]
+mod random;
+mod terrain;
+
+pub use common::{world, DT, G};
+use rebond::{Quat, Shape, Vec3};
+
+/// A flat square floor in the plane y = 0, `size` metres a side centred on the origin, of
+/// `cells × cells` squares each split in two triangles along a diagonal that alternates from
+/// cell to cell (so edges run along X, along Z and along both diagonals), turned by `yaw` about Y.
+pub fn floor_mesh(size: f32, cells: u32) -> Shape {
+    let mut vertices = Vec::new();
+    for i in 0..=cells {
+        for j in 0..=cells {
+            let x = (j as f32 / cells as f32 - 0.5) * size;
+            let z = (i as f32 / cells as f32 - 0.5) * size;
+            vertices.push(Vec3::new(x, 0.0, z));
+        }
+    }
+    let at = |i: u32, j: u32| i * (cells + 1) + j;
+    let mut indices = Vec::new();
+    for i in 0..cells {
+        for j in 0..cells {
+            let (a, b, c, d) = (at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
+            // Counter-clockwise about +Y: a → d → c → b.
+            if (i + j) % 2 == 0 {
+                indices.push([a, d, c]);
+                indices.push([a, c, b]);
+            } else {
+                indices.push([a, d, b]);
+                indices.push([b, d, c]);
+            }
+        }
+    }
+    Shape::trimesh(vertices, &indices).unwrap()
+}
+
+/// The horizontal unit direction at `angle` radians from +X toward −Z (about +Y).
+pub fn heading(angle: f32) -> Vec3 {
+    Quat::from_rotation_y(angle) * Vec3::X
+}
