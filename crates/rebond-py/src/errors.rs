@@ -15,6 +15,14 @@ create_exception!(
 
 create_exception!(
     rebond,
+    StateError,
+    PyValueError,
+    "Bytes that are not a world saved by `World.save` of this build of rebond: not a state, \
+     cut short, damaged, or of another format version or build; the message says which."
+);
+
+create_exception!(
+    rebond,
     StepError,
     PyRuntimeError,
     "The engine refused to step a world: `step N failed: ...`, as the command line says."
@@ -37,7 +45,7 @@ pub fn invalid_scene(source: Option<&str>, error: &InvalidScene) -> PyErr {
 /// read (`path: cannot read scene: ...`), `SceneError` when it is not valid (`path: place: ...`).
 pub fn load_failed(path: &str, error: &LoadError) -> PyErr {
     match error {
-        LoadError::Read { .. } => PyOSError::new_err(error.to_string()),
+        LoadError::Read { .. } | LoadError::Mesh { .. } => PyOSError::new_err(error.to_string()),
         LoadError::Invalid(invalid) => invalid_scene(Some(path), invalid),
     }
 }

@@ -23,6 +23,7 @@ fn _rebond(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<batch::Batch>()?;
     module.add("SceneError", py.get_type::<errors::SceneError>())?;
     module.add("StepError", py.get_type::<errors::StepError>())?;
+    module.add("StateError", py.get_type::<errors::StateError>())?;
     module.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -66,6 +66,18 @@ impl Sim {
         sim
     }
 
+    /// A world for `scene` restored from a saved state after `steps` steps.
+    pub fn restored(scene: Scene, steps: u64) -> Self {
+        let mut sim = Self::new(scene, None);
+        sim.steps = steps;
+        sim
+    }
+
+    /// The scene's state after the steps taken so far, as bytes ([`Scene::save_state`]).
+    pub fn save(&self) -> Vec<u8> {
+        self.scene.save_state(self.steps)
+    }
+
     /// Reads the body and motor lists again after a body or joint was added.
     pub fn refresh(&mut self) {
         self.bodies = self

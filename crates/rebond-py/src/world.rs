@@ -3,7 +3,7 @@
 use numpy::PyArrayDyn;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict, PyInt, PyString};
+use pyo3::types::{PyBool, PyBytes, PyDict, PyInt, PyString};
 use rebond::scene::Scene;
 use rebond::{QueryFilter, Ray, Vec3};
 
@@ -184,6 +184,24 @@ impl World {
     /// A copy of this world, which steps on exactly as this one would.
     fn copy(&self) -> Self {
         self.clone()
+    }
+
+    /// The whole world as bytes (every body, joint, contact, warm-start impulse and sleep
+    /// timer, its names and timestep, and the steps taken): `World.load` restores a world that
+    /// steps on exactly as this one would. The format is the command line's `--save-state`.
+    fn save<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
+        PyBytes::new(py, &self.sim.save())
+    }
+
+    /// A world saved by `save` (or by the command line's `--save-state`); bytes that are not
+    /// such a state of this build raise `StateError` saying why.
+    #[staticmethod]
+    fn load(data: &[u8]) -> PyResult<Self> {
+        let (scene, steps) = Scene::load_state(data)
+            .map_err(|error| crate::errors::StateError::new_err(error.to_string()))?;
+        Ok(Self {
+            sim: Sim::restored(scene, steps),
+        })
     }
 
     /// Seconds per step.

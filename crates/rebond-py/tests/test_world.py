@@ -148,6 +148,34 @@ def test_copy_steps_on_exactly_like_the_original():
     np.testing.assert_array_equal(world.angular_velocities(), twin.angular_velocities())
 
 
+def test_a_loaded_world_steps_on_bit_for_bit_like_the_saved_one():
+    world = ball_world()
+    world.add_body({"type": "box", "half_extents": [0.3, 0.3, 0.3]}, name="crate", position=[1, 2, 0])
+    world.add_joint("ball", body_a="ball", body_b="crate", anchor=[0.5, 3, 0], friction=0.1)
+    world.step(40)
+    data = world.save()
+    assert isinstance(data, bytes) and data[:8] == b"REBONDSC"
+    restored = rebond.World.load(data)
+    assert restored.body_names() == world.body_names()
+    world.step(60)
+    restored.step(60)
+    for getter in ["positions", "rotations", "linear_velocities", "angular_velocities"]:
+        np.testing.assert_array_equal(getattr(world, getter)(), getattr(restored, getter)())
+
+
+def test_bytes_that_are_not_a_saved_world_raise_state_error():
+    data = ball_world().save()
+    damaged = bytearray(data)
+    damaged[len(data) // 2] ^= 1
+    for bad, message in [
+        (b"not a state", "not a rebond state file"),
+        (data[:-3], "truncated state"),
+        (bytes(damaged), "damaged state"),
+    ]:
+        with pytest.raises(rebond.StateError, match=message):
+            rebond.World.load(bad)
+
+
 def test_step_releases_the_gil():
     import threading
 

@@ -16,6 +16,9 @@ FloatArray = npt.NDArray[np.float32]
 class SceneError(ValueError):
     """A scene, body or joint that is not valid; the message names the place of the bad value."""
 
+class StateError(ValueError):
+    """Bytes that are not a world saved by ``World.save`` of this build: the message says why."""
+
 class StepError(RuntimeError):
     """The engine refused to step: ``step N failed: ...``, as the command line says."""
 
@@ -101,6 +104,11 @@ class World:
         """Advances the world by ``n`` steps, without the GIL."""
     def copy(self) -> "World":
         """A copy that steps on exactly as this world would."""
+    def save(self) -> bytes:
+        """The whole world as bytes, which ``World.load`` restores exactly."""
+    @staticmethod
+    def load(data: bytes) -> "World":
+        """A world saved by ``save`` (or ``rebond run --save-state``); raises ``StateError``."""
     @property
     def timestep(self) -> float:
         """Seconds per step."""
