@@ -136,11 +136,19 @@ pub fn parallel_axis_shift(mass: f32, d: Vec3) -> Mat3 {
         - Mat3::from_cols(d * d.x, d * d.y, d * d.z))
 }
 
-/// Normalises a user quaternion; a zero or non-finite one is an error.
+/// Normalises a user quaternion; a zero or non-finite one is an error. One whose squared length
+/// overflows `f32` (a component past about 1.8e19) is scaled by its largest component first, so
+/// that it gives its direction rather than zero or NaN.
 pub fn normalize_rotation(field: &str, rotation: Quat) -> Result<Quat> {
     if !rotation.is_finite() {
         return Err(Error::new(field, ErrorKind::NotFinite));
     }
+    let rotation = if rotation.length_squared().is_finite() {
+        rotation
+    } else {
+        let components = glam::Vec4::from(rotation);
+        Quat::from_vec4(components / components.abs().max_element())
+    };
     let length = rotation.length();
     if length <= f32::EPSILON {
         return Err(Error::new(field, ErrorKind::ZeroQuaternion));

@@ -260,3 +260,22 @@ fn huge_finite_values_never_turn_into_infinity() {
     assert!(body.position().is_finite());
     assert!(body.rotation().is_finite() && body.angular_velocity().is_finite());
 }
+
+#[test]
+fn a_rotation_too_long_to_square_in_f32_is_normalised_not_lost() {
+    // Found by fuzzing the scene loader (fuzz/regressions/scene_loader): a quaternion with a
+    // component of 3.3e27 has a squared length past f32's range, and normalising it gave a
+    // non-finite body. Scaled first, it is the rotation its direction says: half a turn about X.
+    let mut world = World::new(WorldSettings::default()).unwrap();
+    let handle = world
+        .add_body(BodyDesc::dynamic(unit_box()).rotation(Quat::from_xyzw(3.3e27, 0.0, 0.17, 0.98)))
+        .unwrap();
+    let rotation = world.body(handle).unwrap().rotation();
+    assert!((rotation.length() - 1.0).abs() < 1e-6, "{rotation:?}");
+    assert!((rotation.x - 1.0).abs() < 1e-6, "{rotation:?}");
+    for _ in 0..3 {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    let body = world.body(handle).unwrap();
+    assert!(body.rotation().is_finite() && body.position().is_finite());
+}
