@@ -1,7 +1,5 @@
 """rebond.Batch: copies of a world stepped in parallel, bit for bit as separate worlds."""
 
-import threading
-
 import numpy as np
 import pytest
 
@@ -113,24 +111,9 @@ def test_a_batch_of_a_world_starts_from_its_current_state():
     np.testing.assert_array_equal(bits(batch.positions()[1]), bits(copy.positions()))
 
 
-def test_batch_step_releases_the_gil():
+def test_batch_step_releases_the_gil(counted_during):
     batch = rebond.Batch(MIXED_SCENE, 64)
-    counter = [0]
-    running = threading.Event()
-
-    def count():
-        running.set()
-        while running.is_set():
-            counter[0] += 1
-
-    thread = threading.Thread(target=count)
-    thread.start()
-    running.wait()
-    before = counter[0]
-    batch.step(40)
-    during = counter[0] - before
-    running.clear()
-    thread.join()
+    during = counted_during(lambda: batch.step(40))
     assert during > 1000, "the counting thread was held up while the batch stepped"
 
 

@@ -176,28 +176,11 @@ def test_bytes_that_are_not_a_saved_world_raise_state_error():
             rebond.World.load(bad)
 
 
-def test_step_releases_the_gil():
-    import threading
-
+def test_step_releases_the_gil(counted_during):
     world = rebond.World(gravity=[0, -9.81, 0])
     for index in range(400):
         world.add_body(BALL, position=[(index % 20) * 1.1, 1 + index // 20 * 1.1, 0])
-    counter = [0]
-    running = threading.Event()
-
-    def count():
-        running.set()
-        while running.is_set():
-            counter[0] += 1
-
-    thread = threading.Thread(target=count)
-    thread.start()
-    running.wait()
-    before = counter[0]
-    world.step(60)
-    during = counter[0] - before
-    running.clear()
-    thread.join()
+    during = counted_during(lambda: world.step(60))
     assert during > 1000, "the counting thread was held up while the world stepped"
 
 

@@ -181,6 +181,20 @@ pub struct World {
     touched_static_slots: Vec<usize>,
 }
 
+/// Marks the broad-phase proxies of the bodies in arena `slots` asleep or awake.
+fn set_proxies_asleep(
+    bodies: &Arena<RigidBody>,
+    broad_phase: &mut BroadPhase,
+    slots: &[usize],
+    asleep: bool,
+) {
+    for &slot in slots {
+        if let Some(proxy) = bodies.at_slot(slot).and_then(|(_, body)| body.proxy) {
+            broad_phase.set_asleep(proxy, asleep);
+        }
+    }
+}
+
 impl World {
     /// An empty world; settings must be finite and in range.
     pub fn new(settings: WorldSettings) -> Result<Self> {
@@ -256,11 +270,7 @@ impl World {
         if !islands.wake_groups(bodies) {
             return;
         }
-        for &slot in islands.woken() {
-            if let Some(proxy) = bodies.at_slot(slot).and_then(|(_, body)| body.proxy) {
-                broad_phase.set_asleep(proxy, false);
-            }
-        }
+        set_proxies_asleep(bodies, broad_phase, islands.woken(), false);
         let awake = |handle: BodyHandle| bodies.get(handle.0).is_some_and(RigidBody::is_awake);
         let wakes = |a: BodyHandle, b: BodyHandle| awake(a) || awake(b);
         contacts.unpark(wakes);
@@ -279,11 +289,7 @@ impl World {
             events,
             ..
         } = self;
-        for &slot in islands.fell_asleep() {
-            if let Some(proxy) = bodies.at_slot(slot).and_then(|(_, body)| body.proxy) {
-                broad_phase.set_asleep(proxy, true);
-            }
-        }
+        set_proxies_asleep(bodies, broad_phase, islands.fell_asleep(), true);
         let awake = |handle: BodyHandle| bodies.get(handle.0).is_some_and(RigidBody::is_awake);
         let parks = |a: BodyHandle, b: BodyHandle| !awake(a) && !awake(b);
         contacts.park(parks);
