@@ -5,7 +5,8 @@
 //! first from one round to the next, and collects each child's `RESULT` line: median step time,
 //! peak memory (VmHWM of the child) and stability figures. It prints a table, then one line per
 //! scene in the form `SCENE ratio=R rebond_ms=A rapier_ms=B rebond_mb=C rapier_mb=D`, followed
-//! by `rebond_gap_m=G rapier_gap_m=H` (the largest joint gap over the run) for scenes with joints.
+//! by `rebond_gap_m=G rapier_gap_m=H` (the largest joint gap over the run) for scenes with joints,
+//! and by each engine's `*_surface_depth_m`, `*_end_surface_depth_m` and `*_moving` for the piles.
 //!
 //! Every scene is described once, engine-neutrally ([`scenes::Scene`]), and built from that
 //! description in each engine, so shapes, sizes, masses, poses and materials are the same by
@@ -15,16 +16,22 @@
 //! the same in both engines, cast through each engine's query API in one process, alternating
 //! engines from one round to the next ([`run_rays`]).
 //!
+//! `terrain_pile` and `mesh_pile` pour mixed shapes on a heightfield and on a triangle mesh; for
+//! them the child also reports how far any body went below the ground's surface and how many
+//! bodies still move at the end ([`surface`]).
+//!
 //! Modules: [`scenes`] (the descriptions and their jitter), [`rebond_engine`] and
-//! [`rapier_engine`] (building and stepping each engine, its stability figures), [`rays`] (the
-//! `--rays` mode), [`measure`] (CPU clock, peak memory, medians, run order); this file holds the
-//! arguments, the child run, the driver and its report.
+//! [`rapier_engine`] (building and stepping each engine, its stability figures), [`surface`]
+//! (depth below the ground of the pile scenes), [`rays`] (the `--rays` mode), [`measure`] (CPU
+//! clock, peak memory, medians, run order); this file holds the arguments, the child run, the
+//! driver and its report.
 
 mod measure;
 mod rapier_engine;
 mod rays;
 mod rebond_engine;
 mod scenes;
+mod surface;
 
 use std::process::Command;
 use std::time::Instant;
@@ -34,6 +41,7 @@ use rapier_engine::RapierEngine;
 use rays::{run_rays, RAY_ROUNDS};
 use rebond_engine::RebondEngine;
 use scenes::{build_scene, FRICTION, RESTITUTION, SUBSTEPS};
+use surface::Surface;
 
 /// Steps at the start of each run left out of the timing (still simulated and checked).
 const WARMUP_STEPS: usize = 10;
@@ -48,7 +56,12 @@ const SCENES: &[(&str, usize, usize)] = &[
     ("mixed", 300, 5),
     ("ragdolls", 600, 5),
     ("bridge", 600, 5),
+    ("terrain_pile", 600, 5),
+    ("mesh_pile", 600, 5),
 ];
+
+/// Speed above which a body counts as still moving at the end of a pile scene, m/s.
+const MOVING_SPEED: f32 = 0.1;
 
 const ENGINES: [&str; 2] = ["rebond", "rapier"];
 
@@ -62,8 +75,16 @@ trait Engine {
     fn positions(&self, out: &mut Vec<[f32; 3]>);
     /// Most negative contact separation in the current manifolds (0 when none penetrate).
     fn deepest_penetration(&self) -> f32;
+    /// Rotations of the dynamic bodies as quaternions `[x, y, z, w]`, in scene order.
+    fn rotations(&self, out: &mut Vec<[f32; 4]>);
+    /// Speeds of the dynamic bodies, m/s, in scene order.
+    fn speeds(&self, out: &mut Vec<f32>);
     /// Largest speed of a dynamic body, m/s.
-    fn max_speed(&self) -> f32;
+    fn max_speed(&self) -> f32 {
+        let mut speeds = Vec::new();
+        self.speeds(&mut speeds);
+        speeds.into_iter().fold(0.0, f32::max)
+    }
     fn contact_points(&self) -> usize;
     /// Largest distance between the two anchors of a joint, m: how far the joints have come
     /// apart (0 without joints).
@@ -90,8 +111,11 @@ fn run_child(engine_name: &str, scene_name: &str, steps: usize) {
     };
     let build_ms = build_start.elapsed().as_secs_f64() * 1e3;
 
+    let surface = Surface::of(&scene);
     let mut start = Vec::new();
     engine.positions(&mut start);
+    let mut rotations = Vec::new();
+    let mut surface_depth = 0.0f32;
     let mut current = Vec::with_capacity(start.len());
     let mut times = Vec::with_capacity(steps);
     let mut wall_times = Vec::with_capacity(steps);
@@ -134,6 +158,10 @@ fn run_child(engine_name: &str, scene_name: &str, steps: usize) {
             .sqrt();
             max_drift = max_drift.max(d);
         }
+        if let Some(surface) = &surface {
+            engine.rotations(&mut rotations);
+            surface_depth = surface_depth.max(surface.deepest(&current, &rotations));
+        }
         if trace > 0 && (step + 1) % trace == 0 {
             let top = current.iter().map(|p| p[1]).fold(f32::MIN, f32::max);
             eprintln!(
@@ -157,17 +185,27 @@ fn run_child(engine_name: &str, scene_name: &str, steps: usize) {
         .unwrap_or(f64::NAN);
     let max_ms = sorted.last().copied().unwrap_or(f64::NAN);
     let wall_median_ms = median(&mut wall_times);
-    // Bodies that left the scene: below the ground top by more than a box, or far out.
+    // Bodies that left the scene: below the ground top by more than a box, or far out; on a
+    // heightfield or a mesh, off it or with their centre below its surface.
     engine.positions(&mut current);
-    let escaped = current
-        .iter()
-        .filter(|p| {
-            !p.iter().all(|c| c.is_finite())
-                || p[1] < -1.0
-                || p[0].abs() > 80.0
-                || p[2].abs() > 80.0
-        })
-        .count();
+    let escaped = match &surface {
+        Some(surface) => surface.escaped(&current),
+        None => current
+            .iter()
+            .filter(|p| {
+                !p.iter().all(|c| c.is_finite())
+                    || p[1] < -1.0
+                    || p[0].abs() > 80.0
+                    || p[2].abs() > 80.0
+            })
+            .count(),
+    };
+    let mut speeds = Vec::new();
+    engine.speeds(&mut speeds);
+    let moving = speeds.iter().filter(|&&speed| speed > MOVING_SPEED).count();
+    let end_surface_depth = surface
+        .as_ref()
+        .map(|surface| surface.deepest(&current, &rotations));
     let max_height = current.iter().map(|p| p[1]).fold(f32::MIN, f32::max);
     let sag = scene.sag_body.map(|i| start[i][1] - current[i][1]);
     let end_speed = engine.max_speed();
@@ -178,13 +216,17 @@ fn run_child(engine_name: &str, scene_name: &str, steps: usize) {
          median_ms={median_ms:.4} wall_median_ms={wall_median_ms:.4} mean_ms={mean_ms:.4} p90_ms={p90_ms:.4} max_ms={max_ms:.4} \
          build_ms={build_ms:.1} mb={mb:.1} drift_m={} penetration_m={:.5} reeval_penetration_m={} \
          end_max_speed={end_speed:.3} end_max_height={max_height:.3} escaped={escaped} \
-         non_finite={non_finite} contacts={contacts} joints={} joint_gap_m={} sag_m={}",
+         non_finite={non_finite} contacts={contacts} joints={} joint_gap_m={} sag_m={} \
+         surface_depth_m={} end_surface_depth_m={} end_moving={}",
         if scene.is_stack { format!("{max_drift:.5}") } else { "-".to_string() },
         0.0 - deepest,
         if is_rapier { format!("{:.5}", 0.0 - deepest_reeval) } else { "-".to_string() },
         scene.joints.len(),
         if scene.joints.is_empty() { "-".to_string() } else { format!("{max_gap:.5}") },
         sag.map_or("-".to_string(), |sag| format!("{sag:.4}")),
+        if surface.is_some() { format!("{surface_depth:.5}") } else { "-".to_string() },
+        end_surface_depth.map_or("-".to_string(), |depth| format!("{depth:.5}")),
+        if surface.is_some() { moving.to_string() } else { "-".to_string() },
     );
 }
 
@@ -312,9 +354,9 @@ fn run_driver(only: &[String], rounds_override: Option<usize>, steps_override: O
     }
     println!();
     println!(
-        "| scene | engine | max drift m | deepest penetration m | rapier re-evaluated m | end max speed m/s | end max height m | escaped | max joint gap m | middle plank sag m | cpu mean / p90 / max ms | build ms | contact points at end |"
+        "| scene | engine | max drift m | deepest penetration m | rapier re-evaluated m | below surface, deepest / at end m | end max speed m/s | moving at end | end max height m | escaped | max joint gap m | middle plank sag m | cpu mean / p90 / max ms | build ms | contact points at end |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (scene, _, _, runs) in &summary {
         for (e, engine_runs) in runs.iter().enumerate() {
             // Stability figures come from the first round; every round runs the same scene and
@@ -324,14 +366,18 @@ fn run_driver(only: &[String], rounds_override: Option<usize>, steps_override: O
                 o.get("drift_m") == r.get("drift_m")
                     && o.get("penetration_m") == r.get("penetration_m")
                     && o.get("joint_gap_m") == r.get("joint_gap_m")
+                    && o.get("surface_depth_m") == r.get("surface_depth_m")
             });
             println!(
-                "| {scene} | {} | {} | {} | {} | {} | {} | {}{} | {} | {} | {} / {} / {} | {:.0} | {} |",
+                "| {scene} | {} | {} | {} | {} | {} / {} | {} | {} | {} | {}{} | {} | {} | {} / {} / {} | {:.0} | {} |",
                 ENGINES[e],
                 r.get("drift_m"),
                 r.get("penetration_m"),
                 r.get("reeval_penetration_m"),
+                r.get("surface_depth_m"),
+                r.get("end_surface_depth_m"),
                 r.get("end_max_speed"),
+                r.get("end_moving"),
                 r.get("end_max_height"),
                 r.get("escaped"),
                 if r.get("non_finite") == "true" {
@@ -349,7 +395,7 @@ fn run_driver(only: &[String], rounds_override: Option<usize>, steps_override: O
             );
             if !same {
                 println!(
-                    "|   | {} | (stability figures differ between rounds) | | | | | | | | | | |",
+                    "|   | {} | (stability figures differ between rounds) | | | | | | | | | | | | |",
                     ENGINES[e]
                 );
             }
@@ -367,8 +413,21 @@ fn run_driver(only: &[String], rounds_override: Option<usize>, steps_override: O
                 runs[1][0].get("joint_gap_m")
             ),
         };
+        let surface = match runs[0][0].get("surface_depth_m") {
+            "-" => String::new(),
+            depth => format!(
+                " rebond_surface_depth_m={depth} rapier_surface_depth_m={} \
+                 rebond_end_surface_depth_m={} rapier_end_surface_depth_m={} rebond_moving={} \
+                 rapier_moving={}",
+                runs[1][0].get("surface_depth_m"),
+                runs[0][0].get("end_surface_depth_m"),
+                runs[1][0].get("end_surface_depth_m"),
+                runs[0][0].get("end_moving"),
+                runs[1][0].get("end_moving"),
+            ),
+        };
         println!(
-            "{scene} ratio={:.3} rebond_ms={a:.3} rapier_ms={b:.3} rebond_mb={:.1} rapier_mb={:.1}{gaps}",
+            "{scene} ratio={:.3} rebond_ms={a:.3} rapier_ms={b:.3} rebond_mb={:.1} rapier_mb={:.1}{gaps}{surface}",
             a / b,
             med(&runs[0], "mb"),
             med(&runs[1], "mb"),

@@ -38,6 +38,14 @@ impl RapierEngine {
                     let points: Vec<Vector> = points.iter().map(|p| v(*p)).collect();
                     ColliderBuilder::convex_hull(&points).expect("valid hull")
                 }
+                ShapeSpec::HeightField { heights, scale } => heightfield(heights, *scale),
+                // FIX_INTERNAL_EDGES also merges duplicate vertices (there are none).
+                ShapeSpec::TriMesh { vertices, indices } => ColliderBuilder::trimesh_with_flags(
+                    vertices.iter().map(|p| v(*p)).collect(),
+                    indices.clone(),
+                    TriMeshFlags::FIX_INTERNAL_EDGES,
+                )
+                .expect("valid mesh"),
             }
             .friction(FRICTION)
             .restitution(RESTITUTION);
@@ -147,6 +155,24 @@ impl RapierEngine {
     }
 }
 
+/// rebond's heightfield (`ShapeSpec::HeightField`) as a parry heightfield with internal-edge
+/// fixing. parry splits its cells along the other diagonal, from sample `(i + 1, j)` to
+/// `(i, j + 1)` (its zigzag cells take rebond's diagonal, but their edge pseudo-normals look up
+/// the neighbours of the default split), so the collider is the grid turned by 90° about +Y,
+/// which maps one diagonal onto the other: parry's sample `(i', j')` is rebond's
+/// `(rows − 1 − j', i')`, and the scales along X and Z trade places.
+fn heightfield(heights: &[Vec<f32>], scale: [f32; 3]) -> rapier3d::prelude::ColliderBuilder {
+    use rapier3d::prelude::*;
+    let rows = heights.len();
+    let turned = Array2::from_fn(heights[0].len(), rows, |i, j| heights[rows - 1 - j][i]);
+    ColliderBuilder::heightfield_with_flags(
+        turned,
+        Vector::new(scale[2], scale[1], scale[0]),
+        HeightFieldFlags::FIX_INTERNAL_EDGES,
+    )
+    .rotation(Vector::new(0.0, std::f32::consts::FRAC_PI_2, 0.0))
+}
+
 impl Engine for RapierEngine {
     fn step(&mut self) {
         self.world.step();
@@ -165,11 +191,19 @@ impl Engine for RapierEngine {
             .fold(0.0f32, |deepest, point| deepest.min(point.dist))
     }
 
-    fn max_speed(&self) -> f32 {
-        self.dynamic
-            .iter()
-            .map(|&h| self.world.bodies[h].linvel().length())
-            .fold(0.0, f32::max)
+    fn rotations(&self, out: &mut Vec<[f32; 4]>) {
+        out.clear();
+        for &handle in &self.dynamic {
+            let q = self.world.bodies[handle].rotation();
+            out.push([q.x, q.y, q.z, q.w]);
+        }
+    }
+
+    fn speeds(&self, out: &mut Vec<f32>) {
+        out.clear();
+        for &handle in &self.dynamic {
+            out.push(self.world.bodies[handle].linvel().length());
+        }
     }
 
     fn deepest_reevaluated(&self) -> Option<f32> {

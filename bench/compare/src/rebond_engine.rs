@@ -20,6 +20,12 @@ pub fn rebond_shape(shape: &ShapeSpec) -> rebond::Shape {
             let points: Vec<Vec3> = points.iter().map(|p| Vec3::from(*p)).collect();
             Shape::convex_hull(&points)
         }
+        ShapeSpec::HeightField { heights, scale } => {
+            Shape::heightfield(heights, Vec3::from(*scale))
+        }
+        ShapeSpec::TriMesh { vertices, indices } => {
+            Shape::trimesh(vertices.iter().map(|p| Vec3::from(*p)).collect(), indices)
+        }
     }
     .expect("valid shape")
 }
@@ -111,11 +117,24 @@ impl Engine for RebondEngine {
         deepest
     }
 
-    fn max_speed(&self) -> f32 {
-        self.dynamic
-            .iter()
-            .map(|&h| self.world.body(h).expect("body").linear_velocity().length())
-            .fold(0.0, f32::max)
+    fn rotations(&self, out: &mut Vec<[f32; 4]>) {
+        out.clear();
+        for &handle in &self.dynamic {
+            out.push(self.world.body(handle).expect("body").rotation().to_array());
+        }
+    }
+
+    fn speeds(&self, out: &mut Vec<f32>) {
+        out.clear();
+        for &handle in &self.dynamic {
+            out.push(
+                self.world
+                    .body(handle)
+                    .expect("body")
+                    .linear_velocity()
+                    .length(),
+            );
+        }
     }
 
     fn contact_points(&self) -> usize {

@@ -22,9 +22,27 @@ const DENSITY: f32 = 1000.0;
 pub enum ShapeSpec {
     Cuboid([f32; 3]),
     Sphere(f32),
-    Capsule { radius: f32, half_height: f32 },
-    Cylinder { radius: f32, half_height: f32 },
+    Capsule {
+        radius: f32,
+        half_height: f32,
+    },
+    Cylinder {
+        radius: f32,
+        half_height: f32,
+    },
     Hull(Vec<[f32; 3]>),
+    /// `heights[i][j]`: row `i` along +Z, column `j` along +X, the grid spanning `scale[0]` ×
+    /// `scale[2]` centred on the body, heights times `scale[1]`; each cell split along the
+    /// diagonal from sample `(i, j)` to `(i + 1, j + 1)` (rebond's `HeightField`).
+    HeightField {
+        heights: Vec<Vec<f32>>,
+        scale: [f32; 3],
+    },
+    /// Triangles counter-clockwise seen from their front (up).
+    TriMesh {
+        vertices: Vec<[f32; 3]>,
+        indices: Vec<[u32; 3]>,
+    },
 }
 
 #[derive(Clone, Debug)]
@@ -95,13 +113,21 @@ fn dynamic(shape: ShapeSpec, position: [f32; 3], rotation: [f32; 3]) -> BodySpec
     }
 }
 
-pub fn fixed_box(half_extents: [f32; 3], position: [f32; 3]) -> BodySpec {
+/// A fixed body of `shape` at the origin.
+fn fixed(shape: ShapeSpec) -> BodySpec {
     BodySpec {
         fixed: true,
-        shape: ShapeSpec::Cuboid(half_extents),
-        position,
+        shape,
+        position: [0.0; 3],
         rotation: [0.0; 3],
         mass: 0.0,
+    }
+}
+
+pub fn fixed_box(half_extents: [f32; 3], position: [f32; 3]) -> BodySpec {
+    BodySpec {
+        position,
+        ..fixed(ShapeSpec::Cuboid(half_extents))
     }
 }
 
@@ -163,7 +189,7 @@ pub fn build_scene(name: &str) -> Scene {
                 lowest: 2.0,
                 max_tilt: 0.3,
             };
-            grid.fill(&mut bodies, &[unit_box()]);
+            grid.fill(&mut bodies, &[unit_box()], |_, _| 0.0);
             false
         }
         // 20 boxes stacked.
@@ -220,7 +246,7 @@ pub fn build_scene(name: &str) -> Scene {
                 lowest: 1.5,
                 max_tilt: 0.5,
             };
-            grid.fill(&mut bodies, &shapes);
+            grid.fill(&mut bodies, &shapes, |_, _| 0.0);
             false
         }
         // 36 ragdolls of 11 bodies and 10 joints lying on their backs, 4 layers of 3×3 spaced
@@ -268,6 +294,38 @@ pub fn build_scene(name: &str) -> Scene {
                     tilt,
                 ));
             }
+            false
+        }
+        // 512 shapes (`pile_shapes` in turn, 8 × 8 columns, 8 layers) poured from 1.5 to 12 m
+        // above the built-in `terrain` heightfield, around its middle.
+        "terrain_pile" => {
+            bodies.push(fixed(terrain()));
+            let grid = JitteredGrid {
+                seed: 41,
+                columns: 8,
+                layers: 8,
+                lowest: 1.5,
+                max_tilt: 1.0,
+            };
+            grid.fill(&mut bodies, &pile_shapes(), |x, z| {
+                terrain_height(
+                    f64::from(x / TERRAIN_SIZE + 0.5),
+                    f64::from(z / TERRAIN_SIZE + 0.5),
+                ) as f32
+            });
+            false
+        }
+        // The same pile poured on a bumpy triangle mesh of 32,768 triangles (`bumpy_mesh`).
+        "mesh_pile" => {
+            bodies.push(fixed(bumpy_mesh()));
+            let grid = JitteredGrid {
+                seed: 43,
+                columns: 8,
+                layers: 8,
+                lowest: 1.5,
+                max_tilt: 1.0,
+            };
+            grid.fill(&mut bodies, &pile_shapes(), bump_height);
             false
         }
         other => panic!("unknown scene {other:?}"),
@@ -428,8 +486,14 @@ struct JitteredGrid {
 }
 
 impl JitteredGrid {
-    /// Pushes the bodies layer by layer, row by row, taking `shapes` in turn.
-    fn fill(&self, bodies: &mut Vec<BodySpec>, shapes: &[ShapeSpec]) {
+    /// Pushes the bodies layer by layer, row by row, taking `shapes` in turn; each column stands
+    /// on `ground(x, z)`, the height of the ground under it (metres, 0 for a flat ground).
+    fn fill(
+        &self,
+        bodies: &mut Vec<BodySpec>,
+        shapes: &[ShapeSpec],
+        ground: impl Fn(f32, f32) -> f32,
+    ) {
         let mut jitter = Jitter(self.seed);
         let centre = (self.columns as f32 - 1.0) / 2.0;
         let mut index = 0;
@@ -438,12 +502,14 @@ impl JitteredGrid {
                 for k in 0..self.columns {
                     let offset = jitter.next3(0.2);
                     let tilt = jitter.next3(self.max_tilt);
+                    let x = (i as f32 - centre) * 1.5 + offset[0];
+                    let z = (k as f32 - centre) * 1.5 + offset[2];
                     bodies.push(dynamic(
                         shapes[index % shapes.len()].clone(),
                         [
-                            (i as f32 - centre) * 1.5 + offset[0],
-                            self.lowest + j as f32 * 1.5 + offset[1],
-                            (k as f32 - centre) * 1.5 + offset[2],
+                            x,
+                            ground(x, z) + self.lowest + j as f32 * 1.5 + offset[1],
+                            z,
                         ],
                         tilt,
                     ));
@@ -482,4 +548,115 @@ fn hull_points() -> Vec<[f32; 3]> {
     points.push([0.05, -0.4, 0.0]);
     points.push([-0.05, 0.4, 0.05]);
     points
+}
+
+/// The five shapes poured on the terrain and the mesh: those of the built-in `terrain` and
+/// `level` scenes (`mixed_shape` in `scenes/generate.py`), 0.4 to 0.8 m across.
+fn pile_shapes() -> [ShapeSpec; 5] {
+    [
+        ShapeSpec::Sphere(0.3),
+        ShapeSpec::Cuboid([0.3, 0.2, 0.4]),
+        ShapeSpec::Capsule {
+            radius: 0.2,
+            half_height: 0.3,
+        },
+        ShapeSpec::Cylinder {
+            radius: 0.3,
+            half_height: 0.2,
+        },
+        ShapeSpec::Hull(vec![
+            [0.4, 0.0, 0.0],
+            [-0.2, 0.0, 0.35],
+            [-0.2, 0.0, -0.35],
+            [0.0, 0.5, 0.0],
+            [0.0, -0.3, 0.1],
+        ]),
+    ]
+}
+
+/// Samples along each side of the terrain.
+const TERRAIN_SAMPLES: usize = 256;
+/// Side of the terrain, metres.
+const TERRAIN_SIZE: f32 = 128.0;
+
+/// The built-in `terrain` scene's hills over the unit square (`terrain_height` in
+/// `scenes/generate.py`): crossed sine waves in a bowl that rises to the sides, metres.
+fn terrain_height(u: f64, v: f64) -> f64 {
+    let bowl = 12.0 * ((u - 0.5).powi(2) + (v - 0.5).powi(2));
+    1.2 * (u * 13.0).sin() * (v * 11.0).cos() + 0.6 * (u * 5.0 + v * 7.0).sin() + bowl
+}
+
+/// The built-in `terrain` scene's heightfield: 256 × 256 samples of [`terrain_height`] rounded to
+/// the millimetre, as `scenes/terrain.json` holds them, over 128 m × 128 m (cells of 0.5 m).
+pub fn terrain() -> ShapeSpec {
+    let last = (TERRAIN_SAMPLES - 1) as f64;
+    let heights = (0..TERRAIN_SAMPLES)
+        .map(|i| {
+            (0..TERRAIN_SAMPLES)
+                .map(|j| {
+                    let height = terrain_height(j as f64 / last, i as f64 / last);
+                    ((height * 1000.0).round() / 1000.0) as f32
+                })
+                .collect()
+        })
+        .collect();
+    ShapeSpec::HeightField {
+        heights,
+        scale: [TERRAIN_SIZE, 1.0, TERRAIN_SIZE],
+    }
+}
+
+/// Cells along each side of the bumpy mesh.
+const MESH_CELLS: usize = 128;
+/// Side of the bumpy mesh, metres.
+const MESH_SIZE: f32 = 64.0;
+
+/// Height of the bumpy mesh's vertices, metres: bumps 7 m apart and up to half a metre high,
+/// slopes up to about 27°, in a shallow bowl.
+fn bump_height(x: f32, z: f32) -> f32 {
+    0.35 * (0.9 * x).sin() * (0.7 * z).cos()
+        + 0.2 * (0.5 * x + 1.3 * z).sin()
+        + 0.003 * (x * x + z * z)
+}
+
+/// A bumpy triangle mesh, 64 m × 64 m centred on the origin: a grid of 128 × 128 cells whose
+/// inner vertices are moved by up to 0.1 m along X and Z, raised to [`bump_height`], each cell
+/// split along one diagonal or the other in a checkerboard: 16,641 shared vertices, 32,768
+/// triangles, counter-clockwise seen from above.
+pub fn bumpy_mesh() -> ShapeSpec {
+    let n = MESH_CELLS;
+    let mut jitter = Jitter(53);
+    let mut vertices = Vec::with_capacity((n + 1) * (n + 1));
+    for i in 0..=n {
+        for j in 0..=n {
+            let offset = jitter.next3(0.2 * MESH_SIZE / n as f32);
+            let inner = (1..n).contains(&i) && (1..n).contains(&j);
+            let (dx, dz) = if inner {
+                (offset[0], offset[2])
+            } else {
+                (0.0, 0.0)
+            };
+            let x = (j as f32 / n as f32 - 0.5) * MESH_SIZE + dx;
+            let z = (i as f32 / n as f32 - 0.5) * MESH_SIZE + dz;
+            vertices.push([x, bump_height(x, z), z]);
+        }
+    }
+    let vertex = |i: usize, j: usize| (i * (n + 1) + j) as u32;
+    let mut indices = Vec::with_capacity(2 * n * n);
+    for i in 0..n {
+        for j in 0..n {
+            let (a, b, c, d) = (
+                vertex(i, j),
+                vertex(i + 1, j),
+                vertex(i + 1, j + 1),
+                vertex(i, j + 1),
+            );
+            if (i + j) % 2 == 0 {
+                indices.extend([[a, b, c], [a, c, d]]);
+            } else {
+                indices.extend([[a, b, d], [b, c, d]]);
+            }
+        }
+    }
+    ShapeSpec::TriMesh { vertices, indices }
 }
