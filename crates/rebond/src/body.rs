@@ -6,10 +6,11 @@
 use crate::arena::ArenaIndex;
 use crate::collision::broad_phase::ProxyHandle;
 use crate::error::{
-    check_finite_vector, check_non_negative, check_non_negative_or_infinite, check_positive,
-    check_range, Error, ErrorKind, Result,
+    check_length, check_non_negative, check_non_negative_or_infinite, check_position,
+    check_positive, check_range, Error, ErrorKind, Result,
 };
 use crate::filter::InteractionGroups;
+use crate::limits::{MAX_ANGULAR_SPEED, MAX_FORCE, MAX_MASS, MAX_SIZE, MAX_SPEED, MIN_MASS};
 use crate::mass::MassProperties;
 use crate::material::Material;
 use crate::math::{normalize_rotation, rotate_tensor, skew, Aabb, Mat3, Pose, Quat, Vec3};
@@ -306,21 +307,22 @@ pub struct RigidBody {
 impl RigidBody {
     /// Checks every value of `desc` and builds the body. Errors name the field of `desc`.
     pub(crate) fn from_desc(desc: BodyDesc) -> Result<Self> {
-        check_finite_vector("position", desc.position)?;
+        check_position("position", desc.position)?;
         let rotation = normalize_rotation("rotation", desc.rotation)?;
-        check_finite_vector("linear_velocity", desc.linear_velocity)?;
-        check_finite_vector("angular_velocity", desc.angular_velocity)?;
+        check_length("linear_velocity", desc.linear_velocity, MAX_SPEED)?;
+        check_length("angular_velocity", desc.angular_velocity, MAX_ANGULAR_SPEED)?;
         check_positive("density", desc.density)?;
         if let Some(mass) = desc.mass {
             check_positive("mass", mass)?;
+            check_range("mass", mass, MIN_MASS, MAX_MASS)?;
         }
         check_non_negative("friction", desc.friction)?;
         check_range("restitution", desc.restitution, 0.0, 1.0)?;
-        check_finite_vector("force", desc.constant_force)?;
+        check_length("force", desc.constant_force, MAX_FORCE)?;
         if let Some(point) = desc.constant_force_point {
-            check_finite_vector("force_point", point)?;
+            check_length("force_point", point, MAX_SIZE)?;
         }
-        check_finite_vector("torque", desc.constant_torque)?;
+        check_length("torque", desc.constant_torque, MAX_FORCE)?;
         check_non_negative("linear_damping", desc.linear_damping)?;
         check_non_negative("angular_damping", desc.angular_damping)?;
         check_non_negative_or_infinite("contact_force_threshold", desc.contact_force_threshold)?;
@@ -589,7 +591,7 @@ impl RigidBody {
 
     /// Moves the body origin to `position` (finite), keeping its rotation and velocities.
     pub fn set_position(&mut self, position: Vec3) -> Result<()> {
-        check_finite_vector("position", position)?;
+        check_position("position", position)?;
         self.set_origin_pose(Pose::new(position, self.rotation));
         self.wake();
         Ok(())
@@ -605,7 +607,7 @@ impl RigidBody {
 
     /// Sets the velocity of the centre of mass (ignored for static bodies).
     pub fn set_linear_velocity(&mut self, velocity: Vec3) -> Result<()> {
-        check_finite_vector("linear_velocity", velocity)?;
+        check_length("linear_velocity", velocity, MAX_SPEED)?;
         if self.body_type != BodyType::Static {
             self.linear_velocity = velocity;
             self.wake();
@@ -615,7 +617,7 @@ impl RigidBody {
 
     /// Sets the world angular velocity (ignored for static bodies).
     pub fn set_angular_velocity(&mut self, velocity: Vec3) -> Result<()> {
-        check_finite_vector("angular_velocity", velocity)?;
+        check_length("angular_velocity", velocity, MAX_ANGULAR_SPEED)?;
         if self.body_type != BodyType::Static {
             self.angular_velocity = velocity;
             self.wake();
@@ -625,7 +627,7 @@ impl RigidBody {
 
     /// Adds a force at the centre of mass for the next step, N (no effect unless dynamic).
     pub fn apply_force(&mut self, force: Vec3) -> Result<()> {
-        check_finite_vector("force", force)?;
+        check_length("force", force, MAX_FORCE)?;
         if self.is_dynamic() {
             self.force += force;
             self.wake();
@@ -636,8 +638,8 @@ impl RigidBody {
     /// Adds a force at world `point` for the next step: the force, and the torque `r × F` with
     /// `r = point − c` (no effect unless dynamic).
     pub fn apply_force_at_point(&mut self, force: Vec3, point: Vec3) -> Result<()> {
-        check_finite_vector("force", force)?;
-        check_finite_vector("point", point)?;
+        check_length("force", force, MAX_FORCE)?;
+        check_position("point", point)?;
         if self.is_dynamic() {
             self.force += force;
             self.torque += (point - self.center_of_mass).cross(force);
@@ -648,7 +650,7 @@ impl RigidBody {
 
     /// Adds a torque for the next step, N·m (no effect unless dynamic).
     pub fn apply_torque(&mut self, torque: Vec3) -> Result<()> {
-        check_finite_vector("torque", torque)?;
+        check_length("torque", torque, MAX_FORCE)?;
         if self.is_dynamic() {
             self.torque += torque;
             self.wake();
@@ -658,7 +660,7 @@ impl RigidBody {
 
     /// Changes the velocity at once by an impulse at the centre of mass: `Δv = J/m`, N·s.
     pub fn apply_impulse(&mut self, impulse: Vec3) -> Result<()> {
-        check_finite_vector("impulse", impulse)?;
+        check_length("impulse", impulse, MAX_FORCE)?;
         if self.is_dynamic() {
             self.linear_velocity += self.inverse_mass * impulse;
             self.wake();
@@ -668,8 +670,8 @@ impl RigidBody {
 
     /// An impulse at world `point`: `Δv = J/m`, `Δω = I⁻¹ (r × J)` with `r = point − c`.
     pub fn apply_impulse_at_point(&mut self, impulse: Vec3, point: Vec3) -> Result<()> {
-        check_finite_vector("impulse", impulse)?;
-        check_finite_vector("point", point)?;
+        check_length("impulse", impulse, MAX_FORCE)?;
+        check_position("point", point)?;
         if self.is_dynamic() {
             self.linear_velocity += self.inverse_mass * impulse;
             self.angular_velocity +=
@@ -681,7 +683,7 @@ impl RigidBody {
 
     /// Sets the force applied at the centre of mass during every step.
     pub fn set_constant_force(&mut self, force: Vec3) -> Result<()> {
-        self.constant_force = check_finite_vector("force", force)?;
+        self.constant_force = check_length("force", force, MAX_FORCE)?;
         self.constant_force_point = None;
         self.wake();
         Ok(())
@@ -690,8 +692,8 @@ impl RigidBody {
     /// Sets the world force applied during every step at `point`, a point in the body frame
     /// (it turns with the body): the force, and the torque `r × F` about the centre of mass.
     pub fn set_constant_force_at_point(&mut self, force: Vec3, point: Vec3) -> Result<()> {
-        check_finite_vector("force", force)?;
-        check_finite_vector("point", point)?;
+        check_length("force", force, MAX_FORCE)?;
+        check_length("point", point, MAX_SIZE)?;
         self.constant_force = force;
         self.constant_force_point = Some(point);
         self.wake();
@@ -740,7 +742,7 @@ impl RigidBody {
 
     /// Sets the torque applied during every step.
     pub fn set_constant_torque(&mut self, torque: Vec3) -> Result<()> {
-        self.constant_torque = check_finite_vector("torque", torque)?;
+        self.constant_torque = check_length("torque", torque, MAX_FORCE)?;
         self.wake();
         Ok(())
     }
@@ -834,6 +836,17 @@ fn dynamic_mass_properties(desc: &BodyDesc) -> Result<(MassProperties, Mat3)> {
         None => properties,
     };
     if let Some(inverse_inertia) = inverse_inertia(&properties) {
+        let mass_out_of_range = !(MIN_MASS..=MAX_MASS).contains(&properties.mass);
+        if desc.mass.is_none() && mass_out_of_range {
+            // The densities that give the mass limits, so that the message says what to pass.
+            let volume = properties.mass / desc.density;
+            let kind = ErrorKind::OutOfRange {
+                value: desc.density,
+                min: MIN_MASS / volume,
+                max: MAX_MASS / volume,
+            };
+            return Err(Error::new("density", kind));
+        }
         return Ok((properties, inverse_inertia));
     }
     let unit_density = desc.shape.mass_properties(1.0);

@@ -2,6 +2,8 @@
 
 use std::fmt;
 
+use crate::limits::{MAX_COORDINATE, MAX_SIZE, MIN_SIZE};
+
 /// What is wrong with a value.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ErrorKind {
@@ -49,6 +51,9 @@ pub enum ErrorKind {
     JointToItself,
     /// `[min, max]` limits with `min > max`.
     InvertedLimits { min: f32, max: f32 },
+    /// A vector's length, or a scalar's magnitude, past the engine's limit (see
+    /// [`limits`](crate::limits)); for positions, the largest coordinate.
+    TooLarge { value: f32, max: f32 },
 }
 
 /// An invalid input, with the place it was found.
@@ -133,6 +138,12 @@ impl fmt::Display for ErrorKind {
             Self::InvertedLimits { min, max } => {
                 write!(f, "min must not exceed max, got [{min}, {max}]")
             }
+            Self::TooLarge { value, max } => {
+                write!(
+                    f,
+                    "must not exceed {max:e} (the engine's limit), got {value:e}"
+                )
+            }
         }
     }
 }
@@ -205,5 +216,48 @@ pub(crate) fn check_finite_vector(field: &str, vector: glam::Vec3) -> Result<gla
         Ok(vector)
     } else {
         Err(Error::new(field, ErrorKind::NotFinite))
+    }
+}
+
+/// Checks that a size (radius, half extent, half height) is finite and within
+/// `[MIN_SIZE, MAX_SIZE]`.
+pub(crate) fn check_size(field: &str, value: f32) -> Result<f32> {
+    check_positive(field, value)?;
+    check_range(field, value, MIN_SIZE, MAX_SIZE)
+}
+
+/// Checks that `vector` is finite and at most `max` long; the length is taken in `f64`, so a
+/// vector too long to square in `f32` is reported, not overflowed.
+pub(crate) fn check_length(field: &str, vector: glam::Vec3, max: f32) -> Result<glam::Vec3> {
+    check_finite_vector(field, vector)?;
+    let length = vector.as_dvec3().length();
+    if length <= f64::from(max) {
+        Ok(vector)
+    } else {
+        Err(Error::new(
+            field,
+            ErrorKind::TooLarge {
+                value: length as f32,
+                max,
+            },
+        ))
+    }
+}
+
+/// Checks that every coordinate of a position is finite and at most [`MAX_COORDINATE`] in
+/// magnitude.
+pub(crate) fn check_position(field: &str, position: glam::Vec3) -> Result<glam::Vec3> {
+    check_finite_vector(field, position)?;
+    let largest = position.abs().max_element();
+    if largest <= MAX_COORDINATE {
+        Ok(position)
+    } else {
+        Err(Error::new(
+            field,
+            ErrorKind::TooLarge {
+                value: largest,
+                max: MAX_COORDINATE,
+            },
+        ))
     }
 }

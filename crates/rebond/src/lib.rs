@@ -43,6 +43,7 @@ pub mod events;
 mod filter;
 mod island;
 pub mod joint;
+pub mod limits;
 mod mass;
 mod material;
 mod math;

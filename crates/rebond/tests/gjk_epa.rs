@@ -449,7 +449,8 @@ fn touching_boxes_have_zero_distance() {
 
 #[test]
 fn huge_and_tiny_scenes_keep_relative_precision() {
-    for size in [1e-4f32, 1e-2, 1.0, 1e2, 1e4] {
+    // From the smallest size the engine takes (`limits::MIN_SIZE`) to 10 km.
+    for size in [1e-3f32, 1e-2, 1.0, 1e2, 1e4] {
         // The separated face case and the overlapping face case, scaled; relative tolerance as
         // in the module comment (GJK and EPA tolerances are relative to the scene's size).
         let tolerance = CLOSED_FORM * size;

@@ -2,7 +2,7 @@
 
 use std::f32::consts::FRAC_PI_4;
 
-use rebond::{BodyDesc, BodyHandle, Quat, Shape, Vec3, World, WorldSettings};
+use rebond::{limits, BodyDesc, BodyHandle, Quat, Shape, Vec3, World, WorldSettings};
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -148,16 +148,22 @@ fn a_constant_force_at_a_body_point_gives_r_cross_f_on_a_turned_anisotropic_box(
 
 #[test]
 fn a_body_thrown_faster_than_the_limit_flies_at_the_limit() {
-    // 1e30 m/s squares past f32's range: the limit must still hold the direction and the speed.
+    // Half the largest impulse on the lightest body (5e17 m/s) and the largest angular speed the
+    // engine takes: the limits must hold the direction and the speed.
     let mut world = world_with_gravity(Vec3::ZERO);
     let limit = world.settings().max_linear_speed;
     let direction = Vec3::new(3.0, -4.0, 0.0) / 5.0;
     let body = add(
         &mut world,
         BodyDesc::dynamic(Shape::sphere(0.5).unwrap())
-            .linear_velocity(1.0e30 * direction)
-            .angular_velocity(Vec3::new(0.0, 1.0e30, 0.0)),
+            .mass(limits::MIN_MASS)
+            .angular_velocity(Vec3::new(0.0, limits::MAX_ANGULAR_SPEED, 0.0)),
     );
+    world
+        .body_mut(body)
+        .unwrap()
+        .apply_impulse(0.5 * limits::MAX_FORCE * direction)
+        .unwrap();
     world.step(DT).unwrap();
     let state = world.body(body).unwrap();
     let velocity = state.linear_velocity();

@@ -546,7 +546,8 @@ fn only_boxes_and_hulls_are_polyhedra() {
 
 #[test]
 fn extreme_but_finite_inputs_stay_finite() {
-    let sizes = [1e-4, 1.0, 1e4];
+    // Every half extent within the engine's size limits (`limits::MIN_SIZE` to `MAX_SIZE`).
+    let sizes = [4e-3, 1.0, 1e4];
     let rotation = Quat::from_euler(glam::EulerRot::XYZ, 0.3, 1.2, -0.7);
     for &size_a in &sizes {
         for &size_b in &sizes {

@@ -3,7 +3,7 @@
 
 use rebond::shape::{Capsule, Compound, CompoundChild, Cuboid, Cylinder, Halfspace, Sphere};
 use rebond::{
-    BodyDesc, BodyType, ErrorKind, Pose, Quat, Result, Shape, Vec3, World, WorldSettings,
+    limits, BodyDesc, BodyType, ErrorKind, Pose, Quat, Result, Shape, Vec3, World, WorldSettings,
 };
 
 fn field_of<T: std::fmt::Debug>(result: Result<T>) -> (String, ErrorKind) {
@@ -241,14 +241,17 @@ fn stale_handles_are_errors() {
 
 #[test]
 fn huge_finite_values_never_turn_into_infinity() {
+    // Every value at (or, for vectors of three equal components, just within) its limit, the
+    // force on the lightest body: 1e18 m/s² that the speed limit must hold.
     let mut world = World::new(WorldSettings::default()).unwrap();
     let handle = world
         .add_body(
             BodyDesc::dynamic(unit_box())
-                .position(Vec3::splat(3.0e38))
-                .linear_velocity(Vec3::splat(1.0e30))
-                .angular_velocity(Vec3::splat(-1.0e30))
-                .constant_force(Vec3::splat(3.0e38)),
+                .mass(limits::MIN_MASS)
+                .position(Vec3::splat(limits::MAX_COORDINATE))
+                .linear_velocity(Vec3::splat(0.5 * limits::MAX_SPEED))
+                .angular_velocity(Vec3::splat(-0.5 * limits::MAX_ANGULAR_SPEED))
+                .constant_force(Vec3::splat(0.5 * limits::MAX_FORCE)),
         )
         .unwrap();
     for _ in 0..100 {
@@ -278,4 +281,41 @@ fn a_rotation_too_long_to_square_in_f32_is_normalised_not_lost() {
     }
     let body = world.body(handle).unwrap();
     assert!(body.rotation().is_finite() && body.position().is_finite());
+}
+
+#[test]
+fn a_car_torn_apart_by_an_unlimited_motor_stays_finite() {
+    // Found by fuzzing the scene loader: the `car` scene with wheels metres from their axle
+    // anchors, one of 1,070 kg, and a −100 rad/s motor of unlimited force, which asks for about
+    // 1e9 N. The solver's velocities, held to the speed limits only as forces were integrated,
+    // grew from substep to substep until they overflowed within three steps.
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../fuzz/regressions/scene_loader/nonfinite-car-with-overlaps-and-unlimited-motor.json"
+    );
+    let mut scene = rebond::scene::Scene::from_file(path).unwrap();
+    let limit = scene.world().settings().max_linear_speed;
+    for _ in 0..600 {
+        scene.world_mut().step(1.0 / 60.0).unwrap();
+        for (_, body) in scene.world().bodies() {
+            assert!(body.position().is_finite() && body.rotation().is_finite());
+            assert!(body.linear_velocity().length() <= limit * (1.0 + 1e-6));
+            assert!(body.angular_velocity().is_finite());
+        }
+    }
+}
+
+#[test]
+fn a_capsule_past_every_limit_is_refused() {
+    // Found by fuzzing library calls: a capsule of radius 2e37 with a mass of 2e37 spinning at
+    // 2e37 rad/s stepped to a non-finite body. Each value is now refused where it enters.
+    assert_eq!(field_of(Shape::capsule(2e37, 1.0)).0, "radius");
+    let capsule = Shape::capsule(0.5, 1.0).unwrap();
+    let mut world = World::new(WorldSettings::default()).unwrap();
+    let spinning = BodyDesc::dynamic(capsule.clone()).angular_velocity(Vec3::Y * 2e37);
+    assert_eq!(field_of(world.add_body(spinning)).0, "angular_velocity");
+    assert_eq!(
+        field_of(world.add_body(BodyDesc::dynamic(capsule).mass(2e37))).0,
+        "mass"
+    );
 }

@@ -355,16 +355,16 @@ fn dynamic_bodies_without_a_positive_finite_mass_are_refused() {
         "mass of a dynamic body must be positive and finite",
     );
     assert_refused(
-        "sphere_too_small_for_its_inertia",
+        "sphere_below_the_smallest_size",
         &scene_with(r#"{"shape": {"type": "sphere", "radius": 1e-9}}"#),
         "bodies[1].shape.radius",
-        "too small or too large",
+        "must lie between 0.001 and 100000",
     );
     assert_refused(
         "needle_cylinder",
         &scene_with(r#"{"shape": {"type": "cylinder", "radius": 1e-20, "half_height": 1}}"#),
         "bodies[1].shape.radius",
-        "too small or too large",
+        "must lie between 0.001 and 100000",
     );
 }
 

@@ -20,7 +20,7 @@ use super::polyhedron::Polyhedron;
 use super::polyhedron_contact::collide_polyhedra;
 use super::{LocalCore, PosedCore, RelativeCore};
 use crate::math::{Aabb, Pose, Vec3};
-use crate::shape::Shape;
+use crate::shape::{Cuboid, Shape};
 
 /// Order of shape kinds: each pair is solved with the lower kind as A and flipped if needed.
 fn kind_rank(shape: &Shape) -> u8 {
@@ -170,6 +170,33 @@ impl NarrowPhase {
                 let manifold = collide_polyhedra(&a, pose_a, &b, pose_b, margin);
                 *cache = PartCache::Touching;
                 manifold
+            }
+            (Shape::Cuboid(cuboid), other) | (other, Shape::Cuboid(cuboid))
+                if cuboid.half_extents().max_element()
+                    > NEAR_PART_RATIO * other.bounding_radius() =>
+            {
+                let box_is_a = matches!(shape_a, Shape::Cuboid(_));
+                let (box_pose, other_pose) = if box_is_a {
+                    (pose_a, pose_b)
+                } else {
+                    (pose_b, pose_a)
+                };
+                let (part, part_pose) = near_part(cuboid, box_pose, other, other_pose, margin)?;
+                let (part_a, part_pose_a, part_b, part_pose_b) = if box_is_a {
+                    (&part, &part_pose, other, other_pose)
+                } else {
+                    (other, other_pose, &part, &part_pose)
+                };
+                *cache = PartCache::Cold;
+                collide_features(
+                    &mut self.polytope,
+                    part_a,
+                    part_pose_a,
+                    part_b,
+                    part_pose_b,
+                    margin,
+                    &mut SimplexCache::default(),
+                )
             }
             _ => {
                 let mut simplex = cache.simplex();
@@ -335,6 +362,40 @@ fn for_each_part(shape: &Shape, pose: &Pose, mut visit: impl FnMut(u32, &Shape, 
         }
         _ => visit(0, shape, *pose),
     }
+}
+
+/// A box whose largest half extent is more than this many times the bounding radius of the
+/// shape it meets in GJK and EPA is replaced there by its part near that shape ([`near_part`]).
+const NEAR_PART_RATIO: f32 = 8.0;
+
+/// The part of a box near `other`: the box cut to `other`'s bounding box in the box's frame,
+/// grown by `margin` and by `other`'s bounding radius, as a smaller box with its pose; `None`
+/// when nothing of the box lies that near, so the two are more than `margin` apart.
+///
+/// GJK and EPA work with differences of support points, which for a large box are its far
+/// corners: their rounding, about 1e-7 of their distance, unsettles a cylinder resting on a box
+/// a kilometre wide. The part's corners lie a few of `other`'s sizes away instead. Its cut faces
+/// are farther from `other` than `margin` plus its size, so the nearest or shallowest way out
+/// found is always through one of the box's own faces, edges or corners.
+fn near_part(
+    cuboid: &Cuboid,
+    pose: &Pose,
+    other: &Shape,
+    other_pose: &Pose,
+    margin: f32,
+) -> Option<(Shape, Pose)> {
+    let half_extents = cuboid.half_extents();
+    let other_in_box = pose.inverse().mul_pose(other_pose);
+    let reach = Vec3::splat(margin + other.bounding_radius());
+    let bounds = other.aabb(&other_in_box);
+    let min = (bounds.min - reach).max(-half_extents);
+    let max = (bounds.max + reach).min(half_extents);
+    if min.cmpge(max).any() {
+        return None;
+    }
+    let part = Cuboid::part((max - min) * 0.5);
+    let center = pose.transform_point((min + max) * 0.5);
+    Some((Shape::Cuboid(part), Pose::new(center, pose.rotation)))
 }
 
 /// Whether the balls about the shapes' origins that hold them (see [`Shape::bounding_radius`]),

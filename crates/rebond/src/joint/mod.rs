@@ -25,7 +25,9 @@ pub(crate) use set::{JointFrames, JointImpulses, JointSet};
 
 use crate::arena::ArenaIndex;
 use crate::body::BodyHandle;
-use crate::error::{check_finite, check_finite_vector, check_non_negative, Error, ErrorKind};
+use crate::error::{
+    check_finite, check_finite_vector, check_non_negative, check_position, Error, ErrorKind,
+};
 use crate::error::{check_non_negative_or_infinite, check_range, Result};
 use crate::math::{Quat, Vec3};
 use std::f32::consts::PI;
@@ -370,9 +372,9 @@ impl JointDesc {
             self.friction != 0.0,
             &[Ball, Revolute, Prismatic],
         )?;
-        check_finite_vector("anchor", self.anchor)?;
+        check_position("anchor", self.anchor)?;
         if let Some(anchor_b) = self.anchor_b {
-            check_finite_vector("anchor_b", anchor_b)?;
+            check_position("anchor_b", anchor_b)?;
         }
         let needs_axis = matches!(kind, Revolute | Prismatic)
             || self.swing_limit.is_some()

@@ -51,6 +51,27 @@ pub(crate) struct JointImpulses {
     pub friction: f32,
 }
 
+impl JointImpulses {
+    /// Whether every impulse is finite, so that it can warm-start the next step.
+    pub fn is_finite(&self) -> bool {
+        self.linear.is_finite()
+            && self.angular.is_finite()
+            && self.friction_couple.is_finite()
+            && [
+                self.axial,
+                self.lower,
+                self.upper,
+                self.motor,
+                self.swing,
+                self.twist_lower,
+                self.twist_upper,
+                self.friction,
+            ]
+            .iter()
+            .all(|impulse| impulse.is_finite())
+    }
+}
+
 /// A body side of a joint as the step starts: its handle, and its centre of mass and rotation
 /// (what the solver uses for a side that does not move this step).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -4,6 +4,7 @@
 use crate::body::{BodyDesc, BodyHandle};
 use crate::filter::InteractionGroups;
 use crate::joint::{JointDesc, Motor};
+use crate::limits::{MAX_TIMESTEP, MIN_TIMESTEP};
 use crate::math::{Pose, Quat, Vec3};
 use crate::shape::{CompoundChild, Shape};
 
@@ -53,11 +54,20 @@ fn pair(place: &str, value: [f64; 2]) -> Result<[f32; 2], SceneError> {
     ])
 }
 
-/// The time step: finite and positive, also once rounded to `f32`.
+/// The time step: finite and positive, also once rounded to `f32`, and within the engine's
+/// limits.
 pub(super) fn timestep(value: Option<f64>) -> Result<Timestep, SceneError> {
     let seconds = value.unwrap_or(DEFAULT_TIMESTEP);
     let engine_seconds = scalar("timestep", seconds)?;
-    if engine_seconds > 0.0 {
+    if engine_seconds > 0.0 && !(MIN_TIMESTEP..=MAX_TIMESTEP).contains(&engine_seconds) {
+        Err(SceneError::new(
+            "timestep",
+            format!(
+                "must lie between {MIN_TIMESTEP} and {MAX_TIMESTEP} (the engine's limits), got {}",
+                number(seconds)
+            ),
+        ))
+    } else if engine_seconds > 0.0 {
         Ok(Timestep {
             seconds,
             engine_seconds,

@@ -2,7 +2,7 @@
 
 use std::f32::consts::PI;
 
-use crate::error::{check_positive, Result};
+use crate::error::{check_size, Result};
 use crate::mass::MassProperties;
 use crate::math::{Aabb, Mat3, Pose, Vec3};
 
@@ -19,8 +19,8 @@ impl Capsule {
     /// be finite and positive.
     pub fn new(radius: f32, half_height: f32) -> Result<Self> {
         Ok(Self {
-            radius: check_positive("radius", radius)?,
-            half_height: check_positive("half_height", half_height)?,
+            radius: check_size("radius", radius)?,
+            half_height: check_size("half_height", half_height)?,
         })
     }
 

@@ -1,6 +1,7 @@
 //! Compound: several convex shapes rigidly attached to one body.
 
-use crate::error::{check_non_negative, check_range, Error, ErrorKind, Result};
+use crate::error::{check_length, check_non_negative, check_range, Error, ErrorKind, Result};
+use crate::limits::MAX_SIZE;
 use crate::mass::MassProperties;
 use crate::math::{normalize_rotation, Aabb, Pose, Vec3};
 
@@ -67,12 +68,8 @@ impl Compound {
         }
         for (index, child) in children.iter_mut().enumerate() {
             let place = format!("children[{index}]");
-            if !child.pose.position.is_finite() {
-                return Err(Error::new(
-                    format!("{place}.position"),
-                    ErrorKind::NotFinite,
-                ));
-            }
+            check_length("position", child.pose.position, MAX_SIZE)
+                .map_err(|error| error.within(&place))?;
             child.pose.rotation = normalize_rotation("rotation", child.pose.rotation)
                 .map_err(|error| error.within(&place))?;
             if let Some(friction) = child.friction {

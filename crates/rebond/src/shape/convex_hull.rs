@@ -16,7 +16,8 @@ use std::collections::BTreeMap;
 
 use glam::{DMat3, DVec3, Vec4};
 
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{check_length, Error, ErrorKind, Result};
+use crate::limits::MAX_SIZE;
 use crate::mass::MassProperties;
 use crate::math::{Aabb, Pose, Vec3};
 
@@ -219,8 +220,8 @@ impl ConvexHull {
     /// or a volume or inertia that an `f32` cannot hold, field `points`
     /// ([`ErrorKind::DegenerateHull`]). Building takes `O(n log n)` time for typical clouds.
     pub fn new(points: &[Vec3]) -> Result<Self> {
-        if let Some(index) = points.iter().position(|point| !point.is_finite()) {
-            return Err(Error::new(format!("points[{index}]"), ErrorKind::NotFinite));
+        for (index, &point) in points.iter().enumerate() {
+            check_length(&format!("points[{index}]"), point, MAX_SIZE)?;
         }
         if points.len() < 4 {
             return Err(degenerate("fewer than 4 points"));

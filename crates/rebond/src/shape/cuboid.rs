@@ -1,6 +1,6 @@
 //! Box: the points with `|x| ≤ hx`, `|y| ≤ hy`, `|z| ≤ hz`.
 
-use crate::error::{check_positive, Error, Result};
+use crate::error::{check_size, Error, Result};
 use crate::mass::MassProperties;
 use crate::math::{Aabb, Mat3, Pose, Vec3};
 
@@ -15,10 +15,16 @@ impl Cuboid {
     /// A box; each half extent must be finite and positive (error field `half_extents`).
     pub fn new(half_extents: Vec3) -> Result<Self> {
         for (index, value) in half_extents.to_array().into_iter().enumerate() {
-            check_positive("half_extents", value)
+            check_size("half_extents", value)
                 .map_err(|error| Error::new(format!("half_extents[{index}]"), error.kind))?;
         }
         Ok(Self { half_extents })
+    }
+
+    /// A box of positive `half_extents` built inside the engine, where they may lie below
+    /// [`MIN_SIZE`](crate::limits::MIN_SIZE): the part of a larger box near another shape.
+    pub(crate) fn part(half_extents: Vec3) -> Self {
+        Self { half_extents }
     }
 
     /// Half the size along each local axis, metres.

@@ -5,7 +5,8 @@ use std::sync::Arc;
 
 use super::triangle::{edge_flags, Triangle};
 use super::trimesh::placed_bounds;
-use crate::error::{check_finite, check_positive, Error, ErrorKind, Result};
+use crate::error::{check_finite, check_length, check_size, Error, ErrorKind, Result};
+use crate::limits::MAX_SIZE;
 use crate::math::{Aabb, Pose, Vec3};
 
 /// How far below its lowest sample a heightfield's bounding box reaches at least, metres: the
@@ -42,7 +43,7 @@ impl HeightField {
     /// `heights[i][j]` or `scale`.
     pub fn new(heights: &[Vec<f32>], scale: Vec3) -> Result<Self> {
         for (axis, name) in ["scale[0]", "scale[1]", "scale[2]"].iter().enumerate() {
-            check_positive(name, scale[axis])?;
+            check_size(name, scale[axis])?;
         }
         if heights.len() < 2 {
             return Err(Error::new("heights", ErrorKind::InvalidHeightField));
@@ -57,7 +58,10 @@ impl HeightField {
                 ));
             }
             for (j, &height) in row.iter().enumerate() {
-                flat.push(check_finite(&format!("heights[{i}][{j}]"), height)?);
+                let field = format!("heights[{i}][{j}]");
+                check_finite(&field, height)?;
+                check_length(&field, Vec3::new(0.0, height * scale.y, 0.0), MAX_SIZE)?;
+                flat.push(height);
             }
         }
         let (low, high) = flat

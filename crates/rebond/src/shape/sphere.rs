@@ -2,7 +2,7 @@
 
 use std::f32::consts::PI;
 
-use crate::error::{check_positive, Result};
+use crate::error::{check_size, Result};
 use crate::mass::MassProperties;
 use crate::math::{Aabb, Mat3, Pose, Vec3};
 
@@ -17,7 +17,7 @@ impl Sphere {
     /// A sphere; the radius must be finite and positive (error field `radius`).
     pub fn new(radius: f32) -> Result<Self> {
         Ok(Self {
-            radius: check_positive("radius", radius)?,
+            radius: check_size("radius", radius)?,
         })
     }
 

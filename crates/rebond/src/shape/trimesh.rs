@@ -4,7 +4,8 @@ use std::sync::Arc;
 
 use super::bvh::Bvh;
 use super::triangle::{edge_flags, Triangle};
-use crate::error::{check_finite_vector, Error, ErrorKind, Result};
+use crate::error::{check_length, Error, ErrorKind, Result};
+use crate::limits::MAX_SIZE;
 use crate::math::{Aabb, Pose, Vec3};
 
 /// A triangle mesh in the body frame. Cloning it (or a shape, body description or world holding
@@ -36,8 +37,10 @@ impl TriMesh {
     /// area. Errors: a non-finite vertex (field `vertices[i]`), an index out of range
     /// (`indices[k]`), or no triangle of positive area (`indices`).
     pub fn new(vertices: Vec<Vec3>, indices: &[[u32; 3]]) -> Result<Self> {
-        if let Some(index) = vertices.iter().position(|vertex| !vertex.is_finite()) {
-            check_finite_vector(&format!("vertices[{index}]"), vertices[index])?;
+        for (index, &vertex) in vertices.iter().enumerate() {
+            if !vertex.is_finite() || vertex.abs().max_element() > MAX_SIZE {
+                check_length(&format!("vertices[{index}]"), vertex, MAX_SIZE)?;
+            }
         }
         let mut triangles = Vec::with_capacity(indices.len());
         for (index, triangle) in indices.iter().enumerate() {

@@ -17,6 +17,15 @@ pub(crate) struct SpeedLimits {
     pub angular: f32,
 }
 
+impl SpeedLimits {
+    /// Holds a body's velocities to the limits; a non-finite velocity becomes zero.
+    #[inline(always)]
+    pub(crate) fn hold(&self, state: &mut BodyState) {
+        state.linear_velocity = clamp_length(state.linear_velocity, self.linear);
+        state.angular_velocity = clamp_length(state.angular_velocity, self.angular);
+    }
+}
+
 /// Advances a dynamic body's velocities by one substep `h` (seconds):
 /// `v ← (v + h·(g + F/m)) / (1 + h·c_lin)` and `ω ← (ω + h·I⁻¹τ)` followed by the implicit
 /// gyroscopic step (skipped for isotropic inertia, where `ω × Iω = 0`) and
@@ -48,8 +57,22 @@ pub(crate) fn integrate_velocities(
 
 /// `v` held to length `max`. A finite vector longer than about 1.8e19 has a squared length that
 /// overflows `f32`, where `clamp_length_max` would return zero: it is scaled down first, so a
-/// body thrown at 1e30 m/s flies at the speed limit instead of stopping dead.
+/// body thrown at 1e30 m/s flies at the speed limit instead of stopping dead. A vector with an
+/// infinite or NaN component has no direction and becomes zero.
+#[inline(always)]
 fn clamp_length(v: Vec3A, max: f32) -> Vec3A {
+    // NaN fails the comparison too, and takes the slow path.
+    if v.length_squared() <= max * max {
+        v
+    } else {
+        clamp_long(v, max)
+    }
+}
+
+/// [`clamp_length`] of a vector longer than `max`, or not finite.
+#[cold]
+#[inline(never)]
+fn clamp_long(v: Vec3A, max: f32) -> Vec3A {
     if v.length_squared().is_finite() {
         v.clamp_length_max(max)
     } else {

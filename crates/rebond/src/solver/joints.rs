@@ -714,7 +714,13 @@ impl ConstraintKind for JointConstraints {
     fn store_impulses(&self, joints: &mut JointSet) {
         for constraint in &self.constraints {
             if let Some(data) = joints.solver_data_mut(constraint.slot) {
-                data.impulses = constraint.impulses;
+                // Impulses that overflowed (a motor of unlimited force that cannot reach its
+                // target within the speed limits) would poison every later step.
+                data.impulses = if constraint.impulses.is_finite() {
+                    constraint.impulses
+                } else {
+                    JointImpulses::default()
+                };
                 data.step_linear = constraint.step_linear;
                 data.step_angular = constraint.step_angular;
                 data.solved = true;

@@ -48,7 +48,7 @@ use crate::body::{BodyType, RigidBody};
 use crate::math::{Mat3, Quat, Vec3, Vec3A};
 pub(crate) use contact_model::ContactSettings;
 use contacts::ContactConstraints;
-use integration::{integrate_pose, integrate_velocities};
+use integration::{integrate_pose, integrate_velocities, SpeedLimits};
 use joints::JointConstraints;
 pub(crate) use joints::JointSettings;
 use stages::StepContext;
@@ -202,10 +202,17 @@ impl SolverBodies {
         }
     }
 
-    /// Copies the solved state back into the bodies and clears their force accumulators.
-    fn scatter(&self, bodies: &mut Arena<RigidBody>) {
-        let solved = self.states.iter().zip(&self.motions);
+    /// Copies the solved state back into the bodies and clears their force accumulators. A
+    /// dynamic body's velocities are held to the speed limits first: the solver can leave them
+    /// far past the limits (a joint pulling together bodies placed metres apart, a motor of
+    /// unlimited force), and from step to step such velocities feed on themselves until they
+    /// overflow.
+    fn scatter(&mut self, bodies: &mut Arena<RigidBody>, limits: SpeedLimits) {
+        let solved = self.states.iter_mut().zip(&self.motions);
         for ((state, motion), &slot) in solved.zip(&self.slot_of_solver_index).skip(1) {
+            if motion.is_dynamic {
+                limits.hold(state);
+            }
             if let Some(body) = bodies.at_slot_mut(slot) {
                 body.linear_velocity = state.linear_velocity.into();
                 body.angular_velocity = state.angular_velocity.into();

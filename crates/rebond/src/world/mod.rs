@@ -10,12 +10,13 @@ use crate::collision::contact_cache::{Contact, ContactCache};
 use crate::collision::narrow_phase::NarrowPhase;
 use crate::collision::SPECULATIVE_DISTANCE;
 use crate::error::{
-    check_finite_vector, check_non_negative, check_positive, Error, ErrorKind, Result,
+    check_length, check_non_negative, check_positive, check_range, Error, ErrorKind, Result,
 };
 use crate::events::{ContactEvent, ContactForceEvent, EventTracker, SensorEvent};
 use crate::filter::{ordered, IgnoredPairs, InteractionGroups};
 use crate::island::Islands;
 use crate::joint::{JointHandle, JointSet};
+use crate::limits::{MAX_GRAVITY, MAX_SPEED, MAX_TIMESTEP, MIN_TIMESTEP};
 use crate::material::{CombineRule, Material};
 use crate::math::{Aabb, Vec3};
 use crate::solver::{ContactSettings, JointSettings, Solver, StepSettings};
@@ -37,11 +38,12 @@ pub const DEFAULT_MAX_LINEAR_SPEED: f32 = 1000.0;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct WorldSettings {
-    /// Gravity, m/s², default `[0, −9.81, 0]`.
+    /// Gravity, m/s², default `[0, −9.81, 0]`, at most [`MAX_GRAVITY`] long.
     pub gravity: Vec3,
     /// Substeps per step, 1 to [`MAX_SUBSTEPS`], default [`DEFAULT_SUBSTEPS`].
     pub substeps: u32,
-    /// Speed limit of every body's centre of mass, m/s, default [`DEFAULT_MAX_LINEAR_SPEED`].
+    /// Speed limit of every body's centre of mass, m/s, default [`DEFAULT_MAX_LINEAR_SPEED`],
+    /// at most [`MAX_SPEED`].
     /// Angular speed is limited too, to a quarter turn per substep.
     pub max_linear_speed: f32,
     /// Stiffness of contacts, Hz, > 0, default 120: a contact is a spring of this frequency for
@@ -102,8 +104,9 @@ impl Default for WorldSettings {
 
 impl WorldSettings {
     fn validate(&self) -> Result<()> {
-        check_finite_vector("gravity", self.gravity)?;
+        check_length("gravity", self.gravity, MAX_GRAVITY)?;
         check_positive("max_linear_speed", self.max_linear_speed)?;
+        check_range("max_linear_speed", self.max_linear_speed, 0.0, MAX_SPEED)?;
         if !(1..=MAX_SUBSTEPS).contains(&self.substeps) {
             return Err(Error::new(
                 "substeps",
@@ -550,10 +553,11 @@ impl World {
             .sum()
     }
 
-    /// Advances the world by `dt` seconds (finite and positive) in `settings.substeps` substeps.
-    /// Forces and torques applied since the last step act during the whole step, then are cleared.
+    /// Advances the world by `dt` seconds ([`MIN_TIMESTEP`] to [`MAX_TIMESTEP`]) in
+    /// `settings.substeps` substeps. Forces and torques applied since the last step act during
+    /// the whole step, then are cleared.
     pub fn step(&mut self, dt: f32) -> Result<()> {
-        check_positive("dt", dt)?;
+        check_range("dt", dt, MIN_TIMESTEP, MAX_TIMESTEP)?;
         self.wake_groups(false);
         self.update_contacts(dt);
         self.wake_groups(true);

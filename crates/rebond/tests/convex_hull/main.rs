@@ -58,6 +58,25 @@ fn box_corners(h: Vec3) -> Vec<Vec3> {
     corners
 }
 
+/// Mass properties of a box of half extents `h` at unit density, `m = 8 hx hy hz`,
+/// `Ixx = m/3 (hy² + hz²)`: also for boxes thinner than a `Cuboid` may be.
+fn box_mass_properties(h: Vec3) -> MassProperties {
+    let mass = 8.0 * h.x * h.y * h.z;
+    let squared = h * h;
+    MassProperties {
+        mass,
+        center_of_mass: Vec3::ZERO,
+        inertia: Mat3::from_diagonal(
+            mass / 3.0
+                * Vec3::new(
+                    squared.y + squared.z,
+                    squared.x + squared.z,
+                    squared.x + squared.y,
+                ),
+        ),
+    }
+}
+
 fn extent(points: &[Vec3]) -> f32 {
     let min = points.iter().fold(Vec3::INFINITY, |m, p| m.min(*p));
     let max = points.iter().fold(Vec3::NEG_INFINITY, |m, p| m.max(*p));

@@ -287,9 +287,7 @@ fn thin_box_is_a_box_and_thinner_is_flat() {
         (8, 6, 12)
     );
     check_invariants(&hull, &thin, 1e-6);
-    let expected = Cuboid::new(Vec3::new(1.0, 1.0, 5e-4))
-        .unwrap()
-        .mass_properties(1.0);
+    let expected = box_mass_properties(Vec3::new(1.0, 1.0, 5e-4));
     assert_mass_close(hull.mass_properties(1.0), expected, 1e-5, 1.0);
 
     let mut rng = Rng(8);
