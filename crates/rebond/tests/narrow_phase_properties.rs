@@ -143,7 +143,9 @@ fn shapes(kind: Kind) -> BoxedStrategy<Shape> {
         )
             .prop_filter_map("a solid hull", |(scale, points)| {
                 let points: Vec<Vec3> = points.into_iter().map(|point| point * scale).collect();
-                ConvexHull::new(&points).ok().map(Shape::ConvexHull)
+                ConvexHull::new(&points)
+                    .ok()
+                    .map(|hull| Shape::ConvexHull(hull.into()))
             })
             .boxed(),
     }

@@ -158,3 +158,75 @@ fn bytes_that_are_not_a_whole_state_of_this_version_are_refused() {
         assert_eq!(refuse(&damaged), StateError::Damaged, "byte {position}");
     }
 }
+
+#[test]
+fn geometry_shared_by_many_bodies_is_saved_once_and_shared_again() {
+    use rebond::{BodyDesc, CompoundChild, Pose, Shape, Vec3, WorldSettings};
+    let hull = Shape::convex_hull(&[
+        Vec3::new(-0.5, -0.5, -0.5),
+        Vec3::new(0.5, -0.5, -0.5),
+        Vec3::new(0.0, -0.5, 0.5),
+        Vec3::new(0.0, 0.5, 0.0),
+    ])
+    .unwrap();
+    let compound = Shape::compound(vec![
+        CompoundChild::new(hull.clone(), Pose::IDENTITY),
+        CompoundChild::new(hull.clone(), Pose::from_position(Vec3::X)),
+    ])
+    .unwrap();
+    // A floor of 40 × 40 cells, 3,200 triangles.
+    let n = 41u32;
+    let vertices: Vec<Vec3> = (0..n * n)
+        .map(|k| Vec3::new((k % n) as f32 * 0.05, 0.0, (k / n) as f32 * 0.05))
+        .collect();
+    let indices: Vec<[u32; 3]> = (0..(n - 1) * (n - 1))
+        .flat_map(|c| {
+            let k = c / (n - 1) * n + c % (n - 1);
+            [[k, k + n, k + 1], [k + 1, k + n, k + n + 1]]
+        })
+        .collect();
+    let mesh = Shape::trimesh(vertices, &indices).unwrap();
+    let world_with = |count: usize| {
+        let mut world = World::new(WorldSettings::default()).unwrap();
+        for i in 0..count {
+            let x = Vec3::X * (3.0 * i as f32);
+            for (shape, y) in [(&hull, 2.0), (&compound, 4.0)] {
+                let desc = BodyDesc::dynamic(shape.clone()).position(x + Vec3::Y * y);
+                world.add_body(desc).unwrap();
+            }
+            let desc = BodyDesc::static_body(mesh.clone()).position(x);
+            world.add_body(desc).unwrap();
+        }
+        world
+    };
+    // One body of each or 20: the state grows by the bodies, not by their geometry again.
+    let (one, many) = (world_with(1).save_state(), world_with(20).save_state());
+    let per_extra_set = (many.len() - one.len()) / 19;
+    assert!(
+        per_extra_set < 2_000,
+        "{} bytes per set of bodies",
+        per_extra_set
+    );
+    assert!(
+        one.len() > 40 * 40 * 2 * 12,
+        "the mesh itself is in the state"
+    );
+
+    let restored = World::load_state(&many).unwrap();
+    let shapes: Vec<&Shape> = restored.bodies().map(|(_, body)| body.shape()).collect();
+    let same = |a: &Shape, b: &Shape| match (a, b) {
+        (Shape::ConvexHull(a), Shape::ConvexHull(b)) => std::sync::Arc::ptr_eq(a, b),
+        (Shape::Compound(a), Shape::Compound(b)) => std::sync::Arc::ptr_eq(a, b),
+        (Shape::TriMesh(a), Shape::TriMesh(b)) => a.shares_geometry(b),
+        _ => false,
+    };
+    for set in shapes.chunks(3).skip(1) {
+        for (shape, first) in set.iter().zip(&shapes[..3]) {
+            assert!(same(shape, first), "restored as a copy: {shape:?}");
+        }
+    }
+    assert_eq!(
+        stepped(restored, 30).save_state(),
+        stepped(World::load_state(&many).unwrap(), 30).save_state()
+    );
+}

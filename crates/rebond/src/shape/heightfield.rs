@@ -23,6 +23,7 @@ pub const MIN_SOLID_DEPTH: f32 = 1.0;
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct HeightField {
+    #[cfg_attr(feature = "serde", serde(with = "crate::state::shared"))]
     data: Arc<HeightData>,
 }
 

@@ -27,6 +27,8 @@ pub use sphere::Sphere;
 pub use triangle::{Triangle, ACTIVE_EDGE_ANGLE};
 pub use trimesh::TriMesh;
 
+use std::sync::Arc;
+
 use crate::error::Result;
 use crate::mass::MassProperties;
 use crate::math::{Aabb, Pose, Vec3};
@@ -44,10 +46,12 @@ pub enum Shape {
     Capsule(Capsule),
     /// A circular cylinder along local Y.
     Cylinder(Cylinder),
-    /// The convex hull of a point cloud.
-    ConvexHull(ConvexHull),
-    /// Several convex shapes with poses in the body frame.
-    Compound(Compound),
+    /// The convex hull of a point cloud, shared between clones.
+    ConvexHull(
+        #[cfg_attr(feature = "serde", serde(with = "crate::state::shared"))] Arc<ConvexHull>,
+    ),
+    /// Several convex shapes with poses in the body frame, shared between clones.
+    Compound(#[cfg_attr(feature = "serde", serde(with = "crate::state::shared"))] Arc<Compound>),
     /// Everything below a plane through the origin (static and kinematic bodies only).
     Halfspace(Halfspace),
     /// A triangle mesh, colliding on both sides of each triangle (static and kinematic bodies
@@ -80,12 +84,12 @@ impl Shape {
 
     /// The convex hull of `points` (body frame).
     pub fn convex_hull(points: &[Vec3]) -> Result<Shape> {
-        ConvexHull::new(points).map(Shape::ConvexHull)
+        ConvexHull::new(points).map(|hull| Shape::ConvexHull(Arc::new(hull)))
     }
 
     /// A compound of convex children placed in the body frame.
     pub fn compound(children: Vec<CompoundChild>) -> Result<Shape> {
-        Compound::new(children).map(Shape::Compound)
+        Compound::new(children).map(|compound| Shape::Compound(Arc::new(compound)))
     }
 
     /// The solid below the plane through the origin with outward `normal` (normalised here).

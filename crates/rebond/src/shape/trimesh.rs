@@ -17,6 +17,7 @@ use crate::math::{Aabb, Pose, Vec3};
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TriMesh {
+    #[cfg_attr(feature = "serde", serde(with = "crate::state::shared"))]
     data: Arc<TriMeshData>,
 }
 

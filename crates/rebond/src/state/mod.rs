@@ -4,7 +4,9 @@
 //! the contact cache with its warm-start impulses, islands and sleep timers, settings, and the
 //! solver's buffers), so a restored world steps bit for bit as the saved one would have.
 //!
-//! The bytes are a 32-byte header, then the world in postcard's compact binary encoding:
+//! The bytes are a 32-byte header, then the world in postcard's compact binary encoding, with
+//! geometry that shapes share (meshes, heightfields, hulls, compounds) written once
+//! (`state/shared.rs`):
 //!
 //! | bytes | what |
 //! |---|---|
@@ -27,6 +29,8 @@ use serde::de::DeserializeOwned;
 use serde::Serialize;
 
 use crate::World;
+
+pub(crate) mod shared;
 
 /// The format version this build writes and reads; states of other versions are refused.
 pub const STATE_FORMAT_VERSION: u32 = 1;
@@ -107,7 +111,7 @@ impl std::error::Error for StateError {}
 pub(crate) fn encode<T: Serialize>(magic: &[u8; 8], value: &T) -> Vec<u8> {
     // Every part of a world encodes: postcard fails only on types serde cannot describe
     // (maps with non-string keys and the like), which the world does not hold.
-    let payload = postcard::to_stdvec(value).unwrap_or_default();
+    let payload = shared::writing(|| postcard::to_stdvec(value)).unwrap_or_default();
     let mut bytes = Vec::with_capacity(HEADER_LENGTH + payload.len());
     bytes.extend_from_slice(magic);
     bytes.extend_from_slice(&STATE_FORMAT_VERSION.to_le_bytes());
@@ -160,7 +164,8 @@ pub(crate) fn decode<T: DeserializeOwned>(magic: &[u8; 8], bytes: &[u8]) -> Resu
     if crc32fast::hash(payload) != word(28..32) as u32 {
         return Err(StateError::Damaged);
     }
-    postcard::from_bytes(payload).map_err(|error| StateError::Undecodable(error.to_string()))
+    shared::reading(|| postcard::from_bytes(payload))
+        .map_err(|error| StateError::Undecodable(error.to_string()))
 }
 
 impl World {
