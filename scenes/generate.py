@@ -762,6 +762,64 @@ def level():
     write_scene("level.json", bodies)
 
 
+def soak():
+    """A scene that never settles, for `rebond soak`: a motor turns a closed box (a compound of
+    six walls) about a horizontal axle, tumbling 30 mixed shapes inside; its corners knock a
+    chain of five capsules hung on ball joints; 10 more shapes lie in the bowl below (a
+    heightfield). No body sleeps."""
+    samples = 24
+    size = 16.0
+    heights = [[round(5.0 * ((j / (samples - 1) - 0.5) ** 2 + (i / (samples - 1) - 0.5) ** 2)
+                      + 0.05 * math.sin(j * 0.9) * math.cos(i * 0.7), 3)
+                for j in range(samples)] for i in range(samples)]
+    center = [0.0, 4.0, 0.0]
+    half = 2.0
+    walls = []
+    for axis in range(3):
+        for side in (-1.0, 1.0):
+            extents = [half + 0.1] * 3
+            extents[axis] = 0.1
+            position = [0.0, 0.0, 0.0]
+            position[axis] = side * half
+            walls.append({"shape": {"type": "box", "half_extents": extents},
+                          "position": position})
+    bodies = [{
+        "name": "bowl", "type": "static", "friction": 0.6,
+        "shape": {"type": "heightfield", "heights": heights, "scale": [size, 1.0, size]},
+    }, {
+        "name": "drum", "shape": {"type": "compound", "children": walls}, "mass": 200.0,
+        "position": center, "can_sleep": False,
+    }]
+    joints = [{
+        "name": "drum_axle", "type": "revolute", "body_b": "drum", "anchor": center,
+        "axis": [0.0, 0.0, 1.0], "motor": {"target_velocity": 0.8, "max_force": 20000.0},
+    }]
+    rng = Lcg(40)
+    for index in range(40):
+        if index < 30:
+            position = [rng.symmetric(1.4), center[1] + rng.symmetric(1.4), rng.symmetric(1.4)]
+        else:
+            position = [-4.0 + rng.symmetric(2.0), 2.0 + rng.next(), rng.symmetric(4.0)]
+        axis = normalized([rng.symmetric(1.0), rng.symmetric(1.0), rng.symmetric(1.0) + 0.01])
+        bodies.append({
+            "name": f"shape_{index}", "shape": mixed_shape(index, rng), "mass": 10.0,
+            "position": rounded(position), "rotation": rounded(axis_angle(axis, rng.next() * 6.0)),
+            "friction": 0.6, "can_sleep": False,
+        })
+    previous = None
+    for index in range(5):
+        name = f"link_{index}"
+        top = [2.8, 8.0 - 0.8 * index, 0.0]
+        bodies.append({
+            "name": name, "shape": {"type": "capsule", "radius": 0.15, "half_height": 0.25},
+            "position": add(top, [0.0, -0.4, 0.0]), "can_sleep": False,
+        })
+        joints.append({"name": f"link_joint_{index}", "type": "ball", "body_a": previous,
+                       "body_b": name, "anchor": top})
+        previous = name
+    write_scene("soak.json", bodies, joints=joints, compact=True)
+
+
 if __name__ == "__main__":
     showcase()
     pyramid()
@@ -778,3 +836,4 @@ if __name__ == "__main__":
     cradle_hanging()
     terrain()
     level()
+    soak()

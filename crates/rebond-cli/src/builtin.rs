@@ -118,6 +118,14 @@ pub const BUILTIN_SCENES: &[BuiltinScene] = &[
         json: include_str!("../../../scenes/level.json"),
         files: &[("level.obj", include_str!("../../../scenes/level.obj"))],
     },
+    BuiltinScene {
+        name: "soak",
+        description: "a motor-driven drum tumbling 30 mixed shapes above a heightfield bowl, \
+                      knocking a chain of five capsules on ball joints; nothing sleeps (for \
+                      `rebond soak`)",
+        json: include_str!("../../../scenes/soak.json"),
+        files: &[],
+    },
 ];
 
 /// The built-in scene called `name`.

@@ -8,6 +8,7 @@ mod builtin;
 mod failure;
 mod record;
 mod run;
+mod soak;
 mod source;
 #[cfg(feature = "viewer")]
 mod view;
@@ -23,6 +24,7 @@ use crate::builtin::BUILTIN_SCENES;
 #[cfg(not(feature = "viewer"))]
 use crate::failure::Failure;
 use crate::run::{RunLength, RunOptions};
+use crate::soak::SoakOptions;
 use crate::source::SceneSource;
 #[cfg(feature = "viewer")]
 use crate::view::{ViewError, ViewOptions};
@@ -95,6 +97,12 @@ enum Command {
     /// at the end, a note says that the timings are of a sleeping scene, and --no-sleep keeps the
     /// bodies awake.
     Bench(BenchArgs),
+    /// Run a scene for a long time (a million steps by default, the built-in `soak` scene
+    /// unless SCENE is given) and print, as CSV on stdout, a line every K steps: the step, the
+    /// simulated time, the total energy (J), the resident memory of the process (KiB), the mean
+    /// wall-clock time of a step since the last line (ms), the dynamic bodies awake and the
+    /// contacts. Energy must stay bounded and memory flat; the lines come as the run goes.
+    Soak(SoakArgs),
     /// List the built-in scenes, one per line with a description.
     Scenes,
     /// Open a window that simulates a scene live: orbit camera, pause, step, reset, slow motion,
@@ -189,6 +197,29 @@ struct BenchArgs {
     no_sleep: bool,
 }
 
+/// Arguments of `rebond soak`.
+#[derive(Debug, Args)]
+struct SoakArgs {
+    #[arg(value_name = "SCENE", help = SCENE_HELP, default_value = "soak")]
+    scene: PathBuf,
+    /// Number of steps
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 1_000_000,
+        value_parser = clap::value_parser!(u64).range(1..)
+    )]
+    steps: u64,
+    /// Print a line every K steps
+    #[arg(
+        long,
+        value_name = "K",
+        default_value_t = 10_000,
+        value_parser = clap::value_parser!(u64).range(1..)
+    )]
+    every: u64,
+}
+
 /// Arguments of `rebond view`.
 #[derive(Debug, Args)]
 struct ViewArgs {
@@ -268,6 +299,15 @@ fn execute(command: Command) -> Result<String, CommandError> {
                 sleep: !arguments.no_sleep,
             };
             Ok(bench::bench(&source, options)?.to_string())
+        }
+        Command::Soak(arguments) => {
+            let source = SceneSource::resolve(&arguments.scene)?;
+            let options = SoakOptions {
+                steps: arguments.steps,
+                every: arguments.every,
+            };
+            soak::soak(&source, options, &mut io::stdout().lock())?;
+            Ok(String::new())
         }
         #[cfg(feature = "viewer")]
         Command::View(arguments) => {

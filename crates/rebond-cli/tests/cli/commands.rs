@@ -276,3 +276,25 @@ fn without_the_viewer_view_is_one_error_line_with_status_2() {
         "{help}"
     );
 }
+
+#[test]
+fn soak_reports_a_line_every_k_steps_and_the_last() {
+    let outcome = rebond(["soak", "--steps", "250", "--every", "100"]);
+    assert_eq!(outcome.status, 0, "{}", outcome.stderr);
+    let lines: Vec<&str> = outcome.stdout.lines().collect();
+    assert_eq!(
+        lines[0],
+        "step,seconds,energy_j,resident_kib,ms_per_step,awake_bodies,contacts"
+    );
+    let steps: Vec<&str> = lines[1..]
+        .iter()
+        .map(|line| line.split(',').next().unwrap_or_default())
+        .collect();
+    assert_eq!(steps, ["0", "100", "200", "250"]);
+    for line in &lines[1..] {
+        let fields: Vec<&str> = line.split(',').collect();
+        assert_eq!(fields.len(), 7, "{line}");
+        let energy: f64 = fields[2].parse().expect("an energy");
+        assert!(energy.is_finite(), "{line}");
+    }
+}

@@ -3,7 +3,7 @@
 use crate::common::{rebond, rebond_in, TestDir};
 
 /// Every built-in scene the brief asks for, with its body count (ground included).
-const BUILTIN_SCENES: [(&str, usize); 15] = [
+const BUILTIN_SCENES: [(&str, usize); 16] = [
     ("showcase", 31),
     ("pyramid", 211),
     ("column", 11),
@@ -19,6 +19,7 @@ const BUILTIN_SCENES: [(&str, usize); 15] = [
     ("cradle_hanging", 6),
     ("terrain", 501),
     ("level", 151),
+    ("soak", 47),
 ];
 
 /// The value of a `label  value` line of a summary.
