@@ -189,3 +189,43 @@ fn sphere_box_face_edge_corner_and_inside() {
     );
     assert!(sphere_box(&sphere, &at(0.0, 2.0, 0.0), &cube, &origin, margin).is_none());
 }
+
+#[test]
+fn centres_on_the_segment_give_a_unit_normal_across_it() {
+    // Found by fuzzing library calls: a sphere or a capsule centred on another capsule's
+    // segment fell back to a direction across that segment of the segment's length, not of unit
+    // length, and the bodies stepped to NaN. Capsules of half height 3.75 make it 7.5 long.
+    let rotation = Quat::from_xyzw(-5.0, -4.6875, 0.0, 4.25).normalize();
+    let capsule = Capsule::new(3.75, 3.75).unwrap();
+    let pose = Pose::new(Vec3::splat(3.75), rotation);
+    let axis = rotation * Vec3::Y;
+    let check = |manifold: Option<Manifold>| {
+        let manifold = manifold.expect("overlapping shapes touch");
+        assert!(
+            (manifold.normal.length() - 1.0).abs() < 1e-6,
+            "{}",
+            manifold.normal
+        );
+        assert!(
+            manifold.normal.dot(axis).abs() < 1e-6,
+            "{}",
+            manifold.normal
+        );
+    };
+    let sphere = Sphere::new(0.5).unwrap();
+    check(sphere_capsule(
+        &sphere,
+        &pose,
+        &capsule,
+        &pose,
+        SPECULATIVE_DISTANCE,
+    ));
+    let crossing = Pose::new(pose.position, Quat::from_rotation_x(0.3) * rotation);
+    check(capsule_capsule(
+        &capsule,
+        &pose,
+        &capsule,
+        &crossing,
+        SPECULATIVE_DISTANCE,
+    ));
+}

@@ -97,7 +97,8 @@ pub fn sphere_capsule(
 ) -> Option<Manifold> {
     let [start, end] = world_segment(b, pose_b);
     let closest = closest_on_segment(start, end, pose_a.position);
-    let fallback = (end - start).any_orthonormal_vector();
+    // `any_orthonormal_vector` needs a unit input to give a unit output.
+    let fallback = (end - start).normalize().any_orthonormal_vector();
     let (normal, point) = ball_contact(
         pose_a.position,
         a.radius(),
@@ -160,7 +161,7 @@ pub fn capsule_capsule(
     let (s, t) = closest_segment_parameters(start_a, direction_a, start_b, direction_b);
     let closest_a = start_a + direction_a * s;
     let closest_b = start_b + direction_b * t;
-    let fallback = direction_a.any_orthonormal_vector();
+    let fallback = direction_a.normalize().any_orthonormal_vector();
     let (normal, point) = ball_contact(closest_a, a.radius(), closest_b, b.radius(), fallback, 0);
     if point.separation > margin {
         return None;
