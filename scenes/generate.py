@@ -84,7 +84,8 @@ def ground_box(half_width):
     }
 
 
-def write_scene(file_name, bodies, gravity=None, substeps=None, compact=False, joints=None):
+def write_scene(file_name, bodies, gravity=None, substeps=None, compact=False, joints=None,
+                restitution_threshold=None):
     """Writes a scene with one body (and joint) per line; `compact` drops the spaces inside each
     line."""
     separators = (",", ":") if compact else (", ", ": ")
@@ -94,6 +95,8 @@ def write_scene(file_name, bodies, gravity=None, substeps=None, compact=False, j
         lines.append(f'  "gravity": {json.dumps(gravity)},')
     if substeps is not None:
         lines.append(f'  "substeps": {substeps},')
+    if restitution_threshold is not None:
+        lines.append(f'  "restitution_threshold": {restitution_threshold},')
     lines.append('  "bodies": [')
     body_lines = [indent + json.dumps(body, separators=separators) for body in bodies]
     lines.append(",\n".join(body_lines))
@@ -293,7 +296,8 @@ def ramp():
 
 
 def cradle():
-    """Newton's cradle without strings: five touching balls in zero gravity, the first moving."""
+    """Newton's cradle without strings: five touching balls in zero gravity, the first moving at
+    1 m/s; elastic balls bounce at any speed (restitution threshold 0)."""
     bodies = []
     for index in range(5):
         body = {
@@ -303,7 +307,7 @@ def cradle():
         if index == 0:
             body["linear_velocity"] = [1.0, 0.0, 0.0]
         bodies.append(body)
-    write_scene("cradle.json", bodies, gravity=[0.0, 0.0, 0.0])
+    write_scene("cradle.json", bodies, gravity=[0.0, 0.0, 0.0], restitution_threshold=0.0)
 
 
 def spinner():

@@ -315,7 +315,9 @@ fn a_steady_step_with_joints_allocates_nothing() {
                 .motor(Motor::velocity(2.0, 5.0)),
         )
         .unwrap();
-    for _ in 0..240 {
+    // The hanging links knock together now and then, so the buffers reach their largest only
+    // after about 680 steps.
+    for _ in 0..720 {
         world.step(DT).unwrap();
     }
     allocations_of(|| {

@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{add_ground, run, unit_box, world, G};
+use common::{add_ground, run, scene_path, unit_box, world, G};
 use rebond::scene::{LoadError, Scene};
 use rebond::{BodyDesc, JointType, Motor, QueryFilter, Ray, Shape, Vec3, World, WorldSettings};
 
@@ -63,12 +63,6 @@ fn the_same_gravity_again_leaves_sleeping_bodies_asleep() {
 }
 
 /// The workspace's built-in scenes, for the loader.
-fn scene_path(name: &str) -> std::path::PathBuf {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../scenes")
-        .join(format!("{name}.json"))
-}
-
 #[test]
 fn a_scene_file_loads_into_a_world_with_its_names_and_timestep() {
     let scene = Scene::from_file(scene_path("column")).unwrap();

@@ -135,6 +135,10 @@ pub struct Contact {
     /// The surfaces' friction and restitution combined by the world's rules; set by the world
     /// each step, once the contact is made.
     pub(crate) material: Material,
+    /// Mean distance of the contact patch from its centre under a uniform pressure, m, the
+    /// lever arm of the spinning friction; set by the world each step with the material
+    /// (`solver::contact_model::twist_radius`).
+    pub(crate) twist_radius: f32,
     /// Where the manifold was computed.
     pub(crate) frame: ManifoldFrame,
     /// Where the cache keeps what the query that computed the manifold left for the next one
@@ -263,6 +267,7 @@ impl ContactCache {
             friction_impulse: Vec3::ZERO,
             twist_impulse: 0.0,
             material: Material::NONE,
+            twist_radius: 0.0,
             frame: ManifoldFrame::new(&manifold, pose_a, pose_b),
             part_cache,
             fresh: true,

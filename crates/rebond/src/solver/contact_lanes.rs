@@ -90,6 +90,26 @@ pub(crate) struct LaneContact<'a> {
     pub body_b: usize,
 }
 
+/// Gauss–Seidel passes over a manifold's points in one collision ([`ContactLanes::collide`]); a
+/// collision that leaves a point approaching is swept again. With four, a box landing flat
+/// bounces straight, its spin under 1e-3 rad/s (`tests/spin_and_restitution.rs`).
+const COLLISION_PASSES: usize = 4;
+
+/// Normal speed below which a point counts as no longer colliding, m/s: the restitution stage
+/// sweeps its collisions until no point they act on moves faster along its normal.
+pub(crate) const COLLISION_SPEED: f32 = 1.0e-4;
+
+/// What one collision of the restitution stage does ([`ContactLanes::collide`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Collision {
+    /// Stops every approach, and marks the points it stops as the step's impacts.
+    Plastic,
+    /// Stops every approach, then bounces by the restitution.
+    Elastic,
+    /// Brings the step's impacts to rest along their normals.
+    Settle,
+}
+
 /// Pairs of distinct points in a manifold.
 const COUPLINGS: usize = MAX_MANIFOLD_POINTS * (MAX_MANIFOLD_POINTS - 1) / 2;
 
@@ -117,11 +137,11 @@ struct PointTarget {
 struct PointLanes {
     normal: JacobianLanes,
     base_separation: F32x4,
-    /// The normal velocity at the start of the step, m/s, for restitution: set only in lane
-    /// sets that bounce.
-    approach_velocity: F32x4,
     normal_impulse: F32x4,
     max_normal_impulse: F32x4,
+    /// 1 where the point took part in the step's impacts (it approached at the start of the
+    /// step, or once an impact reached it), else 0: set by [`ContactLanes::collide`].
+    impact: F32x4,
     /// Set before the biased passes of each substep ([`ContactLanes::prepare_biased_passes`]).
     target: PointTarget,
 }
@@ -137,9 +157,9 @@ impl PointLanes {
     const ZERO: Self = Self {
         normal: JacobianLanes::ZERO,
         base_separation: F32x4::ZERO,
-        approach_velocity: F32x4::ZERO,
         normal_impulse: F32x4::ZERO,
         max_normal_impulse: F32x4::ZERO,
+        impact: F32x4::ZERO,
         target: PointTarget {
             bias: F32x4::ZERO,
             mass: F32x4::ZERO,
@@ -216,7 +236,6 @@ impl ContactLanes {
     pub fn fill<'a>(
         &mut self,
         lane_contacts: impl IntoIterator<Item = LaneContact<'a>>,
-        states: &[BodyState],
         motions: &[BodyMotion],
     ) {
         let lanes = self;
@@ -230,8 +249,8 @@ impl ContactLanes {
             }
             point_counts.set_lane(lane, points.len() as f32);
         }
-        let a = BodyFrame::gather(states, motions, &lanes.body_a);
-        let b = BodyFrame::gather(states, motions, &lanes.body_b);
+        let a = BodyFrame::gather(motions, &lanes.body_a);
+        let b = BodyFrame::gather(motions, &lanes.body_b);
         let masses = lanes.inverse_masses();
         let normal = lanes.normal;
         let mut center = Vec3x4::ZERO;
@@ -244,10 +263,6 @@ impl ContactLanes {
                 mass: in_manifold.select(jacobian.mass, F32x4::ZERO),
                 ..jacobian
             };
-            if lanes.bounces {
-                point.approach_velocity =
-                    (b.velocity_at(anchor_b) - a.velocity_at(anchor_a)).dot(normal);
-            }
             center += position;
         }
         let counts = point_counts.max(F32x4::ONE);
@@ -256,13 +271,6 @@ impl ContactLanes {
             y: center.y / counts,
             z: center.z / counts,
         };
-        let mut radius = F32x4::ZERO;
-        for (index, point_positions) in positions[..lanes.point_count].iter().enumerate() {
-            let offset = Vec3x4::from_lanes(*point_positions) - center;
-            let in_manifold = point_counts.greater_than(F32x4::splat(index as f32));
-            radius += in_manifold.select(offset.dot(offset).sqrt(), F32x4::ZERO);
-        }
-        lanes.twist_radius = radius / counts;
         let (center_a, center_b) = (center - a.center_of_mass, center - b.center_of_mass);
         for axis in 0..2 {
             let direction = lanes.tangents[axis];
@@ -324,38 +332,91 @@ impl ContactLanes {
         self.tangent_impulse[0].set_lane(lane, friction_impulse.dot(tangent_1));
         self.tangent_impulse[1].set_lane(lane, friction_impulse.dot(tangent_2));
         self.twist_impulse.set_lane(lane, contact.twist_impulse);
+        self.twist_radius.set_lane(lane, contact.twist_radius);
     }
 
-    /// After the substeps: points that were approaching faster than `restitution_threshold` and
-    /// pushed this step leave with `v_n = −e · v_n,start`, where their lane's restitution `e` is
-    /// above zero; elsewhere the impulse is zero.
-    pub fn apply_restitution(&mut self, states: &mut [BodyState], restitution_threshold: f32) {
-        if !self.bounces {
-            return;
-        }
+    /// Whether any lane bounces (has a restitution above zero).
+    pub fn bounces(&self) -> bool {
+        self.bounces
+    }
+
+    /// One collision of the four lanes' contacts on velocities `states` (the restitution
+    /// stage's, `contacts.rs`), at the points that pushed during the step: impulses found by
+    /// Gauss–Seidel over the manifold's points ([`COLLISION_PASSES`] passes). A
+    /// [`Collision::Plastic`] or [`Collision::Elastic`] collision stops every approach with
+    /// impulses `λ ≥ 0`, and an elastic one adds `e λ` at the points that approached faster
+    /// than `restitution_threshold` (Poisson's restitution; for one point `v_n' = −e v_n`,
+    /// Newton's). A plastic collision marks the points it stops as the step's impacts;
+    /// [`Collision::Settle`] brings those to `v_n = 0`, pulling as well as pushing. Returns
+    /// whether any point it acts on moved faster than [`COLLISION_SPEED`] along the normal.
+    pub fn collide(
+        &mut self,
+        states: &mut [BodyState],
+        restitution_threshold: f32,
+        collision: Collision,
+    ) -> bool {
         let mut a = BodyLanes::gather(states, &self.body_a);
         let mut b = BodyLanes::gather(states, &self.body_b);
         let masses = self.inverse_masses();
         let normal = self.normal;
-        let elastic = self.restitution.greater_than(F32x4::ZERO);
-        let slow = F32x4::splat(-restitution_threshold);
-        for point in &mut self.points[..self.point_count] {
-            let bounces = point
-                .max_normal_impulse
-                .greater_than(F32x4::ZERO)
-                .and(elastic)
-                .and_not(point.approach_velocity.greater_than(slow));
-            let jacobian = &point.normal;
-            let normal_velocity = jacobian.velocity(&a, &b, normal);
-            let impulse =
-                -jacobian.mass * (normal_velocity + self.restitution * point.approach_velocity);
-            let total = (point.normal_impulse + impulse).max(F32x4::ZERO);
-            let applied = bounces.select(total - point.normal_impulse, F32x4::ZERO);
-            point.normal_impulse += applied;
-            jacobian.apply((&mut a, &mut b), masses, normal, applied);
+        let slow = F32x4::splat(COLLISION_SPEED);
+        let mut approach = [F32x4::ZERO; MAX_MANIFOLD_POINTS];
+        let mut collided = false;
+        for (point, approach) in self.points[..self.point_count]
+            .iter_mut()
+            .zip(&mut approach)
+        {
+            let velocity = point.normal.velocity(&a, &b, normal);
+            let moving = match collision {
+                Collision::Settle => {
+                    *approach = point.impact;
+                    velocity.max(-velocity).greater_than(slow)
+                }
+                Collision::Plastic | Collision::Elastic => {
+                    let pushed = point.max_normal_impulse.greater_than(F32x4::ZERO);
+                    *approach = pushed.select(-velocity, F32x4::ZERO);
+                    approach.greater_than(slow)
+                }
+            };
+            let acts = approach.greater_than(F32x4::ZERO);
+            collided |= acts.and(moving).any();
+            if let Collision::Plastic = collision {
+                point.impact = moving.select(F32x4::ONE, point.impact);
+            }
+        }
+        if !collided {
+            return false;
+        }
+        let points = &self.points[..self.point_count];
+        let mut stopping = [F32x4::ZERO; MAX_MANIFOLD_POINTS];
+        for _ in 0..COLLISION_PASSES {
+            for ((point, impulse), approach) in points.iter().zip(&mut stopping).zip(&approach) {
+                let jacobian = &point.normal;
+                let mut total = *impulse - jacobian.mass * jacobian.velocity(&a, &b, normal);
+                if !matches!(collision, Collision::Settle) {
+                    total = total.max(F32x4::ZERO);
+                }
+                let total = approach
+                    .greater_than(F32x4::ZERO)
+                    .select(total, F32x4::ZERO);
+                jacobian.apply((&mut a, &mut b), masses, normal, total - *impulse);
+                *impulse = total;
+            }
+        }
+        if let Collision::Elastic = collision {
+            let fast = F32x4::splat(restitution_threshold);
+            for ((point, impulse), approach) in points.iter().zip(&stopping).zip(&approach) {
+                let bounce = approach
+                    .greater_than(fast)
+                    .select(self.restitution, F32x4::ZERO);
+                point
+                    .normal
+                    .apply((&mut a, &mut b), masses, normal, bounce * *impulse);
+            }
         }
         a.scatter(states, &self.body_a);
         b.scatter(states, &self.body_b);
+        true
     }
 
     /// Writes the accumulated impulses back to the lanes' contacts for the next step's warm
@@ -515,7 +576,8 @@ impl ContactLanes {
     }
 
     /// The manifold's friction at the centre of its points, clamped to the cone
-    /// `|λ_t| ≤ μ Σλ_n`, then its twist about the normal clamped to `μ Σλ_n r̄`, given
+    /// `|λ_t| ≤ μ Σλ_n`, then its twist about the normal clamped to `μ Σλ_n ⟨r⟩` (`⟨r⟩` the
+    /// patch's mean distance from its centre, `contact_model::twist_radius`), given
     /// `Σλ_n`. Applies the spins to `bodies` and returns the linear impulse, for
     /// [`PassLanes::finish`].
     #[inline(always)]

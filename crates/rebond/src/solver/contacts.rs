@@ -2,12 +2,17 @@
 //! lane sets of up to four (`graph_colour.rs`) and solved a lane set at a time
 //! (`contact_lanes.rs`), the lane sets in order.
 
-use super::contact_lanes::{ContactLanes, LaneContact};
+use super::contact_lanes::{Collision, ContactLanes, LaneContact};
 use super::graph_colour::GraphColouring;
 use super::softness::Softness;
 use super::stages::{ConstraintKind, StepContext};
 use super::{BodyMotion, BodyState, SolverBodies};
 use crate::collision::contact_cache::{Contact, ContactCache};
+
+/// Most sweeps of the restitution stage's collisions: a row of touching equal balls passes an
+/// impact on in one sweep in the row's order; a chain of collisions without restitution shares
+/// out the momentum more slowly.
+const COLLISION_SWEEPS: usize = 32;
 
 /// This step's contact constraints, in buffers reused from step to step.
 #[derive(Debug, Clone, Default)]
@@ -24,6 +29,14 @@ pub(crate) struct ContactConstraints {
     softness: Softness,
     /// Approach speed below which nothing bounces, m/s.
     restitution_threshold: f32,
+    /// The lane sets with restitution, by index into `lanes`, in solving order.
+    bouncing: Vec<usize>,
+    /// The bodies' velocities at the start of the step, kept while any lane set bounces, and
+    /// the restitution stage's two copies of them: after the step's collisions with
+    /// restitution, and without.
+    start: Vec<BodyState>,
+    elastic: Vec<BodyState>,
+    plastic: Vec<BodyState>,
 }
 
 impl ContactConstraints {
@@ -40,6 +53,32 @@ impl ContactConstraints {
         }
         self.colouring
             .colour(&self.pairs, solver_bodies.states.len());
+    }
+}
+
+/// The collisions `collision` of the lane sets `bouncing` (indices into `lanes`) on the
+/// velocities `states` ([`ContactLanes::collide`]), swept forwards and backwards in turn until
+/// no point they act on moves, at most [`COLLISION_SWEEPS`] times.
+fn sweep_collisions(
+    lanes: &mut [ContactLanes],
+    bouncing: &[usize],
+    states: &mut [BodyState],
+    restitution_threshold: f32,
+    collision: Collision,
+) {
+    for sweep in 0..COLLISION_SWEEPS {
+        let mut collided = false;
+        let mut collide = |&index: &usize| {
+            collided |= lanes[index].collide(states, restitution_threshold, collision);
+        };
+        if sweep % 2 == 0 {
+            bouncing.iter().for_each(&mut collide);
+        } else {
+            bouncing.iter().rev().for_each(&mut collide);
+        }
+        if !collided {
+            break;
+        }
     }
 }
 
@@ -78,10 +117,20 @@ impl ConstraintKind for ContactConstraints {
             });
             let index = self.lanes.len();
             self.lanes.push(ContactLanes::EMPTY);
-            self.lanes[index].fill(lane_contacts, &solver_bodies.states, &solver_bodies.motions);
+            self.lanes[index].fill(lane_contacts, &solver_bodies.motions);
         }
         self.softness = context.contact.softness(context.h, context.inverse_h);
         self.restitution_threshold = context.contact.restitution_threshold;
+        self.bouncing.clear();
+        let bouncing = self
+            .lanes
+            .iter()
+            .enumerate()
+            .filter(|(_, lanes)| lanes.bounces());
+        self.bouncing.extend(bouncing.map(|(index, _)| index));
+        if !self.bouncing.is_empty() {
+            self.start.clone_from(&solver_bodies.states);
+        }
     }
 
     fn warm_start(&mut self, states: &mut [BodyState], _motions: &[BodyMotion]) {
@@ -112,9 +161,40 @@ impl ConstraintKind for ContactConstraints {
         }
     }
 
+    /// Restitution as a sequence of collisions, so an impact travels down a row of touching
+    /// bodies (Newton's cradle). The contacts that bounce and pushed during the step collide
+    /// again, one after another, from the velocities at the start of the step, once without
+    /// restitution and once with it ([`sweep_collisions`]). The points that collided are the
+    /// step's impacts: on the bodies' velocities after the substeps they are brought to rest
+    /// along their normals (the outcome without restitution, whatever approach or push-out the
+    /// substeps left), and each body then gets the difference of the two collisions' outcomes.
     fn apply_restitution(&mut self, states: &mut [BodyState]) {
-        for lanes in &mut self.lanes {
-            lanes.apply_restitution(states, self.restitution_threshold);
+        if self.bouncing.is_empty() {
+            return;
+        }
+        let (lanes, bouncing) = (&mut self.lanes, &self.bouncing);
+        let threshold = self.restitution_threshold;
+        self.plastic.clone_from(&self.start);
+        sweep_collisions(
+            lanes,
+            bouncing,
+            &mut self.plastic,
+            threshold,
+            Collision::Plastic,
+        );
+        self.elastic.clone_from(&self.start);
+        sweep_collisions(
+            lanes,
+            bouncing,
+            &mut self.elastic,
+            threshold,
+            Collision::Elastic,
+        );
+        sweep_collisions(lanes, bouncing, states, threshold, Collision::Settle);
+        let outcomes = self.elastic.iter().zip(&self.plastic);
+        for (state, (elastic, plastic)) in states.iter_mut().zip(outcomes).skip(1) {
+            state.linear_velocity += elastic.linear_velocity - plastic.linear_velocity;
+            state.angular_velocity += elastic.angular_velocity - plastic.angular_velocity;
         }
     }
 

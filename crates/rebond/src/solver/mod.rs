@@ -15,7 +15,7 @@
 //! | solve (biased, ×2) | per substep | joint rows, then normal impulses, towards the targets (soft push-out) | — |
 //! | integrate positions | per substep | — | `c += h v`, `q` turned by `h ω`, `Δc`, `Δθ` |
 //! | relax | per substep | joint rows rigid; normal impulses without push-out, then friction | read: `Δc`, `Δθ` |
-//! | restitution | once | `v_n = −e v_n,start` where a contact hit fast enough | — |
+//! | restitution | once | the contacts with restitution collide again in sequence (`contacts.rs`) | — |
 //! | store impulses | once | — | — |
 //!
 //! The warm start applies last step's impulses in the first substep, the impulses accumulated

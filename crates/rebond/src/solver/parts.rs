@@ -49,39 +49,25 @@ impl BodyLanes {
     }
 }
 
-/// What a constraint builder reads of the bodies on one side of four constraints: pose, inverse
-/// inertia and velocities at the start of the step.
+/// What a constraint builder reads of the bodies on one side of four constraints: centre of
+/// mass and inverse inertia at the start of the step.
 pub(super) struct BodyFrame {
     pub center_of_mass: Vec3x4,
     /// `I⁻¹` in world axes.
     pub inverse_inertia: Mat3x4,
-    linear_velocity: Vec3x4,
-    angular_velocity: Vec3x4,
 }
 
 impl BodyFrame {
     /// The frames of the solver bodies `bodies`, one per lane. Inlined into the builder: as a
     /// call, its lanes go through memory.
     #[inline(always)]
-    pub(super) fn gather(
-        states: &[BodyState],
-        motions: &[BodyMotion],
-        bodies: &[usize; LANES],
-    ) -> Self {
+    pub(super) fn gather(motions: &[BodyMotion], bodies: &[usize; LANES]) -> Self {
         let [a, b, c, d] = *bodies;
-        let states = [&states[a], &states[b], &states[c], &states[d]];
         let motions = [&motions[a], &motions[b], &motions[c], &motions[d]];
         Self {
             center_of_mass: Vec3x4::from_lanes(motions.map(|m| m.center_of_mass.into())),
             inverse_inertia: Mat3x4::from_lanes(motions.map(|m| &m.world_inverse_inertia)),
-            linear_velocity: Vec3x4::from_lanes(states.map(|s| s.linear_velocity)),
-            angular_velocity: Vec3x4::from_lanes(states.map(|s| s.angular_velocity)),
         }
-    }
-
-    /// The velocity of the point at `anchor` from the centre of mass, `v + ω × r`, per lane.
-    pub(super) fn velocity_at(&self, anchor: Vec3x4) -> Vec3x4 {
-        self.linear_velocity + self.angular_velocity.cross(anchor)
     }
 }
 

@@ -19,6 +19,8 @@ use crate::joint::{JointHandle, JointSet};
 use crate::limits::{MAX_GRAVITY, MAX_SPEED, MAX_TIMESTEP, MIN_TIMESTEP};
 use crate::material::{CombineRule, Material};
 use crate::math::{Aabb, Vec3};
+use crate::shape::Shape;
+use crate::solver::contact_model::twist_radius;
 use crate::solver::{ContactSettings, JointSettings, Solver, StepSettings};
 use crate::sorted::merged;
 
@@ -736,6 +738,11 @@ impl World {
                 settings.friction_combine,
                 settings.restitution_combine,
             );
+            let normal = contact.manifold.normal;
+            let round = contact.manifold.len() > 2
+                && (flat_cap(body_a, contact.key.child_a, normal)
+                    || flat_cap(body_b, contact.key.child_b, normal));
+            contact.twist_radius = twist_radius(contact.manifold.points(), round);
             // A sleeper touched by an awake mover wakes (a body woken here was asleep, so it
             // cannot be the other one's awake toucher).
             let wakes = [
@@ -822,4 +829,21 @@ impl World {
     pub(crate) fn broad_phase(&self) -> &BroadPhase {
         &self.broad_phase
     }
+}
+
+/// A cylinder's cap counts as lying flat on a face when the cosine between its axis and the
+/// contact normal is at least this (5°): its contact patch is then the whole disc.
+const FLAT_CAP_COSINE: f32 = 0.996;
+
+/// Whether the part `child` of `body` (the body's shape unless a compound) is a cylinder with a
+/// cap flat against the contact `normal`, so its contact patch is a disc.
+fn flat_cap(body: &RigidBody, child: u32, normal: Vec3) -> bool {
+    let (shape, rotation) = match &body.shape {
+        Shape::Compound(compound) => match compound.children().get(child as usize) {
+            Some(part) => (&part.shape, body.rotation * part.pose.rotation),
+            None => return false,
+        },
+        shape => (shape, body.rotation),
+    };
+    matches!(shape, Shape::Cylinder(_)) && (rotation * Vec3::Y).dot(normal).abs() >= FLAT_CAP_COSINE
 }

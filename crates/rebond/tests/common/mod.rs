@@ -70,3 +70,10 @@ pub fn run(world: &mut World, steps: usize) {
         world.step(DT).unwrap();
     }
 }
+
+/// The path of the built-in scene file `name` (`scenes/NAME.json`).
+pub fn scene_path(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes")
+        .join(format!("{name}.json"))
+}
