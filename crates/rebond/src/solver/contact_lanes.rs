@@ -10,6 +10,7 @@
 //! contacts, and their impulses go straight back to the contacts. Each point's normal and the two
 //! friction directions are axis parts (`parts.rs`).
 
+use super::normal_block::NormalBlock;
 use super::parts::{inverse_or_zero, BodyFrame, BodyLanes, JacobianLanes};
 use super::softness::Softness;
 use super::wide::{F32x4, Vec3x4, LANES};
@@ -110,6 +111,10 @@ pub(crate) enum Collision {
     Settle,
 }
 
+/// How far below zero, N·s, a point's total impulse from the block solve may come before its
+/// lane falls back to solving the points one after another: rounding, not a pull.
+const BLOCK_PULL: f32 = 1.0e-6;
+
 /// Pairs of distinct points in a manifold.
 const COUPLINGS: usize = MAX_MANIFOLD_POINTS * (MAX_MANIFOLD_POINTS - 1) / 2;
 
@@ -120,14 +125,15 @@ const fn coupling_index(i: usize, j: usize) -> usize {
 }
 
 /// What one point of four constraints asks of its normal impulse in the biased passes of a
-/// substep, from its separation at the substep's poses: `Δλ = mass (v_n + bias) − impulse_scale λ`.
+/// substep, from its separation at the substep's poses: `Δλ = −scale m (v_n + bias) −
+/// impulse_scale λ` for one point of effective mass `m` (`normal_block.rs` for the block).
 #[derive(Debug, Clone, Copy)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct PointTarget {
     /// m/s.
     bias: F32x4,
-    /// The effective mass, scaled by the softness where the point penetrates, and negated, kg.
-    mass: F32x4,
+    /// The softness's mass scale where the point penetrates, 1 where it is apart.
+    scale: F32x4,
     impulse_scale: F32x4,
 }
 
@@ -162,7 +168,7 @@ impl PointLanes {
         impact: F32x4::ZERO,
         target: PointTarget {
             bias: F32x4::ZERO,
-            mass: F32x4::ZERO,
+            scale: F32x4::ZERO,
             impulse_scale: F32x4::ZERO,
         },
     };
@@ -193,6 +199,13 @@ pub(crate) struct ContactLanes {
     /// `K_ij = (m_A⁻¹ + m_B⁻¹)(n·n) + (r_Aj × n)·I_A⁻¹(r_Ai × n) + (r_Bj × n)·I_B⁻¹(r_Bi × n)`,
     /// the off-diagonal part of the points' effective-mass matrix, at [`coupling_index`]`(i, j)`.
     coupling: [F32x4; COUPLINGS],
+    /// The points' effective-mass matrix, factored for the block solve in the substeps where a
+    /// lane is [`Self::apart`].
+    block: NormalBlock,
+    /// 1 in the lanes whose points were all apart at the substep's poses (a speculative
+    /// contact, where a fast body meets another), else 0: the lanes solved as a block in the
+    /// substep's passes ([`Self::prepare_biased_passes`]).
+    apart: F32x4,
     tangent: [JacobianLanes; 2],
     tangent_impulse: [F32x4; 2],
     twist_spin_a: Vec3x4,
@@ -220,6 +233,8 @@ impl ContactLanes {
         point_count: 0,
         points: [PointLanes::ZERO; MAX_MANIFOLD_POINTS],
         coupling: [F32x4::ZERO; COUPLINGS],
+        block: NormalBlock::ZERO,
+        apart: F32x4::ZERO,
         tangent: [JacobianLanes::ZERO; 2],
         tangent_impulse: [F32x4::ZERO; 2],
         twist_spin_a: Vec3x4::ZERO,
@@ -502,18 +517,43 @@ impl ContactLanes {
         let bodies = PassLanes::gather(states, &self.body_a, &self.body_b);
         let normal_motion = self.normal.dot(bodies.relative_motion);
         let inverse_h = F32x4::splat(inverse_h);
+        let mut all_apart = F32x4::ONE.greater_than(F32x4::ZERO);
         for point in &mut self.points[..self.point_count] {
             let separation = point.separation(&bodies, normal_motion);
             let apart = separation.greater_than(F32x4::ZERO);
+            let outside = F32x4::splat(f32::MIN_POSITIVE).greater_than(point.normal.mass);
+            all_apart = all_apart.and(apart.or(outside));
             let push =
                 (F32x4::splat(softness.bias_rate) * separation).max(F32x4::splat(-push_speed));
-            let mass_scale = apart.select(F32x4::ONE, F32x4::splat(softness.mass_scale));
             point.target = PointTarget {
                 bias: apart.select(separation * inverse_h, push),
-                mass: -point.normal.mass * mass_scale,
+                scale: apart.select(F32x4::ONE, F32x4::splat(softness.mass_scale)),
                 impulse_scale: apart.select(F32x4::ZERO, F32x4::splat(softness.impulse_scale)),
             };
         }
+        self.apart = all_apart.select(F32x4::ONE, F32x4::ZERO);
+        if all_apart.any() {
+            self.factor_block();
+        }
+    }
+
+    /// Factors the points' effective-mass matrix for the block solve: the diagonal `1 / m_eff`
+    /// (1 for a point a lane does not have) and the couplings between the lane's points.
+    fn factor_block(&mut self) {
+        let mut diagonal = [F32x4::ONE; MAX_MANIFOLD_POINTS];
+        for (entry, point) in diagonal.iter_mut().zip(&self.points[..self.point_count]) {
+            let mass = point.normal.mass;
+            *entry = mass
+                .greater_than(F32x4::ZERO)
+                .select(F32x4::ONE / mass, F32x4::ONE);
+        }
+        let points = &self.points;
+        let coupling = |i: usize, j: usize| {
+            let both = points[i].normal.mass.greater_than(F32x4::ZERO);
+            let both = both.and(points[j].normal.mass.greater_than(F32x4::ZERO));
+            both.select(self.coupling[coupling_index(j, i)], F32x4::ZERO)
+        };
+        self.block = NormalBlock::factor(&diagonal, coupling, self.point_count);
     }
 
     /// One sequential-impulse pass of the four lanes: the normal impulse of each point with
@@ -529,34 +569,75 @@ impl ContactLanes {
         let normal = self.normal;
         let inverse_h = F32x4::splat(inverse_h);
         let normal_motion = normal.dot(bodies.relative_motion);
-        // Each point's normal velocity is its velocity at the start of the pass plus what the
-        // points before it applied, through the couplings; the impulses reach the bodies after.
         let linear_speed = normal.dot(bodies.relative_velocity);
-        let mut applied = [F32x4::ZERO; MAX_MANIFOLD_POINTS];
-        let mut total_normal_impulse = F32x4::ZERO;
-        for (j, point) in self.points[..self.point_count].iter_mut().enumerate() {
-            let jacobian = &point.normal;
-            let mut normal_velocity =
-                linear_speed + jacobian.spin_velocity(bodies.angular_a, bodies.angular_b);
-            let couplings = &self.coupling[coupling_index(0, j.max(1))..];
-            for (&coupling, &earlier) in couplings.iter().zip(&applied[..j]) {
-                normal_velocity += coupling * earlier;
-            }
-            let impulse = if USE_BIAS {
+        // What each point's impulse aims at, `Δλ = scale (−K⁻¹ (v_n + bias)) − impulse_scale λ`:
+        // `bias` the target's (biased pass) or the closing of a gap (relax pass).
+        let count = self.point_count;
+        let mut aims = [(F32x4::ZERO, F32x4::ONE, F32x4::ZERO); MAX_MANIFOLD_POINTS];
+        let mut block_rhs = [F32x4::ZERO; MAX_MANIFOLD_POINTS];
+        for ((point, aim), rhs) in self.points[..count]
+            .iter()
+            .zip(&mut aims)
+            .zip(&mut block_rhs)
+        {
+            *aim = if USE_BIAS {
                 let target = &point.target;
-                target.mass * (normal_velocity + target.bias)
-                    - target.impulse_scale * point.normal_impulse
+                (target.bias, target.scale, target.impulse_scale)
             } else {
                 let separation = point.separation(&bodies, normal_motion);
                 let closing = separation
                     .greater_than(F32x4::ZERO)
                     .select(separation * inverse_h, F32x4::ZERO);
-                -jacobian.mass * (normal_velocity + closing)
+                (closing, F32x4::ONE, F32x4::ZERO)
             };
-            let total = (point.normal_impulse + impulse).max(F32x4::ZERO);
-            applied[j] = total - point.normal_impulse;
+            let velocity = linear_speed
+                + point
+                    .normal
+                    .spin_velocity(bodies.angular_a, bodies.angular_b);
+            let in_manifold = point.normal.mass.greater_than(F32x4::ZERO);
+            *rhs = in_manifold.select(-(velocity + aim.0), F32x4::ZERO);
+        }
+        // The manifold's points solved as one block in the lanes whose points were all apart
+        // at the substep's poses (rigid, in the biased and the relax passes): a face meeting a
+        // face at speed stops flat instead of starting to turn, as one point solved before the
+        // others would make it. Resting points keep a spring each, `k = m_eff ω²` (a soft
+        // block would be 2/3 as stiff against a tilt), and where a
+        // lane's block solution would pull at a point, that lane's points are solved one after
+        // another instead, each point's normal velocity being its velocity at the start of the
+        // pass plus what the points before it applied, through the couplings.
+        let mut applied = [F32x4::ZERO; MAX_MANIFOLD_POINTS];
+        let mut pushes = self.apart.greater_than(F32x4::ZERO);
+        if pushes.any() {
+            let block = self.block.solve(block_rhs, count);
+            for (j, point) in self.points[..count].iter().enumerate() {
+                let (_, scale, impulse_scale) = aims[j];
+                applied[j] = scale * block[j] - impulse_scale * point.normal_impulse;
+                let total = point.normal_impulse + applied[j];
+                pushes = pushes.and(total.greater_than(F32x4::splat(-BLOCK_PULL)));
+            }
+        }
+        if !pushes.all() {
+            let mut sequential = [F32x4::ZERO; MAX_MANIFOLD_POINTS];
+            for (j, point) in self.points[..count].iter().enumerate() {
+                let (bias, scale, impulse_scale) = aims[j];
+                let mut normal_velocity = -block_rhs[j] - bias;
+                let couplings = &self.coupling[coupling_index(0, j.max(1))..];
+                for (&coupling, &earlier) in couplings.iter().zip(&sequential[..j]) {
+                    normal_velocity += coupling * earlier;
+                }
+                let impulse = -point.normal.mass * scale * (normal_velocity + bias)
+                    - impulse_scale * point.normal_impulse;
+                let total = (point.normal_impulse + impulse).max(F32x4::ZERO);
+                sequential[j] = total - point.normal_impulse;
+                applied[j] = pushes.select(applied[j], sequential[j]);
+            }
+        }
+        let mut total_normal_impulse = F32x4::ZERO;
+        for (point, impulse) in self.points[..count].iter_mut().zip(&mut applied) {
+            let total = (point.normal_impulse + *impulse).max(F32x4::ZERO);
+            *impulse = total - point.normal_impulse;
             point.normal_impulse = total;
-            point.max_normal_impulse = point.max_normal_impulse.max(applied[j]);
+            point.max_normal_impulse = point.max_normal_impulse.max(*impulse);
             total_normal_impulse += total;
         }
         let mut normal_impulse = F32x4::ZERO;

@@ -38,6 +38,7 @@ mod integration;
 mod joint_groups;
 mod joint_parts;
 mod joints;
+mod normal_block;
 mod parts;
 mod softness;
 mod stages;

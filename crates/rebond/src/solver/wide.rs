@@ -81,6 +81,16 @@ impl Mask4 {
         Self(self.0 & other.0)
     }
 
+    /// Lanes set in either mask.
+    pub fn or(self, other: Self) -> Self {
+        Self(self.0 | other.0)
+    }
+
+    /// Whether every lane is set.
+    pub fn all(self) -> bool {
+        self.0.all()
+    }
+
     /// Whether any lane is set.
     pub fn any(self) -> bool {
         self.0.any()
