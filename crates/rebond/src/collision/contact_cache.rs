@@ -135,10 +135,11 @@ pub struct Contact {
     /// The surfaces' friction and restitution combined by the world's rules; set by the world
     /// each step, once the contact is made.
     pub(crate) material: Material,
-    /// Mean distance of the contact patch from its centre under a uniform pressure, m, the
-    /// lever arm of the spinning friction; set by the world each step with the material
-    /// (`solver::contact_model::twist_radius`).
-    pub(crate) twist_radius: f32,
+    /// The contact patch's mean distance from its centre under a uniform pressure (the lever
+    /// arm of the spinning friction) over the points' root mean square distance from their
+    /// centre; set by the world each step with the material
+    /// (`solver::contact_model::patch_radius_ratio`).
+    pub(crate) patch_radius_ratio: f32,
     /// Where the manifold was computed.
     pub(crate) frame: ManifoldFrame,
     /// Where the cache keeps what the query that computed the manifold left for the next one
@@ -267,7 +268,7 @@ impl ContactCache {
             friction_impulse: Vec3::ZERO,
             twist_impulse: 0.0,
             material: Material::NONE,
-            twist_radius: 0.0,
+            patch_radius_ratio: 0.0,
             frame: ManifoldFrame::new(&manifold, pose_a, pose_b),
             part_cache,
             fresh: true,

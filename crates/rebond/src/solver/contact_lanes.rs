@@ -13,7 +13,7 @@
 use super::normal_block::NormalBlock;
 use super::parts::{inverse_or_zero, BodyFrame, BodyLanes, JacobianLanes};
 use super::softness::Softness;
-use super::wide::{F32x4, Vec3x4, LANES};
+use super::wide::{F32x4, Mask4, Vec3x4, LANES};
 use super::{BodyMotion, BodyState};
 use crate::collision::contact_cache::Contact;
 use crate::collision::MAX_MANIFOLD_POINTS;
@@ -115,6 +115,17 @@ pub(crate) enum Collision {
 /// lane falls back to solving the points one after another: rounding, not a pull.
 const BLOCK_PULL: f32 = 1.0e-6;
 
+/// Normal speed above which a point's collision counts as an impact, m/s, for the block solve
+/// ([`ContactLanes::prepare_biased_passes`]): resting contacts move at millimetres to a few
+/// centimetres a second, gravity adds 0.16 m/s a step at 60 Hz, and a box dropped from 1 cm
+/// lands at 0.44 m/s.
+const IMPACT_SPEED: f32 = 0.25;
+
+/// The separation of a point a manifold does not have, m: far apart at every substep's poses,
+/// so a lane's points are all apart when its nearest real point is
+/// ([`ContactLanes::prepare_biased_passes`]). Its mass is zero, so it gets no impulse.
+const ABSENT_SEPARATION: f32 = 1.0e9;
+
 /// Pairs of distinct points in a manifold.
 const COUPLINGS: usize = MAX_MANIFOLD_POINTS * (MAX_MANIFOLD_POINTS - 1) / 2;
 
@@ -125,15 +136,15 @@ const fn coupling_index(i: usize, j: usize) -> usize {
 }
 
 /// What one point of four constraints asks of its normal impulse in the biased passes of a
-/// substep, from its separation at the substep's poses: `Δλ = −scale m (v_n + bias) −
-/// impulse_scale λ` for one point of effective mass `m` (`normal_block.rs` for the block).
+/// substep, from its separation at the substep's poses: `Δλ = mass (v_n + bias) − impulse_scale λ`
+/// solved point by point, `K Δλ = −(v_n + bias)` in a block (`normal_block.rs`).
 #[derive(Debug, Clone, Copy)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct PointTarget {
     /// m/s.
     bias: F32x4,
-    /// The softness's mass scale where the point penetrates, 1 where it is apart.
-    scale: F32x4,
+    /// The effective mass, scaled by the softness where the point penetrates, and negated, kg.
+    mass: F32x4,
     impulse_scale: F32x4,
 }
 
@@ -160,15 +171,46 @@ impl PointLanes {
             - bodies.rotation_a.dot(self.normal.arm_a)
     }
 
+    /// What the pass asks of the point's normal impulse, solved alone, given its normal velocity
+    /// `v_n`: with `USE_BIAS`, `Δλ = mass (v_n + bias) − impulse_scale λ` for its target; without
+    /// (the relax pass), `Δλ = −m_eff (v_n + closing)` ([`Self::closing`]).
+    #[inline(always)]
+    fn impulse<const USE_BIAS: bool>(
+        &self,
+        normal_velocity: F32x4,
+        bodies: &PassLanes,
+        normal_motion: F32x4,
+        inverse_h: F32x4,
+    ) -> F32x4 {
+        if USE_BIAS {
+            let target = &self.target;
+            target.mass * (normal_velocity + target.bias)
+                - target.impulse_scale * self.normal_impulse
+        } else {
+            let closing = self.closing(bodies, normal_motion, inverse_h);
+            -self.normal.mass * (normal_velocity + closing)
+        }
+    }
+
+    /// The normal speed, m/s, at which a point still apart by `s > 0` at the pass's poses
+    /// closes its gap this substep, `s / h`; 0 where it touches.
+    #[inline(always)]
+    fn closing(&self, bodies: &PassLanes, normal_motion: F32x4, inverse_h: F32x4) -> F32x4 {
+        let separation = self.separation(bodies, normal_motion);
+        separation
+            .greater_than(F32x4::ZERO)
+            .select(separation * inverse_h, F32x4::ZERO)
+    }
+
     const ZERO: Self = Self {
         normal: JacobianLanes::ZERO,
-        base_separation: F32x4::ZERO,
+        base_separation: F32x4::splat(ABSENT_SEPARATION),
         normal_impulse: F32x4::ZERO,
         max_normal_impulse: F32x4::ZERO,
         impact: F32x4::ZERO,
         target: PointTarget {
             bias: F32x4::ZERO,
-            scale: F32x4::ZERO,
+            mass: F32x4::ZERO,
             impulse_scale: F32x4::ZERO,
         },
     };
@@ -202,10 +244,19 @@ pub(crate) struct ContactLanes {
     /// The points' effective-mass matrix, factored for the block solve in the substeps where a
     /// lane is [`Self::apart`].
     block: NormalBlock,
-    /// 1 in the lanes whose points were all apart at the substep's poses (a speculative
-    /// contact, where a fast body meets another), else 0: the lanes solved as a block in the
-    /// substep's passes ([`Self::prepare_biased_passes`]).
+    /// 1 in the lanes whose points were all apart at the substep's poses, one of them meeting an
+    /// impact (a speculative contact, where a fast body meets another), else 0: the lanes
+    /// solved as a block in the substep's passes ([`Self::prepare_block`]).
     apart: F32x4,
+    /// Whether any lane is [`Self::apart`] this substep: the passes take the block solve's path
+    /// only then, so the lane sets of resting contacts pay nothing for it.
+    any_apart: bool,
+    /// Whether a lane of two points or more had them all apart at the start of the step, one of
+    /// them about to meet an impact ([`Self::acts_within_step`]): only such lane sets look for
+    /// lanes to solve as a block in each substep ([`Self::prepare_block`]). Resting contacts
+    /// and the sideways gaps between the boxes of a pyramid (apart but not closing: half of its
+    /// lane sets) skip the look.
+    may_block: bool,
     tangent: [JacobianLanes; 2],
     tangent_impulse: [F32x4; 2],
     twist_spin_a: Vec3x4,
@@ -235,6 +286,8 @@ impl ContactLanes {
         coupling: [F32x4::ZERO; COUPLINGS],
         block: NormalBlock::ZERO,
         apart: F32x4::ZERO,
+        any_apart: false,
+        may_block: false,
         tangent: [JacobianLanes::ZERO; 2],
         tangent_impulse: [F32x4::ZERO; 2],
         twist_spin_a: Vec3x4::ZERO,
@@ -251,11 +304,14 @@ impl ContactLanes {
     pub fn fill<'a>(
         &mut self,
         lane_contacts: impl IntoIterator<Item = LaneContact<'a>>,
+        states: &[BodyState],
         motions: &[BodyMotion],
+        inverse_reach: f32,
     ) {
         let lanes = self;
         let mut positions = [[Vec3A::ZERO; LANES]; MAX_MANIFOLD_POINTS];
         let mut point_counts = F32x4::ZERO;
+        let mut radius_ratios = F32x4::ZERO;
         for (lane, lane_contact) in lane_contacts.into_iter().enumerate() {
             lanes.set_contact(lane, &lane_contact, motions);
             let points = lane_contact.contact.manifold.points();
@@ -263,6 +319,7 @@ impl ContactLanes {
                 slot[lane] = point.position.into();
             }
             point_counts.set_lane(lane, points.len() as f32);
+            radius_ratios.set_lane(lane, lane_contact.contact.patch_radius_ratio);
         }
         let a = BodyFrame::gather(motions, &lanes.body_a);
         let b = BodyFrame::gather(motions, &lanes.body_b);
@@ -286,6 +343,15 @@ impl ContactLanes {
             y: center.y / counts,
             z: center.z / counts,
         };
+        let mut square_distances = F32x4::ZERO;
+        for (index, point_positions) in positions[..lanes.point_count].iter().enumerate() {
+            let offset = Vec3x4::from_lanes(*point_positions) - center;
+            let in_manifold = point_counts.greater_than(F32x4::splat(index as f32));
+            square_distances += in_manifold.select(offset.dot(offset), F32x4::ZERO);
+        }
+        // `⟨r⟩`, the patch's mean distance from its centre: a multiple of the points' root mean
+        // square distance `ρ` from their centre (`contact_model::patch_radius_ratio`).
+        lanes.twist_radius = radius_ratios * (square_distances / counts).sqrt();
         let (center_a, center_b) = (center - a.center_of_mass, center - b.center_of_mass);
         for axis in 0..2 {
             let direction = lanes.tangents[axis];
@@ -305,6 +371,49 @@ impl ContactLanes {
         lanes.twist_spin_b = b.inverse_inertia.mul_vec3(normal);
         lanes.twist_mass =
             inverse_or_zero(normal.dot(lanes.twist_spin_a) + normal.dot(lanes.twist_spin_b));
+        let mut nearest = F32x4::splat(ABSENT_SEPARATION);
+        for point in &lanes.points[..lanes.point_count] {
+            nearest = nearest.min(point.base_separation);
+        }
+        // A manifold of one point is solved the same alone or as a block.
+        let speculative = nearest
+            .greater_than(F32x4::ZERO)
+            .and(point_counts.greater_than(F32x4::ONE));
+        if speculative.any() {
+            lanes.may_block = lanes.acts_within_step(speculative, states, inverse_reach);
+        }
+    }
+
+    /// Whether, in some lane of `speculative` (its points all apart), a point may meet an impact
+    /// in the step ([`Self::prepare_block`]): it approaches faster than [`IMPACT_SPEED`] and
+    /// closes its gap `s` within the step and one substep at the velocities at its start,
+    /// `v_n + s / reach < 0` with `inverse_reach = 1 / (dt + h)` (the relax pass of the step's
+    /// last substep closes what is left after its positions moved), or it holds an impulse from
+    /// the last step that alone would move it faster than [`IMPACT_SPEED`], `λ K_jj`, which the
+    /// warm start applies. A point a lane does not have is far apart and holds none.
+    #[inline(never)]
+    fn acts_within_step(
+        &self,
+        speculative: Mask4,
+        states: &[BodyState],
+        inverse_reach: f32,
+    ) -> bool {
+        let a = BodyLanes::gather(states, &self.body_a);
+        let b = BodyLanes::gather(states, &self.body_b);
+        let inverse_reach = F32x4::splat(inverse_reach);
+        let mut acts = Mask4::NONE;
+        for point in &self.points[..self.point_count] {
+            let velocity = point.normal.velocity(&a, &b, self.normal);
+            let gap_speed = point.base_separation * inverse_reach;
+            let closes = F32x4::ZERO
+                .greater_than(velocity + gap_speed)
+                .and(F32x4::splat(-IMPACT_SPEED).greater_than(velocity));
+            let held = point
+                .normal_impulse
+                .greater_than(F32x4::splat(IMPACT_SPEED) * point.normal.mass);
+            acts = acts.or(closes.or(held));
+        }
+        speculative.and(acts).any()
     }
 
     /// Sets what lane `lane` takes straight from its contact: the bodies, the normal and its
@@ -347,7 +456,6 @@ impl ContactLanes {
         self.tangent_impulse[0].set_lane(lane, friction_impulse.dot(tangent_1));
         self.tangent_impulse[1].set_lane(lane, friction_impulse.dot(tangent_2));
         self.twist_impulse.set_lane(lane, contact.twist_impulse);
-        self.twist_radius.set_lane(lane, contact.twist_radius);
     }
 
     /// Whether any lane bounces (has a restitution above zero).
@@ -506,7 +614,8 @@ impl ContactLanes {
     /// substep (speculative contact), so a touchdown is perfectly inelastic. Penetrating, it is
     /// a soft constraint pushing out at `bias_rate · s`, at most `push_speed`, at every
     /// depth: no dead zone, in which a resting contact would hold no position and stacks would
-    /// wander (docs/physics.md, "Position correction").
+    /// wander (docs/physics.md, "Position correction"). Then, where the lane set
+    /// [`Self::may_block`], which lanes the substep solves as a block ([`Self::prepare_block`]).
     pub fn prepare_biased_passes(
         &mut self,
         states: &[BodyState],
@@ -517,22 +626,61 @@ impl ContactLanes {
         let bodies = PassLanes::gather(states, &self.body_a, &self.body_b);
         let normal_motion = self.normal.dot(bodies.relative_motion);
         let inverse_h = F32x4::splat(inverse_h);
-        let mut all_apart = F32x4::ONE.greater_than(F32x4::ZERO);
         for point in &mut self.points[..self.point_count] {
             let separation = point.separation(&bodies, normal_motion);
             let apart = separation.greater_than(F32x4::ZERO);
-            let outside = F32x4::splat(f32::MIN_POSITIVE).greater_than(point.normal.mass);
-            all_apart = all_apart.and(apart.or(outside));
             let push =
                 (F32x4::splat(softness.bias_rate) * separation).max(F32x4::splat(-push_speed));
+            let mass_scale = apart.select(F32x4::ONE, F32x4::splat(softness.mass_scale));
             point.target = PointTarget {
                 bias: apart.select(separation * inverse_h, push),
-                scale: apart.select(F32x4::ONE, F32x4::splat(softness.mass_scale)),
+                mass: -point.normal.mass * mass_scale,
                 impulse_scale: apart.select(F32x4::ZERO, F32x4::splat(softness.impulse_scale)),
             };
         }
-        self.apart = all_apart.select(F32x4::ONE, F32x4::ZERO);
-        if all_apart.any() {
+        if self.may_block {
+            self.prepare_block(states);
+        }
+    }
+
+    /// In a lane set that [`Self::may_block`]: marks as [`Self::apart`] the lanes whose points
+    /// are all apart at the substep's poses and one of them meets an impact in the substep's
+    /// passes, and factors their block. A point meets one where it approaches faster than
+    /// [`IMPACT_SPEED`] and closes its gap `s` within two substeps, `2 h v_n + s < 0` at the
+    /// substep's start (the biased passes close what closes in one, `v_n + s / h < 0`, and the
+    /// relax pass what the move of the positions leaves, `v_n + (s + h v_n) / h < 0`), or where
+    /// it holds an impulse and recedes faster than [`IMPACT_SPEED`] (the warm start's push after
+    /// an impact, which the passes take back). Elsewhere the points are solved one after
+    /// another: resting contacts that flicker apart keep their springs (without the speed, 6 %
+    /// of the 100-row pyramid's passes took the block).
+    #[inline(never)]
+    fn prepare_block(&mut self, states: &[BodyState]) {
+        let a = BodyLanes::gather(states, &self.body_a);
+        let b = BodyLanes::gather(states, &self.body_b);
+        // A point is apart where its bias is above zero (a push's never is), and a lane is all
+        // apart where its nearest point is. A point a lane does not have is far apart, closes
+        // no gap and holds no impulse.
+        let mut nearest = F32x4::splat(ABSENT_SEPARATION);
+        let mut acts = Mask4::NONE;
+        for point in &self.points[..self.point_count] {
+            let bias = point.target.bias;
+            nearest = nearest.min(bias);
+            let velocity = point.normal.velocity(&a, &b, self.normal);
+            let closes = F32x4::ZERO
+                .greater_than(velocity + velocity + bias)
+                .and(F32x4::splat(-IMPACT_SPEED).greater_than(velocity));
+            let pushed_back = velocity
+                .greater_than(F32x4::splat(IMPACT_SPEED))
+                .and(point.normal_impulse.greater_than(F32x4::ZERO));
+            acts = acts.or(closes.or(pushed_back));
+        }
+        // A lane set that may block has a lane of two points or more; a lane of one point is
+        // solved the same alone or as a block.
+        let several = self.points[1].normal.mass.greater_than(F32x4::ZERO);
+        let apart = nearest.greater_than(F32x4::ZERO).and(acts).and(several);
+        self.apart = apart.select(F32x4::ONE, F32x4::ZERO);
+        self.any_apart = apart.any();
+        if self.any_apart {
             self.factor_block();
         }
     }
@@ -564,82 +712,55 @@ impl ContactLanes {
     /// substep), and then friction ([`Self::solve_friction`]). Friction that reacts to the
     /// push's velocities feeds the lean of tall stacks until they topple (rapier's "no friction
     /// when applying bias" rule; BENCHMARKS.md measures both).
+    #[inline(always)]
     pub fn solve<const USE_BIAS: bool>(&mut self, states: &mut [BodyState], inverse_h: f32) {
+        if self.any_apart {
+            self.solve_pass::<USE_BIAS, true>(states, inverse_h);
+        } else {
+            self.solve_pass::<USE_BIAS, false>(states, inverse_h);
+        }
+    }
+
+    /// [`Self::solve`], with `BLOCK` where some lane is [`Self::apart`]: two functions, so
+    /// that the lane sets of resting contacts run without the block solve's code, which cost
+    /// them 12 % more instructions as a branch inside (callgrind, `pyramid`).
+    fn solve_pass<const USE_BIAS: bool, const BLOCK: bool>(
+        &mut self,
+        states: &mut [BodyState],
+        inverse_h: f32,
+    ) {
         let mut bodies = PassLanes::gather(states, &self.body_a, &self.body_b);
         let normal = self.normal;
         let inverse_h = F32x4::splat(inverse_h);
         let normal_motion = normal.dot(bodies.relative_motion);
         let linear_speed = normal.dot(bodies.relative_velocity);
-        // What each point's impulse aims at, `Δλ = scale (−K⁻¹ (v_n + bias)) − impulse_scale λ`:
-        // `bias` the target's (biased pass) or the closing of a gap (relax pass).
-        let count = self.point_count;
-        let mut aims = [(F32x4::ZERO, F32x4::ONE, F32x4::ZERO); MAX_MANIFOLD_POINTS];
-        let mut block_rhs = [F32x4::ZERO; MAX_MANIFOLD_POINTS];
-        for ((point, aim), rhs) in self.points[..count]
-            .iter()
-            .zip(&mut aims)
-            .zip(&mut block_rhs)
-        {
-            *aim = if USE_BIAS {
-                let target = &point.target;
-                (target.bias, target.scale, target.impulse_scale)
-            } else {
-                let separation = point.separation(&bodies, normal_motion);
-                let closing = separation
-                    .greater_than(F32x4::ZERO)
-                    .select(separation * inverse_h, F32x4::ZERO);
-                (closing, F32x4::ONE, F32x4::ZERO)
-            };
-            let velocity = linear_speed
-                + point
-                    .normal
-                    .spin_velocity(bodies.angular_a, bodies.angular_b);
-            let in_manifold = point.normal.mass.greater_than(F32x4::ZERO);
-            *rhs = in_manifold.select(-(velocity + aim.0), F32x4::ZERO);
-        }
-        // The manifold's points solved as one block in the lanes whose points were all apart
-        // at the substep's poses (rigid, in the biased and the relax passes): a face meeting a
-        // face at speed stops flat instead of starting to turn, as one point solved before the
-        // others would make it. Resting points keep a spring each, `k = m_eff ω²` (a soft
-        // block would be 2/3 as stiff against a tilt), and where a
-        // lane's block solution would pull at a point, that lane's points are solved one after
-        // another instead, each point's normal velocity being its velocity at the start of the
-        // pass plus what the points before it applied, through the couplings.
-        let mut applied = [F32x4::ZERO; MAX_MANIFOLD_POINTS];
-        let mut pushes = self.apart.greater_than(F32x4::ZERO);
-        if pushes.any() {
-            let block = self.block.solve(block_rhs, count);
-            for (j, point) in self.points[..count].iter().enumerate() {
-                let (_, scale, impulse_scale) = aims[j];
-                applied[j] = scale * block[j] - impulse_scale * point.normal_impulse;
-                let total = point.normal_impulse + applied[j];
-                pushes = pushes.and(total.greater_than(F32x4::splat(-BLOCK_PULL)));
-            }
-        }
-        if !pushes.all() {
-            let mut sequential = [F32x4::ZERO; MAX_MANIFOLD_POINTS];
-            for (j, point) in self.points[..count].iter().enumerate() {
-                let (bias, scale, impulse_scale) = aims[j];
-                let mut normal_velocity = -block_rhs[j] - bias;
+        let (applied, total_normal_impulse) = if BLOCK {
+            self.solve_normal_block::<USE_BIAS>(&bodies, linear_speed, normal_motion, inverse_h)
+        } else {
+            // Each point's normal velocity is its velocity at the start of the pass plus what
+            // the points before it applied, through the couplings; the impulses reach the
+            // bodies after.
+            let mut applied = [F32x4::ZERO; MAX_MANIFOLD_POINTS];
+            let mut total_normal_impulse = F32x4::ZERO;
+            for (j, point) in self.points[..self.point_count].iter_mut().enumerate() {
+                let mut normal_velocity = linear_speed
+                    + point
+                        .normal
+                        .spin_velocity(bodies.angular_a, bodies.angular_b);
                 let couplings = &self.coupling[coupling_index(0, j.max(1))..];
-                for (&coupling, &earlier) in couplings.iter().zip(&sequential[..j]) {
+                for (&coupling, &earlier) in couplings.iter().zip(&applied[..j]) {
                     normal_velocity += coupling * earlier;
                 }
-                let impulse = -point.normal.mass * scale * (normal_velocity + bias)
-                    - impulse_scale * point.normal_impulse;
+                let impulse =
+                    point.impulse::<USE_BIAS>(normal_velocity, &bodies, normal_motion, inverse_h);
                 let total = (point.normal_impulse + impulse).max(F32x4::ZERO);
-                sequential[j] = total - point.normal_impulse;
-                applied[j] = pushes.select(applied[j], sequential[j]);
+                applied[j] = total - point.normal_impulse;
+                point.normal_impulse = total;
+                point.max_normal_impulse = point.max_normal_impulse.max(applied[j]);
+                total_normal_impulse += total;
             }
-        }
-        let mut total_normal_impulse = F32x4::ZERO;
-        for (point, impulse) in self.points[..count].iter_mut().zip(&mut applied) {
-            let total = (point.normal_impulse + *impulse).max(F32x4::ZERO);
-            *impulse = total - point.normal_impulse;
-            point.normal_impulse = total;
-            point.max_normal_impulse = point.max_normal_impulse.max(*impulse);
-            total_normal_impulse += total;
-        }
+            (applied, total_normal_impulse)
+        };
         let mut normal_impulse = F32x4::ZERO;
         for (point, &impulse) in self.points[..self.point_count].iter().zip(&applied) {
             normal_impulse += impulse;
@@ -656,9 +777,71 @@ impl ContactLanes {
         bodies.finish(states, self, linear_impulse);
     }
 
+    /// The normal impulses of a pass ([`Self::solve`]) where some lane is [`Self::apart`]: the
+    /// manifold's points solved as one block in those lanes (rigid, in the biased and the relax
+    /// passes), `K Δλ = −(v_n + bias)`, `bias` the target's or the closing of a gap. A face
+    /// meeting a face at speed then stops flat instead of starting to turn, as one point solved
+    /// before the others would make it. Resting points keep a spring each, `k = m_eff ω²` (a
+    /// soft block would be 2/3 as stiff against a tilt), and where a lane's block solution
+    /// would pull at a point, that lane's points are solved one after another as in the other
+    /// lanes. Returns each point's applied impulse and the lanes' total normal impulse.
+    #[inline(always)]
+    fn solve_normal_block<const USE_BIAS: bool>(
+        &mut self,
+        bodies: &PassLanes,
+        linear_speed: F32x4,
+        normal_motion: F32x4,
+        inverse_h: F32x4,
+    ) -> ([F32x4; MAX_MANIFOLD_POINTS], F32x4) {
+        let count = self.point_count;
+        let mut velocities = [F32x4::ZERO; MAX_MANIFOLD_POINTS];
+        let mut rhs = [F32x4::ZERO; MAX_MANIFOLD_POINTS];
+        for ((point, velocity), rhs) in self.points[..count]
+            .iter()
+            .zip(&mut velocities)
+            .zip(&mut rhs)
+        {
+            *velocity = linear_speed
+                + point
+                    .normal
+                    .spin_velocity(bodies.angular_a, bodies.angular_b);
+            let bias = if USE_BIAS {
+                point.target.bias
+            } else {
+                point.closing(bodies, normal_motion, inverse_h)
+            };
+            let in_manifold = point.normal.mass.greater_than(F32x4::ZERO);
+            *rhs = in_manifold.select(-(*velocity + bias), F32x4::ZERO);
+        }
+        let block = self.block.solve(rhs, count);
+        let mut pushes = self.apart.greater_than(F32x4::ZERO);
+        for (point, &impulse) in self.points[..count].iter().zip(&block) {
+            let total = point.normal_impulse + impulse;
+            pushes = pushes.and(total.greater_than(F32x4::splat(-BLOCK_PULL)));
+        }
+        let mut applied = [F32x4::ZERO; MAX_MANIFOLD_POINTS];
+        let mut total_normal_impulse = F32x4::ZERO;
+        for (j, point) in self.points[..count].iter_mut().enumerate() {
+            let mut normal_velocity = velocities[j];
+            let couplings = &self.coupling[coupling_index(0, j.max(1))..];
+            for (&coupling, &earlier) in couplings.iter().zip(&applied[..j]) {
+                normal_velocity += coupling * earlier;
+            }
+            let impulse =
+                point.impulse::<USE_BIAS>(normal_velocity, bodies, normal_motion, inverse_h);
+            let impulse = pushes.select(block[j], impulse);
+            let total = (point.normal_impulse + impulse).max(F32x4::ZERO);
+            applied[j] = total - point.normal_impulse;
+            point.normal_impulse = total;
+            point.max_normal_impulse = point.max_normal_impulse.max(applied[j]);
+            total_normal_impulse += total;
+        }
+        (applied, total_normal_impulse)
+    }
+
     /// The manifold's friction at the centre of its points, clamped to the cone
     /// `|λ_t| ≤ μ Σλ_n`, then its twist about the normal clamped to `μ Σλ_n ⟨r⟩` (`⟨r⟩` the
-    /// patch's mean distance from its centre, `contact_model::twist_radius`), given
+    /// patch's mean distance from its centre, `contact_model::patch_radius_ratio`), given
     /// `Σλ_n`. Applies the spins to `bodies` and returns the linear impulse, for
     /// [`PassLanes::finish`].
     #[inline(always)]

@@ -103,6 +103,8 @@ impl ConstraintKind for ContactConstraints {
     ) {
         self.colour(contacts, solver_bodies);
         self.lanes.clear();
+        // A step and a substep: how far ahead a contact's gap may close in this step's passes.
+        let inverse_reach = context.inverse_h / (context.substeps + 1) as f32;
         for lane_set in self.colouring.lane_sets() {
             let lane_contacts = lane_set.iter().filter_map(|&pair| {
                 let index = self.pair_contacts[pair];
@@ -117,7 +119,12 @@ impl ConstraintKind for ContactConstraints {
             });
             let index = self.lanes.len();
             self.lanes.push(ContactLanes::EMPTY);
-            self.lanes[index].fill(lane_contacts, &solver_bodies.motions);
+            self.lanes[index].fill(
+                lane_contacts,
+                &solver_bodies.states,
+                &solver_bodies.motions,
+                inverse_reach,
+            );
         }
         self.softness = context.contact.softness(context.h, context.inverse_h);
         self.restitution_threshold = context.contact.restitution_threshold;

@@ -29,7 +29,7 @@ impl F32x4 {
     pub const ONE: Self = Self(Vec4::ONE);
 
     /// The same value in every lane.
-    pub fn splat(value: f32) -> Self {
+    pub const fn splat(value: f32) -> Self {
         Self(Vec4::splat(value))
     }
 
@@ -71,6 +71,9 @@ impl F32x4 {
 }
 
 impl Mask4 {
+    /// No lane set.
+    pub const NONE: Self = Self(BVec4A::FALSE);
+
     /// `if_set` where the mask is set, `otherwise` elsewhere, per lane.
     pub fn select(self, if_set: F32x4, otherwise: F32x4) -> F32x4 {
         F32x4(Vec4::select(self.0, if_set.0, otherwise.0))
@@ -84,11 +87,6 @@ impl Mask4 {
     /// Lanes set in either mask.
     pub fn or(self, other: Self) -> Self {
         Self(self.0 | other.0)
-    }
-
-    /// Whether every lane is set.
-    pub fn all(self) -> bool {
-        self.0.all()
     }
 
     /// Whether any lane is set.

@@ -20,7 +20,7 @@ use crate::limits::{MAX_GRAVITY, MAX_SPEED, MAX_TIMESTEP, MIN_TIMESTEP};
 use crate::material::{CombineRule, Material};
 use crate::math::{Aabb, Vec3};
 use crate::shape::Shape;
-use crate::solver::contact_model::twist_radius;
+use crate::solver::contact_model::patch_radius_ratio;
 use crate::solver::{ContactSettings, JointSettings, Solver, StepSettings};
 use crate::sorted::merged;
 
@@ -738,11 +738,13 @@ impl World {
                 settings.friction_combine,
                 settings.restitution_combine,
             );
-            let normal = contact.manifold.normal;
-            let round = contact.manifold.len() > 2
+            // A body with only flat surfaces has no cylinder, so a pair of them skips the look.
+            let (count, normal) = (contact.manifold.len(), contact.manifold.normal);
+            let round = count > 2
+                && !(body_a.polyhedral && body_b.polyhedral)
                 && (flat_cap(body_a, contact.key.child_a, normal)
                     || flat_cap(body_b, contact.key.child_b, normal));
-            contact.twist_radius = twist_radius(contact.manifold.points(), round);
+            contact.patch_radius_ratio = patch_radius_ratio(count, round);
             // A sleeper touched by an awake mover wakes (a body woken here was asleep, so it
             // cannot be the other one's awake toucher).
             let wakes = [
