@@ -13,7 +13,10 @@ use crate::math::{Aabb, Pose, Vec3};
 ///
 /// Both sides of every triangle collide. Each triangle keeps, per edge and side, whether the edge
 /// may produce edge contacts (see [`Triangle`]): edges between triangles of a flat or gently bent
-/// surface do not, so bodies slide and roll across them as on one surface.
+/// surface do not, so bodies slide and roll across them as on one surface. Neighbours are found by
+/// position: triangles whose corners repeat the same coordinates under other vertex indices (a
+/// vertex per triangle corner, as OBJ exports often have) are neighbours as if they shared the
+/// vertices, while the vertices and indices stay as given.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TriMesh {
@@ -156,13 +159,45 @@ pub(crate) fn placed_bounds(bounds: &Aabb, pose: &Pose) -> Aabb {
     Aabb::new(centre - reach, centre + reach)
 }
 
+/// For each vertex, the lowest index of a vertex at exactly the same position: meshes exported
+/// with a vertex per triangle corner (OBJ files often are) repeat each position bit for bit, and
+/// their neighbours are found through the repeats. Exact equality (with −0 equal to +0) welds no
+/// two distinct points, so no tolerance has to be chosen for the mesh's scale.
+fn welded_vertices(vertices: &[Vec3]) -> Vec<u32> {
+    // The coordinates' bits above the vertex index, so that one sort of plain integers groups
+    // equal positions, lowest index first.
+    let mut keys: Vec<u128> = (0u32..)
+        .zip(vertices)
+        .map(|(index, &vertex)| {
+            let [x, y, z] = (vertex + Vec3::ZERO).to_array().map(f32::to_bits);
+            (u128::from(x) << 96)
+                | (u128::from(y) << 64)
+                | (u128::from(z) << 32)
+                | u128::from(index)
+        })
+        .collect();
+    keys.sort_unstable();
+    let mut welded = vec![0u32; vertices.len()];
+    let mut first = 0u128;
+    for (rank, &key) in keys.iter().enumerate() {
+        if rank == 0 || key >> 32 != first >> 32 {
+            first = key;
+        }
+        welded[key as u32 as usize] = first as u32;
+    }
+    welded
+}
+
 /// The edge flags of every triangle: edges are matched with their neighbours by sorting the
-/// edges' vertex pairs, so building costs `O(n log n)` for `n` triangles.
+/// edges' welded vertex pairs (see [`welded_vertices`]), so building costs `O(n log n)` for `n`
+/// triangles and vertices.
 fn mesh_edge_flags(vertices: &[Vec3], triangles: &[[u32; 3]]) -> Vec<u8> {
+    let welded = welded_vertices(vertices);
     let mut edges: Vec<(u64, u32)> = Vec::with_capacity(3 * triangles.len());
     for (index, triangle) in (0u32..).zip(triangles) {
         for edge in 0..3u32 {
             let (from, to) = (triangle[edge as usize], triangle[(edge as usize + 1) % 3]);
+            let (from, to) = (welded[from as usize], welded[to as usize]);
             let key = (u64::from(from.min(to)) << 32) | u64::from(from.max(to));
             edges.push((key, index * 3 + edge));
         }

@@ -17,21 +17,44 @@ use rebond::{Quat, Shape, Vec3};
 
 /// A flat square floor in the plane y = 0, `size` metres a side centred on the origin, of
 /// `cells × cells` squares each split in two triangles along a diagonal that alternates from
-/// cell to cell (so edges run along X, along Z and along both diagonals), turned by `yaw` about Y.
+/// cell to cell (so edges run along X, along Z and along both diagonals), the triangles sharing
+/// their vertices.
 pub fn floor_mesh(size: f32, cells: u32) -> Shape {
+    floor(size, cells, true)
+}
+
+/// [`floor_mesh`] with a vertex per square corner: neighbouring squares share no vertex index,
+/// only the positions, as in an OBJ file written a face at a time.
+pub fn floor_quads(size: f32, cells: u32) -> Shape {
+    floor(size, cells, false)
+}
+
+fn floor(size: f32, cells: u32, shared: bool) -> Shape {
+    let corner = |i: u32, j: u32| {
+        let x = (j as f32 / cells as f32 - 0.5) * size;
+        let z = (i as f32 / cells as f32 - 0.5) * size;
+        Vec3::new(x, 0.0, z)
+    };
     let mut vertices = Vec::new();
-    for i in 0..=cells {
-        for j in 0..=cells {
-            let x = (j as f32 / cells as f32 - 0.5) * size;
-            let z = (i as f32 / cells as f32 - 0.5) * size;
-            vertices.push(Vec3::new(x, 0.0, z));
+    if shared {
+        for i in 0..=cells {
+            for j in 0..=cells {
+                vertices.push(corner(i, j));
+            }
         }
     }
-    let at = |i: u32, j: u32| i * (cells + 1) + j;
     let mut indices = Vec::new();
     for i in 0..cells {
         for j in 0..cells {
-            let (a, b, c, d) = (at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
+            let corners = [(i, j), (i, j + 1), (i + 1, j + 1), (i + 1, j)];
+            let [a, b, c, d] = corners.map(|(i, j)| {
+                if shared {
+                    i * (cells + 1) + j
+                } else {
+                    vertices.push(corner(i, j));
+                    vertices.len() as u32 - 1
+                }
+            });
             // Counter-clockwise about +Y: a → d → c → b.
             if (i + j) % 2 == 0 {
                 indices.push([a, d, c]);
