@@ -36,6 +36,9 @@ struct HeightData {
     cols: usize,
     scale: Vec3,
     bounds: Aabb,
+    /// Each triangle's edge flags, found once when the heightfield is made: fetching a triangle
+    /// is the inner loop of its contacts, and the flags' angles cost more than the rest of it.
+    edge_flags: Vec<u8>,
 }
 
 impl HeightField {
@@ -80,14 +83,19 @@ impl HeightField {
         if !(bounds.min.is_finite() && bounds.max.is_finite()) {
             return Err(Error::new("scale", ErrorKind::UnrepresentableSize));
         }
+        let mut data = HeightData {
+            heights: flat,
+            rows: heights.len(),
+            cols,
+            scale,
+            bounds,
+            edge_flags: Vec::new(),
+        };
+        data.edge_flags = (0..data.triangle_count())
+            .map(|index| data.computed_edge_flags(index))
+            .collect();
         Ok(Self {
-            data: Arc::new(HeightData {
-                heights: flat,
-                rows: heights.len(),
-                cols,
-                scale,
-                bounds,
-            }),
+            data: Arc::new(data),
         })
     }
 
@@ -108,55 +116,21 @@ impl HeightField {
 
     /// Sample `(i, j)` in the body frame, or `None` outside the grid.
     pub fn sample(&self, i: usize, j: usize) -> Option<Vec3> {
-        let data = &self.data;
-        if i >= data.rows || j >= data.cols {
-            return None;
-        }
-        let height = data.heights[i * data.cols + j];
-        Some(Vec3::new(
-            (j as f32 / (data.cols - 1) as f32 - 0.5) * data.scale.x,
-            height * data.scale.y,
-            (i as f32 / (data.rows - 1) as f32 - 0.5) * data.scale.z,
-        ))
+        self.data.sample(i, j)
     }
 
     /// Number of triangles, two a cell.
     pub fn triangle_count(&self) -> u32 {
-        ((self.data.rows - 1) * (self.data.cols - 1) * 2) as u32
+        self.data.triangle_count()
     }
 
     /// Triangle `index` in the body frame (front normal up), with edge flags from its
     /// neighbours, or `None` past the end.
     pub fn triangle(&self, index: u32) -> Option<Triangle> {
-        let cell = index as usize / 2;
-        let cells_per_row = self.data.cols - 1;
-        let (i, j) = (cell / cells_per_row, cell % cells_per_row);
-        let s = |di: isize, dj: isize| {
-            let (i, j) = (i as isize + di, j as isize + dj);
-            (i >= 0 && j >= 0)
-                .then(|| self.sample(i as usize, j as usize))
-                .flatten()
-        };
-        if i + 1 >= self.data.rows {
-            return None;
-        }
-        // Counter-clockwise about +Y: (i, j) → (i + 1, j) → (i + 1, j + 1), then
-        // (i, j) → (i + 1, j + 1) → (i, j + 1); each edge's neighbour corner across it.
-        let (corners, across) = if index % 2 == 0 {
-            ([s(0, 0)?, s(1, 0)?, s(1, 1)?], [s(0, -1), s(2, 1), s(0, 1)])
-        } else {
-            ([s(0, 0)?, s(1, 1)?, s(0, 1)?], [s(1, 0), s(1, 2), s(-1, 0)])
-        };
-        let normal = (corners[1] - corners[0])
-            .cross(corners[2] - corners[0])
-            .normalize_or_zero();
-        let mut flags = 0;
-        for (edge, neighbour) in across.into_iter().enumerate() {
-            flags |= edge_flags(&corners, normal, edge, neighbour);
-        }
+        let corners = self.data.corners(index)?;
         Some(Triangle {
             vertices: corners,
-            edge_flags: flags,
+            edge_flags: self.data.edge_flags.get(index as usize).copied()?,
         })
     }
 
@@ -242,14 +216,79 @@ impl HeightField {
         }
     }
 
-    /// Bytes of memory the heightfield holds.
+    /// Bytes of memory the heightfield holds: heights and edge flags.
     pub fn heap_bytes(&self) -> usize {
         self.data.heights.capacity() * std::mem::size_of::<f32>()
+            + self.data.edge_flags.capacity()
             + std::mem::size_of::<HeightData>()
     }
 
     /// Whether `self` and `other` share one grid (a clone of each other).
     pub fn shares_geometry(&self, other: &HeightField) -> bool {
         Arc::ptr_eq(&self.data, &other.data)
+    }
+}
+
+impl HeightData {
+    fn sample(&self, i: usize, j: usize) -> Option<Vec3> {
+        if i >= self.rows || j >= self.cols {
+            return None;
+        }
+        let height = self.heights[i * self.cols + j];
+        Some(Vec3::new(
+            (j as f32 / (self.cols - 1) as f32 - 0.5) * self.scale.x,
+            height * self.scale.y,
+            (i as f32 / (self.rows - 1) as f32 - 0.5) * self.scale.z,
+        ))
+    }
+
+    fn triangle_count(&self) -> u32 {
+        ((self.rows - 1) * (self.cols - 1) * 2) as u32
+    }
+
+    /// Sample `(i + di, j + dj)` for the cell `(i, j)` holding triangle `index`, or `None` outside
+    /// the grid.
+    fn offset_sample(&self, index: u32, di: isize, dj: isize) -> Option<Vec3> {
+        let cell = index as usize / 2;
+        let cells_per_row = self.cols - 1;
+        let (i, j) = (
+            (cell / cells_per_row) as isize + di,
+            (cell % cells_per_row) as isize + dj,
+        );
+        (i >= 0 && j >= 0)
+            .then(|| self.sample(i as usize, j as usize))
+            .flatten()
+    }
+
+    /// The corners of triangle `index`, counter-clockwise about +Y: (i, j) → (i + 1, j) →
+    /// (i + 1, j + 1) for even indices, (i, j) → (i + 1, j + 1) → (i, j + 1) for odd ones; `None`
+    /// past the end.
+    fn corners(&self, index: u32) -> Option<[Vec3; 3]> {
+        let s = |di, dj| self.offset_sample(index, di, dj);
+        if index % 2 == 0 {
+            Some([s(0, 0)?, s(1, 0)?, s(1, 1)?])
+        } else {
+            Some([s(0, 0)?, s(1, 1)?, s(0, 1)?])
+        }
+    }
+
+    /// The edge flags of triangle `index` from the corners of its neighbours across its edges
+    /// (0 past the end).
+    fn computed_edge_flags(&self, index: u32) -> u8 {
+        let Some(corners) = self.corners(index) else {
+            return 0;
+        };
+        let s = |di, dj| self.offset_sample(index, di, dj);
+        let across = if index % 2 == 0 {
+            [s(0, -1), s(2, 1), s(0, 1)]
+        } else {
+            [s(1, 0), s(1, 2), s(-1, 0)]
+        };
+        let normal = (corners[1] - corners[0])
+            .cross(corners[2] - corners[0])
+            .normalize_or_zero();
+        (0..3).zip(across).fold(0, |flags, (edge, neighbour)| {
+            flags | edge_flags(&corners, normal, edge, neighbour)
+        })
     }
 }
