@@ -23,7 +23,8 @@ use crate::shape::Shape;
 const CAP_VERTICES: usize = 8;
 
 /// Every other of the [`CAP_VERTICES`] rim points, a square fixed in the cylinder's frame, is what
-/// a cap offers as the incident feature. A cap resting whole on a face then gives the same four
+/// a cap offers as the incident feature (against a shape's face; a triangle clips the whole rim,
+/// see [`manifold_from_features`]). A cap resting whole on a face then gives the same four
 /// points, and ids, however it wobbles; with all eight, more than four would touch, and the
 /// reduction to four, which starts from the deepest point, would pick a different subset whenever
 /// the cylinder tilts a little.
@@ -119,7 +120,9 @@ impl Feature {
         &self.points[..self.len]
     }
 
-    /// The points to clip when the feature is the incident one.
+    /// The points to clip when the feature is the incident one against a shape's face: a cap's
+    /// square, or the feature. Against a triangle the feature is clipped whole (see
+    /// [`manifold_from_features`]).
     fn incident_points(&self) -> &[Vec3] {
         self.cap_square
             .as_ref()
@@ -284,7 +287,12 @@ pub fn collide_features(
 /// the normal, is then always the reference (the larger face of B would make the triangle's
 /// corners and edge crossings the points), and the points made by its sides in `sides` (bit `j`
 /// for the side from its vertex `j` to `j + 1`: the edges it shares with neighbours on one plane)
-/// are dropped, since the surface goes on beyond them.
+/// are dropped, since the surface goes on beyond them. Against a triangle a cylinder's cap is
+/// clipped as its whole rim polygon, not its square: the cap often spans several triangles bent
+/// against each other (a dip), each triangle keeps only what lies over it, and the rim between
+/// the square's corners is then what holds the cap up. The mesh's merged manifold is reduced to
+/// four points by their place on the surface (`mesh_contact`), not from the deepest one, so its
+/// ids stay steady without the square.
 pub(crate) fn manifold_from_features(
     deepest: &ContactInfo,
     feature_a: &Feature,
@@ -311,9 +319,24 @@ pub(crate) fn manifold_from_features(
     };
     let clipped = if use_a && !prefer_b {
         let dropped_sides = triangle_sides.unwrap_or(0);
-        clip_against_face(feature_a, feature_b, radii[1], 0, &limits, dropped_sides)
+        let incident = if triangle_sides.is_some() {
+            feature_b.points()
+        } else {
+            feature_b.incident_points()
+        };
+        clip_against_face(
+            feature_a,
+            feature_b,
+            incident,
+            radii[1],
+            0,
+            &limits,
+            dropped_sides,
+        )
     } else if use_b {
-        clip_against_face(feature_b, feature_a, radii[0], 1, &limits, 0).map(Manifold::flipped)
+        let incident = feature_a.incident_points();
+        clip_against_face(feature_b, feature_a, incident, radii[0], 1, &limits, 0)
+            .map(Manifold::flipped)
     } else {
         None
     };
@@ -363,9 +386,9 @@ struct SeparationLimits {
     margin: f32,
 }
 
-/// Clips the `incident` feature (on a shape of rounding `incident_radius`) against the
-/// `reference` face. The manifold normal is the reference face's normal, pointing from the
-/// reference shape toward the incident one; each point's separation is its incident surface
+/// Clips the `incident` feature's polygon `incident_points` (on a shape of rounding
+/// `incident_radius`) against the `reference` face. The manifold normal is the reference face's
+/// normal, pointing from the reference shape toward the incident one; each point's separation is its incident surface
 /// point's height above the reference plane, but never deeper than `limits.deepest`: the reference
 /// normal may be up to 11° off the contact normal, along which the shapes overlap least, and
 /// would overstate the depth of a point near the reference face's rim. `side` (0: A holds the
@@ -374,6 +397,7 @@ struct SeparationLimits {
 fn clip_against_face(
     reference: &Feature,
     incident: &Feature,
+    incident_points: &[Vec3],
     incident_radius: f32,
     side: u32,
     limits: &SeparationLimits,
@@ -407,7 +431,7 @@ fn clip_against_face(
             count += 1;
         }
     };
-    match *incident.incident_points() {
+    match *incident_points {
         [] | [_] => return None,
         [start, end] => {
             for vertex in clip_segment(start, end, reference.points(), normal)? {
@@ -415,7 +439,7 @@ fn clip_against_face(
             }
         }
         _ => {
-            let polygon = clip_polygon(incident.incident_points(), reference.points(), normal);
+            let polygon = clip_polygon(incident_points, reference.points(), normal);
             for vertex in polygon.vertices() {
                 offer(vertex);
             }

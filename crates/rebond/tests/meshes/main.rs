@@ -1,10 +1,12 @@
 //! Triangle meshes and heightfields against closed forms: balls roll and boxes slide across the
-//! edges between triangles as on one plane, a box slides down a tilted heightfield at
+//! edges between triangles as on one plane (shared vertices or not), a cylinder's rim stays out of
+//! dips and bumps, a box slides down a tilted heightfield at
 //! `g (sin θ − μ cos θ)`, a fast ball stops at a wall of two triangles, shapes poured on a terrain
 //! rest on it, and geometry is shared, not copied.
 
 #[path = "../common/mod.rs"]
 mod common;
+mod cylinders;
 mod floors;
 mod geometry;
 mod queries;
