@@ -319,3 +319,34 @@ fn a_capsule_past_every_limit_is_refused() {
         "mass"
     );
 }
+
+#[test]
+fn joint_values_past_the_limits_are_refused() {
+    // Found by fuzzing library calls: a prismatic joint from a dynamic body to a kinematic one
+    // with a motor of target 5e33 m/s and force 5e33 N overflowed an impulse, and zero times
+    // infinity gave the kinematic body NaN.
+    let mut world = World::new(WorldSettings::default()).unwrap();
+    let a = world.add_body(BodyDesc::dynamic(unit_box())).unwrap();
+    let b = world
+        .add_body(BodyDesc::kinematic(unit_box()).position(Vec3::X * 2.0))
+        .unwrap();
+    let slide = || rebond::JointDesc::prismatic(a, b, Vec3::X, Vec3::X);
+    let huge = 5e33;
+    let cases = [
+        (
+            slide().motor(rebond::Motor::velocity(huge, 1.0)),
+            "motor.target_velocity",
+        ),
+        (
+            slide().motor(rebond::Motor::velocity(1.0, huge)),
+            "motor.max_force",
+        ),
+        (slide().limits(-huge, huge), "limits[0]"),
+        (slide().friction(huge), "friction"),
+    ];
+    for (desc, field) in cases {
+        assert_eq!(field_of(world.add_joint(desc)).0, field);
+    }
+    let unlimited = slide().motor(rebond::Motor::velocity(1.0, f32::INFINITY));
+    assert!(world.add_joint(unlimited).is_ok());
+}

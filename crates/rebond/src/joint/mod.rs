@@ -29,6 +29,7 @@ use crate::error::{
     check_finite, check_finite_vector, check_non_negative, check_position, Error, ErrorKind,
 };
 use crate::error::{check_non_negative_or_infinite, check_range, Result};
+use crate::limits::{MAX_COORDINATE, MAX_FORCE, MAX_SPEED};
 use crate::math::{Quat, Vec3};
 use std::f32::consts::PI;
 
@@ -127,8 +128,8 @@ impl Motor {
                 target_velocity,
                 max_force,
             } => {
-                check_finite("target_velocity", target_velocity)?;
-                check_non_negative_or_infinite("max_force", max_force)?;
+                check_range("target_velocity", target_velocity, -MAX_SPEED, MAX_SPEED)?;
+                check_force_limit("max_force", max_force)?;
             }
             Self::Position {
                 target_position,
@@ -136,10 +137,15 @@ impl Motor {
                 damping,
                 max_force,
             } => {
-                check_finite("target_position", target_position)?;
-                check_non_negative("stiffness", stiffness)?;
-                check_non_negative("damping", damping)?;
-                check_non_negative_or_infinite("max_force", max_force)?;
+                check_range(
+                    "target_position",
+                    target_position,
+                    -MAX_COORDINATE,
+                    MAX_COORDINATE,
+                )?;
+                check_up_to("stiffness", stiffness, MAX_FORCE)?;
+                check_up_to("damping", damping, MAX_FORCE)?;
+                check_force_limit("max_force", max_force)?;
             }
         }
         Ok(())
@@ -396,9 +402,9 @@ impl JointDesc {
                 Revolute => check_interval("limits", limits, Some((-PI, PI)))?,
                 Distance => {
                     check_non_negative("limits[0]", limits[0])?;
-                    check_interval("limits", limits, None)?;
+                    check_interval("limits", limits, Some((0.0, MAX_COORDINATE)))?;
                 }
-                _ => check_interval("limits", limits, None)?,
+                _ => check_interval("limits", limits, Some((-MAX_COORDINATE, MAX_COORDINATE)))?,
             }
         }
         if let Some(angle) = self.swing_limit {
@@ -411,19 +417,35 @@ impl JointDesc {
             motor.validate().map_err(|error| error.within("motor"))?;
         }
         if let Some(length) = self.length {
-            check_non_negative("length", length)?;
+            check_up_to("length", length, MAX_COORDINATE)?;
         }
         if let Some(spring) = &self.spring {
-            check_non_negative("spring.stiffness", spring.stiffness)?;
-            check_non_negative("spring.damping", spring.damping)?;
+            check_up_to("spring.stiffness", spring.stiffness, MAX_FORCE)?;
+            check_up_to("spring.damping", spring.damping, MAX_FORCE)?;
         }
-        check_non_negative("friction", self.friction)?;
+        check_up_to("friction", self.friction, MAX_FORCE)?;
         check_non_negative_or_infinite("break_force", self.break_force)?;
         check_non_negative_or_infinite("break_torque", self.break_torque)?;
         if self.body_a == Some(self.body_b) {
             return Err(Error::new("body_b", ErrorKind::JointToItself));
         }
         Ok(axis)
+    }
+}
+
+/// Checks that `value` is not negative, then that it is at most `max`.
+fn check_up_to(field: &str, value: f32, max: f32) -> Result<f32> {
+    check_non_negative(field, value)?;
+    check_range(field, value, 0.0, max)
+}
+
+/// Checks a force limit: infinite (no limit), or from 0 to [`MAX_FORCE`].
+fn check_force_limit(field: &str, value: f32) -> Result<f32> {
+    check_non_negative_or_infinite(field, value)?;
+    if value == f32::INFINITY {
+        Ok(value)
+    } else {
+        check_range(field, value, 0.0, MAX_FORCE)
     }
 }
 
