@@ -873,35 +873,3 @@ fn an_invalid_scene_is_reported_before_an_unwritable_record() {
     let line = assert_one_error_line(&outcome, 2, &scene_path);
     assert!(line.contains("bodies: invalid type"), "{line}");
 }
-
-#[test]
-fn values_past_the_engines_limits_are_refused() {
-    // The inputs issue 17 found accepted (exit 0) and simulated wrongly; the limits are in
-    // docs/limits.md.
-    assert_refused(
-        "huge_box",
-        r#"{"bodies": [{"name": "floor", "type": "static",
-              "shape": {"type": "box", "half_extents": [1e20, 0.5, 1e20]}}]}"#,
-        "bodies[0].shape.half_extents[0]",
-        "must lie between 0.001 and 100000",
-    );
-    assert_refused(
-        "huge_velocity",
-        &scene_with(&format!(r#"{{{BALL}, "linear_velocity": [1e30, 0, 0]}}"#)),
-        "bodies[1].linear_velocity",
-        "must not exceed 1e4 (the engine's limit)",
-    );
-    let ground_only = format!(r#""bodies": [{GROUND}]"#);
-    assert_refused(
-        "huge_gravity",
-        &format!(r#"{{"gravity": [0, -1e30, 0], {ground_only}}}"#),
-        "gravity",
-        "must not exceed 1e3 (the engine's limit)",
-    );
-    assert_refused(
-        "huge_timestep",
-        &format!(r#"{{"timestep": 1e30, {ground_only}}}"#),
-        "timestep",
-        "must lie between 0.0001 and 0.1 (the engine's limits)",
-    );
-}
