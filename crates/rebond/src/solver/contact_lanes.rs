@@ -164,6 +164,17 @@ struct PointLanes {
 }
 
 impl PointLanes {
+    /// Adds `impulse` to the accumulated normal impulse, kept `≥ 0`, and returns what was
+    /// applied: the change of the accumulated impulse.
+    #[inline(always)]
+    fn accumulate(&mut self, impulse: F32x4) -> F32x4 {
+        let total = (self.normal_impulse + impulse).max(F32x4::ZERO);
+        let applied = total - self.normal_impulse;
+        self.normal_impulse = total;
+        self.max_normal_impulse = self.max_normal_impulse.max(applied);
+        applied
+    }
+
     /// The separation at the pass's poses, `s = s₀ + n·(Δc_B − Δc_A) + Δθ_B·(r_B × n) −
     /// Δθ_A·(r_A × n)`, m, given `n·(Δc_B − Δc_A)`.
     fn separation(&self, bodies: &PassLanes, normal_motion: F32x4) -> F32x4 {
@@ -753,11 +764,8 @@ impl ContactLanes {
                 }
                 let impulse =
                     point.impulse::<USE_BIAS>(normal_velocity, &bodies, normal_motion, inverse_h);
-                let total = (point.normal_impulse + impulse).max(F32x4::ZERO);
-                applied[j] = total - point.normal_impulse;
-                point.normal_impulse = total;
-                point.max_normal_impulse = point.max_normal_impulse.max(applied[j]);
-                total_normal_impulse += total;
+                applied[j] = point.accumulate(impulse);
+                total_normal_impulse += point.normal_impulse;
             }
             (applied, total_normal_impulse)
         };
@@ -830,11 +838,8 @@ impl ContactLanes {
             let impulse =
                 point.impulse::<USE_BIAS>(normal_velocity, bodies, normal_motion, inverse_h);
             let impulse = pushes.select(block[j], impulse);
-            let total = (point.normal_impulse + impulse).max(F32x4::ZERO);
-            applied[j] = total - point.normal_impulse;
-            point.normal_impulse = total;
-            point.max_normal_impulse = point.max_normal_impulse.max(applied[j]);
-            total_normal_impulse += total;
+            applied[j] = point.accumulate(impulse);
+            total_normal_impulse += point.normal_impulse;
         }
         (applied, total_normal_impulse)
     }
