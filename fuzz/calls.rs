@@ -1,7 +1,8 @@
 //! Sequences of library calls with arbitrary values, shared by the `world_calls` fuzz target and
 //! the property test `crates/rebond/tests/call_sequences.rs`: adding and removing bodies and
 //! joints, setters, forces, steps, ray casts and settings. [`run`] checks what the engine
-//! promises for any sequence: no call panics, and NaN or infinity never enters a body.
+//! promises for any sequence: no call panics, NaN or infinity never enters a body, and the
+//! world's saved state restores and steps bit for bit as the world does.
 
 use arbitrary::{Arbitrary, Unstructured};
 use rebond::{
@@ -121,8 +122,8 @@ fn all_finite(world: &World) -> bool {
     })
 }
 
-/// Runs the calls on a new world; panics if a call panics or a step leaves a body that is
-/// not finite.
+/// Runs the calls on a new world; panics if a call panics, a step leaves a body that is not
+/// finite, or the world's saved state does not restore to step exactly as the world.
 pub fn run(ops: &[Op]) {
     let Ok(mut world) = World::new(WorldSettings::default()) else {
         return;
@@ -246,6 +247,27 @@ pub fn run(ops: &[Op]) {
                 let _ = world.set_settings(settings);
             }
         }
+    }
+    // Whatever the calls made of the world, its state restores and steps as the world does.
+    let mut restored = World::load_state(&world.save_state())
+        .unwrap_or_else(|error| panic!("a saved world is refused: {error}"));
+    if world.step(1.0 / 60.0).is_ok() {
+        assert!(
+            restored.step(1.0 / 60.0).is_ok(),
+            "a restored world does not step"
+        );
+        let poses = |world: &World| -> Vec<[u32; 7]> {
+            let bits = |body: &rebond::RigidBody| {
+                let [x, y, z] = body.position().to_array();
+                let [i, j, k, w] = body.rotation().to_array();
+                [x, y, z, i, j, k, w].map(f32::to_bits)
+            };
+            world.bodies().map(|(_, body)| bits(body)).collect()
+        };
+        assert!(
+            poses(&world) == poses(&restored),
+            "a restored world steps otherwise"
+        );
     }
 }
 

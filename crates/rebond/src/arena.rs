@@ -135,6 +135,31 @@ impl<T> Arena<T> {
         })
     }
 
+    /// Checks a decoded arena's bookkeeping: the free list names exactly the empty slots, once
+    /// each, and the count is the live items'. Describes the first broken invariant.
+    pub(crate) fn check_decoded(&self) -> Result<(), String> {
+        let live = self.slots.iter().filter(|slot| slot.item.is_some()).count();
+        if live != self.len || u32::try_from(self.slots.len()).is_err() {
+            return Err(format!("{live} items in an arena that counts {}", self.len));
+        }
+        let mut listed = vec![false; self.slots.len()];
+        for &index in &self.free_slots {
+            let empty = self
+                .slots
+                .get(index as usize)
+                .is_some_and(|slot| slot.item.is_none());
+            if !empty || std::mem::replace(&mut listed[index as usize], true) {
+                return Err(format!(
+                    "free slot {index} is taken, missing or listed twice"
+                ));
+            }
+        }
+        if self.free_slots.len() != self.slots.len() - live {
+            return Err("an empty slot is not on the free list".to_owned());
+        }
+        Ok(())
+    }
+
     /// Live items with their handles, mutably, in slot order.
     pub fn iter_mut(&mut self) -> impl Iterator<Item = (ArenaIndex, &mut T)> {
         self.slots

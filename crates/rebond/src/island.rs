@@ -18,7 +18,7 @@
 //! without one touches nothing asleep.
 
 use crate::arena::Arena;
-use crate::body::RigidBody;
+use crate::body::{BodyType, RigidBody};
 use crate::collision::contact_cache::Contact;
 use crate::math::Vec3;
 use crate::sorted::merge_into;
@@ -39,17 +39,23 @@ pub(crate) struct Islands {
     /// Slots of bodies that may have been woken since the last [`wake_groups`](Self::wake_groups).
     wake_candidates: Vec<usize>,
     /// Slots woken by the last [`wake_groups`](Self::wake_groups), ascending.
+    #[cfg_attr(feature = "serde", serde(skip))]
     woken: Vec<usize>,
     /// Slots that fell asleep in the last [`update_sleep`](Self::update_sleep), ascending.
+    #[cfg_attr(feature = "serde", serde(skip))]
     fell_asleep: Vec<usize>,
     /// Union–find parent of each arena slot, reset each step for the awake slots only: a static or
     /// sleeping body never joins an island.
+    #[cfg_attr(feature = "serde", serde(skip))]
     parent: Vec<usize>,
     /// Shortest sleep time in the island whose root is the slot.
+    #[cfg_attr(feature = "serde", serde(skip))]
     island_sleep_time: Vec<f32>,
     /// Slots of bodies touching a moving kinematic body this step.
+    #[cfg_attr(feature = "serde", serde(skip))]
     kept_awake: Vec<usize>,
     /// Each awake dynamic body's slot with its island's root slot.
+    #[cfg_attr(feature = "serde", serde(skip))]
     members: Vec<(usize, usize)>,
     /// Number of islands of awake dynamic bodies after the last step.
     count: usize,
@@ -122,6 +128,60 @@ impl Islands {
         self.woken.sort_unstable();
         merge_into(&mut self.awake, &self.woken, |&slot| slot);
         true
+    }
+
+    /// Checks decoded islands against `bodies`: the awake list ascending, of live moving bodies
+    /// that are not asleep; every sleeping group a list without loops through slots of the arena,
+    /// starting at its members' root. Describes the first broken invariant.
+    pub fn check_decoded(&self, bodies: &Arena<RigidBody>) -> Result<(), String> {
+        let moving_and_awake = |slot: usize| {
+            bodies
+                .at_slot(slot)
+                .is_some_and(|(_, body)| body.body_type != BodyType::Static && !body.sleeping)
+        };
+        let ascending = self.awake.windows(2).all(|two| two[0] < two[1]);
+        if !(ascending && self.awake.iter().all(|&slot| moving_and_awake(slot))) {
+            return Err("the awake list is out of order or names a body not awake".to_owned());
+        }
+        let slots = bodies.slot_count();
+        if self.next_in_group.len() > slots || self.wake_candidates.iter().any(|&s| s >= slots) {
+            return Err("sleeping groups name slots past the arena".to_owned());
+        }
+        // Each slot follows at most one other and each root heads its group: walking from the
+        // roots then reaches every listed slot once, unless a list loops.
+        let mut followed = vec![false; self.next_in_group.len()];
+        for &next in &self.next_in_group {
+            if next != END_OF_GROUP && followed.get(next).is_none_or(|&seen| seen) {
+                return Err(format!(
+                    "slot {next} follows two slots or none of the arena"
+                ));
+            }
+            if let Some(seen) = followed.get_mut(next) {
+                *seen = true;
+            }
+        }
+        let mut reached = 0;
+        for (slot, body) in (0..slots).filter_map(|slot| Some((slot, bodies.at_slot(slot)?.1))) {
+            let Some(root) = body.sleep_group else {
+                continue;
+            };
+            if root >= self.next_in_group.len() || followed[root] {
+                return Err(format!(
+                    "body {slot}'s sleeping group {root} is not a group"
+                ));
+            }
+            if root == slot {
+                let mut member = self.next_in_group[root];
+                while member != END_OF_GROUP {
+                    reached += 1;
+                    member = self.next_in_group[member];
+                }
+            }
+        }
+        if reached != followed.iter().filter(|&&seen| seen).count() {
+            return Err("a sleeping group's list loops".to_owned());
+        }
+        Ok(())
     }
 
     fn find(&mut self, mut slot: usize) -> usize {

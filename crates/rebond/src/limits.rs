@@ -35,6 +35,11 @@ pub const MAX_MASS: f32 = 1.0e9;
 /// Largest force, N, torque, N·m, or impulse, N·s, applied to a body.
 pub const MAX_FORCE: f32 = 1.0e12;
 
+/// Largest impulse the solver can have accumulated on one constraint in a step, N·s: twice the
+/// momentum of the heaviest body at the top speed, the most two bodies within the limits
+/// exchange. A saved world holding more was not written by a step ([`crate::state`]).
+pub(crate) const MAX_SOLVER_IMPULSE: f32 = 2.0 * MAX_MASS * MAX_SPEED;
+
 /// Largest gravity, m/s² (about 100 g).
 pub const MAX_GRAVITY: f32 = 1.0e3;
 

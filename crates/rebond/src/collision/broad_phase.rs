@@ -394,6 +394,51 @@ impl BroadPhase {
         self.side(handle.is_static()).tree.user_data(handle.proxy())
     }
 
+    /// Checks a decoded broad phase against the bodies' keys (`slot_count` arena slots): both
+    /// trees whole, every proxy to be queried live, every pair sorted and naming keys below
+    /// `slot_count`. Describes the first broken invariant.
+    pub(crate) fn check_decoded(&self, slot_count: usize) -> Result<(), String> {
+        for side in [&self.static_side, &self.moving_side] {
+            side.tree.validate()?;
+        }
+        for &handle in &self.changed {
+            let side = self.side(handle.is_static());
+            if side.state(handle.proxy()) == ProxyState::Moved
+                && !side.tree.is_live_proxy(handle.proxy())
+            {
+                return Err(format!("moved proxy {} is not live", handle.0));
+            }
+        }
+        for pairs in [&self.pairs, &self.parked] {
+            let sorted = pairs
+                .windows(2)
+                .all(|two| two[0].sort_key < two[1].sort_key);
+            let keys_known = pairs.iter().all(|pair| {
+                let (a, b) = pair.keys();
+                (a as usize) < slot_count && (b as usize) < slot_count
+            });
+            if !(sorted && keys_known) {
+                return Err("a pair list is out of order or names an unknown body".to_owned());
+            }
+        }
+        if !self
+            .pair_keys
+            .iter()
+            .copied()
+            .eq(self.pairs.iter().map(Pair::keys))
+        {
+            return Err("the pairs' keys do not match the pairs".to_owned());
+        }
+        Ok(())
+    }
+
+    /// Whether `handle` names a live proxy.
+    pub(crate) fn is_live(&self, handle: ProxyHandle) -> bool {
+        self.side(handle.is_static())
+            .tree
+            .is_live_proxy(handle.proxy())
+    }
+
     /// The tree of static bodies.
     pub fn static_tree(&self) -> &DynamicTree {
         &self.static_side.tree

@@ -7,6 +7,7 @@ use std::ops::Range;
 use super::manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
 use super::narrow_phase::{PartCache, PartContacts};
 use crate::body::BodyHandle;
+use crate::limits::MAX_SOLVER_IMPULSE;
 use crate::material::Material;
 use crate::math::{Pose, Vec3, Vec3A};
 use crate::sorted::merge_into;
@@ -401,6 +402,38 @@ impl ContactCache {
                 }
             }
         }
+    }
+
+    /// Checks decoded contacts: this step's and the parked ones sorted by key, of live bodies
+    /// (`is_live`), with at most [`MAX_MANIFOLD_POINTS`] points, finite values and impulses a
+    /// step can have accumulated. Describes the first broken invariant.
+    pub(crate) fn check_decoded(&self, is_live: impl Fn(BodyHandle) -> bool) -> Result<(), String> {
+        let parked = self.parked.iter().map(|parked| &parked.contact);
+        for contacts in [self.current.iter().collect::<Vec<_>>(), parked.collect()] {
+            if !contacts.windows(2).all(|two| two[0].key <= two[1].key) {
+                return Err("contacts are out of order".to_owned());
+            }
+            for contact in contacts {
+                let manifold = &contact.manifold;
+                let finite = manifold.normal.is_finite()
+                    && contact
+                        .normal_impulses
+                        .iter()
+                        .all(|impulse| (0.0..=MAX_SOLVER_IMPULSE).contains(impulse))
+                    && contact.friction_impulse.length() <= MAX_SOLVER_IMPULSE
+                    && contact.twist_impulse.abs() <= MAX_SOLVER_IMPULSE
+                    && contact.patch_radius_ratio.is_finite()
+                    && manifold.len() <= MAX_MANIFOLD_POINTS
+                    && manifold
+                        .points()
+                        .iter()
+                        .all(|point| point.position.is_finite() && point.separation.is_finite());
+                if !(finite && is_live(contact.key.body_a) && is_live(contact.key.body_b)) {
+                    return Err("a contact names a missing body or holds a bad value".to_owned());
+                }
+            }
+        }
+        Ok(())
     }
 
     /// This step's contacts, sorted by key.

@@ -318,6 +318,9 @@ impl DynamicTree {
                     if node.children[1] != NULL_NODE || node.height != 0 {
                         return Err(format!("leaf {index} has a child or a height"));
                     }
+                    if !(node.bounds.min.is_finite() && node.bounds.max.is_finite()) {
+                        return Err(format!("leaf {index}'s box is not finite"));
+                    }
                     leaves += 1;
                     continue;
                 }
@@ -356,6 +359,13 @@ impl DynamicTree {
         }
     }
 
+    /// Whether `id` names a live proxy (a leaf in use) of this tree.
+    pub(crate) fn is_live_proxy(&self, id: ProxyId) -> bool {
+        self.nodes
+            .get(id.index())
+            .is_some_and(|node| node.is_leaf() && !node.is_free())
+    }
+
     fn node_checked(&self, index: u32) -> Result<&Node, String> {
         self.nodes
             .get(index as usize)
@@ -363,9 +373,8 @@ impl DynamicTree {
     }
 
     fn check_proxy(&self, id: ProxyId) {
-        let node = &self.nodes[id.index()];
         assert!(
-            node.is_leaf() && !node.is_free(),
+            self.is_live_proxy(id),
             "proxy {} is not live in this tree",
             id.0
         );

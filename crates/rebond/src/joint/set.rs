@@ -5,6 +5,7 @@ use super::{Joint, JointBreakEvent, JointDesc, JointHandle, JointType};
 use crate::arena::Arena;
 use crate::body::{BodyHandle, RigidBody};
 use crate::filter::ordered;
+use crate::limits::MAX_SOLVER_IMPULSE;
 use crate::math::{Quat, Vec3};
 
 /// What a joint fixes to each body when it is added: anchors and axes in each body's frame, and
@@ -54,9 +55,14 @@ pub(crate) struct JointImpulses {
 impl JointImpulses {
     /// Whether every impulse is finite, so that it can warm-start the next step.
     pub fn is_finite(&self) -> bool {
-        self.linear.is_finite()
-            && self.angular.is_finite()
-            && self.friction_couple.is_finite()
+        self.is_within(f32::MAX)
+    }
+
+    /// Whether every impulse is at most `limit` long (N·s or N·m·s; NaN is not).
+    pub fn is_within(&self, limit: f32) -> bool {
+        [self.linear, self.angular, self.friction_couple]
+            .iter()
+            .all(|impulse| impulse.abs().max_element() <= limit)
             && [
                 self.axial,
                 self.lower,
@@ -68,7 +74,7 @@ impl JointImpulses {
                 self.friction,
             ]
             .iter()
-            .all(|impulse| impulse.is_finite())
+            .all(|impulse| impulse.abs() <= limit)
     }
 }
 
@@ -250,6 +256,56 @@ impl JointSet {
             .iter()
             .filter(|(_, (joint, _))| !joint.broken)
             .map(|(index, (joint, data))| (index.slot(), joint, data))
+    }
+
+    /// Checks decoded joints: the arena whole, each joint's description valid, its bodies live
+    /// (`is_live`), its frames and solver data finite, and the excluded pairs those of the
+    /// joints. Describes the first broken invariant.
+    pub fn check_decoded(&self, is_live: impl Fn(BodyHandle) -> bool) -> Result<(), String> {
+        self.joints.check_decoded()?;
+        let mut excluded = Vec::new();
+        for (index, (joint, data)) in self.joints.iter() {
+            let desc = &joint.desc;
+            desc.validate()
+                .map_err(|error| format!("joint {}: {error}", index.slot()))?;
+            let frames = &joint.frames;
+            let finite = data.impulses.is_within(MAX_SOLVER_IMPULSE)
+                && [
+                    data.step_linear,
+                    data.step_angular,
+                    joint.force,
+                    joint.torque,
+                ]
+                .iter()
+                .chain(&[frames.local_anchor_a, frames.local_anchor_b])
+                .chain(&[frames.local_axis_a, frames.local_axis_b])
+                .all(|vector| vector.is_finite())
+                && frames.reference_rotation.is_finite()
+                && frames.length.is_finite()
+                && data
+                    .poses
+                    .iter()
+                    .all(|pose| pose.center_of_mass.is_finite() && pose.rotation.is_finite());
+            if !(finite && desc.body_a.is_none_or(&is_live) && is_live(desc.body_b)) {
+                return Err(format!(
+                    "joint {} names a missing body or holds a bad value",
+                    index.slot()
+                ));
+            }
+            if let (false, false, Some(body_a)) =
+                (joint.broken, desc.collide_connected, desc.body_a)
+            {
+                excluded.push(ordered(body_a, desc.body_b));
+            }
+        }
+        excluded.sort_unstable();
+        let counted = excluded
+            .chunk_by(|a, b| a == b)
+            .map(|run| (run[0], run.len() as u32));
+        if !counted.eq(self.excluded.iter().copied()) {
+            return Err("the pairs joints keep apart are not those of the joints".to_owned());
+        }
+        Ok(())
     }
 
     /// The solver data of the joint in slot `slot`.

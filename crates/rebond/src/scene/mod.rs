@@ -439,6 +439,9 @@ impl Scene {
     #[cfg(feature = "serde")]
     pub fn load_state(bytes: &[u8]) -> Result<(Scene, u64), crate::state::StateError> {
         let (step, mut scene): (u64, Scene) = crate::state::decode(SCENE_MAGIC, bytes)?;
+        scene
+            .check_decoded()
+            .map_err(crate::state::StateError::Inconsistent)?;
         scene.body_indices = (scene.bodies.iter().enumerate())
             .map(|(index, body)| (body.name.clone(), index))
             .collect();
@@ -446,6 +449,16 @@ impl Scene {
             .map(|(index, joint)| (joint.name.clone(), index))
             .collect();
         Ok((scene, step))
+    }
+
+    /// Checks a decoded scene: its world ([`World::load_state`]'s checks) and its timestep.
+    #[cfg(feature = "serde")]
+    fn check_decoded(&self) -> Result<(), String> {
+        self.world.check_decoded()?;
+        match convert::timestep(Some(self.timestep.seconds)) {
+            Ok(timestep) if timestep.engine_seconds == self.timestep.engine_seconds => Ok(()),
+            _ => Err("the timestep is out of range".to_owned()),
+        }
     }
 
     /// The world, to change: set velocities, apply forces, add bodies.

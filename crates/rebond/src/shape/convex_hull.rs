@@ -237,6 +237,54 @@ impl ConvexHull {
         assemble(&cloud.positions, &outlines, &normals, cloud.tolerance)
     }
 
+    /// Checks a decoded hull: at least four vertices within the size limit and four faces,
+    /// every face and edge naming vertices and faces of the hull, the groups of four built from
+    /// them, values finite. (Building the hull again from its vertices may not give the same
+    /// faces for a sliver, so the hull is checked, not rebuilt.)
+    pub(crate) fn check_decoded(&self) -> std::result::Result<(), String> {
+        let (vertex_count, face_count) = (self.vertices.len(), self.faces.len());
+        let names_vertices = |indices: &[u32]| indices.iter().all(|&i| (i as usize) < vertex_count);
+        let indices_fit = vertex_count >= 4
+            && face_count >= 4
+            && u32::try_from(vertex_count).is_ok()
+            && self.faces.iter().all(|face| {
+                face.vertices.len() >= 3
+                    && names_vertices(&face.vertices)
+                    && face.normal.is_finite()
+                    && face.offset.is_finite()
+            })
+            && self.edges.iter().all(|edge| {
+                names_vertices(&edge.vertices)
+                    && edge.faces.iter().all(|&face| (face as usize) < face_count)
+            });
+        if !indices_fit {
+            return Err("a hull's faces or edges name vertices or faces it lacks".to_owned());
+        }
+        let (edge_lanes, face_lanes) =
+            edge_and_face_lanes(&self.vertices, &self.faces, &self.edges);
+        let unit = &self.unit;
+        let consistent = edge_lanes == self.edge_lanes
+            && face_lanes == self.face_lanes
+            && vertex_lanes(&self.vertices) == self.vertex_lanes
+            && self
+                .vertices
+                .iter()
+                .all(|vertex| vertex.abs().max_element() <= MAX_SIZE)
+            && unit.mass.is_finite()
+            && unit.mass > 0.0
+            && unit.center_of_mass.is_finite()
+            && unit.inertia.is_finite()
+            && [self.bounding_radius, self.inner_radius]
+                .iter()
+                .all(|r| r.is_finite())
+            && self.mean_vertex.is_finite();
+        if consistent {
+            Ok(())
+        } else {
+            Err("a hull's derived values do not follow from its vertices and faces".to_owned())
+        }
+    }
+
     /// Hull vertices, metres, in the order of the input points.
     pub fn vertices(&self) -> &[Vec3] {
         &self.vertices
@@ -463,26 +511,15 @@ fn assemble(
     let bounding_radius = vertices
         .iter()
         .fold(0.0, |largest: f32, vertex| largest.max(vertex.length()));
-    let edge_ends: Vec<[Vec3; 4]> = edges
-        .iter()
-        .map(|edge| {
-            let [start, end] = edge.vertices.map(|vertex| vertices[vertex as usize]);
-            let [first, second] = edge.faces.map(|face| faces[face as usize].normal);
-            [start, end, first, second]
-        })
-        .collect();
+    let (edge_lanes, face_lanes) = edge_and_face_lanes(&vertices, &faces, &edges);
     let mean_vertex = vertices.iter().copied().sum::<Vec3>() / vertices.len().max(1) as f32;
     let nearest_face = faces
         .iter()
         .map(|face| face.offset - face.normal.dot(mean_vertex))
         .fold(f32::INFINITY, f32::min);
-    let planes: Vec<(Vec3, f32)> = faces
-        .iter()
-        .map(|face| (face.normal, face.offset))
-        .collect();
     Ok(ConvexHull {
-        edge_lanes: edge_ends.chunks(4).map(EdgeLanes::new).collect(),
-        face_lanes: planes.chunks(4).map(FaceLanes::new).collect(),
+        edge_lanes,
+        face_lanes,
         mean_vertex,
         inner_radius: (nearest_face - 2.0 * tolerance as f32).max(0.0),
         faces,
@@ -492,6 +529,31 @@ fn assemble(
         vertex_lanes: vertex_lanes(&vertices),
         vertices,
     })
+}
+
+/// The edges and the face planes four to a group; every index in `faces` and `edges` must name
+/// one of `vertices` and `faces`.
+fn edge_and_face_lanes(
+    vertices: &[Vec3],
+    faces: &[HullFace],
+    edges: &[HullEdge],
+) -> (Vec<EdgeLanes>, Vec<FaceLanes>) {
+    let edge_ends: Vec<[Vec3; 4]> = edges
+        .iter()
+        .map(|edge| {
+            let [start, end] = edge.vertices.map(|vertex| vertices[vertex as usize]);
+            let [first, second] = edge.faces.map(|face| faces[face as usize].normal);
+            [start, end, first, second]
+        })
+        .collect();
+    let planes: Vec<(Vec3, f32)> = faces
+        .iter()
+        .map(|face| (face.normal, face.offset))
+        .collect();
+    (
+        edge_ends.chunks(4).map(EdgeLanes::new).collect(),
+        planes.chunks(4).map(FaceLanes::new).collect(),
+    )
 }
 
 /// `a aᵀ`.

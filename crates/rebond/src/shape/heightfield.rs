@@ -99,6 +99,25 @@ impl HeightField {
         })
     }
 
+    /// Checks a decoded heightfield: it is the one [`HeightField::new`] builds from its own
+    /// heights and scale.
+    pub(crate) fn check_decoded(&self) -> std::result::Result<(), String> {
+        let data = &self.data;
+        if data.cols < 2 || data.heights.len() != data.rows.saturating_mul(data.cols) {
+            return Err("a heightfield's grid does not hold its heights".to_owned());
+        }
+        let rows: Vec<Vec<f32>> = data
+            .heights
+            .chunks(data.cols)
+            .map(<[f32]>::to_vec)
+            .collect();
+        match HeightField::new(&rows, data.scale) {
+            Ok(rebuilt) if rebuilt == *self => Ok(()),
+            Ok(_) => Err("a heightfield differs from the one its heights build".to_owned()),
+            Err(error) => Err(error.to_string()),
+        }
+    }
+
     /// Number of rows (samples along Z).
     pub fn rows(&self) -> usize {
         self.data.rows

@@ -108,6 +108,41 @@ impl Shape {
         HeightField::new(heights, scale).map(Shape::HeightField)
     }
 
+    /// Checks a decoded shape: it is the one its constructor builds from its own defining
+    /// values (a compound's children each so), or an error saying what differs.
+    pub(crate) fn check_decoded(&self) -> std::result::Result<(), String> {
+        let rebuilt = match self {
+            Shape::Sphere(sphere) => Shape::sphere(sphere.radius()),
+            Shape::Cuboid(cuboid) => Shape::cuboid(cuboid.half_extents()),
+            Shape::Capsule(capsule) => Shape::capsule(capsule.radius(), capsule.half_height()),
+            Shape::Cylinder(cylinder) => Shape::cylinder(cylinder.radius(), cylinder.half_height()),
+            Shape::ConvexHull(hull) => return hull.check_decoded(),
+            Shape::TriMesh(mesh) => Shape::trimesh(mesh.vertices().to_vec(), mesh.indices()),
+            Shape::HeightField(heightfield) => return heightfield.check_decoded(),
+            // Both normalise rotations or normals, which may move a last bit: checked, not
+            // compared.
+            Shape::Halfspace(halfspace) => {
+                let normal = halfspace.normal();
+                return match Shape::halfspace(normal) {
+                    Ok(_) if (normal.length() - 1.0).abs() <= 1e-5 => Ok(()),
+                    _ => Err("a halfspace's normal is not a unit vector".to_owned()),
+                };
+            }
+            Shape::Compound(compound) => {
+                Compound::new(compound.children().to_vec()).map_err(|error| error.to_string())?;
+                return compound
+                    .children()
+                    .iter()
+                    .try_for_each(|child| child.shape.check_decoded());
+            }
+        };
+        match rebuilt {
+            Ok(shape) if shape == *self => Ok(()),
+            Ok(_) => Err("a shape differs from the one its own values build".to_owned()),
+            Err(error) => Err(error.to_string()),
+        }
+    }
+
     /// Whether the shape is a triangle mesh or a heightfield: made of triangles, collided
     /// triangle by triangle.
     pub fn is_triangulated(&self) -> bool {

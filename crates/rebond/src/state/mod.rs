@@ -20,8 +20,8 @@
 //! sources reads it back (the fingerprint says which); exact continuation needs the same binary
 //! anyway. Bytes that are not a state, of another format version or build, cut short or damaged
 //! are refused with a [`StateError`] saying which, before anything is decoded: the checksum
-//! guards the decoder against damage, so a world is only ever built from bytes this build
-//! wrote.
+//! guards the decoder against damage. Bytes made to match their checksum decode, so a decoded
+//! world's invariants (indices in range, values finite) are checked before it is handed out.
 
 use std::fmt;
 
@@ -76,6 +76,9 @@ pub enum StateError {
     Damaged,
     /// The checksum matches but the world does not decode: what the decoder said.
     Undecodable(String),
+    /// The world decodes but breaks an invariant of the engine's (an index out of range, a value
+    /// that is not finite): bytes made to match their checksum. Which invariant.
+    Inconsistent(String),
 }
 
 impl fmt::Display for StateError {
@@ -101,6 +104,7 @@ impl fmt::Display for StateError {
             ),
             Self::Damaged => write!(formatter, "damaged state: the checksum does not match"),
             Self::Undecodable(reason) => write!(formatter, "undecodable state: {reason}"),
+            Self::Inconsistent(reason) => write!(formatter, "inconsistent state: {reason}"),
         }
     }
 }
@@ -178,6 +182,8 @@ impl World {
     /// A world saved by [`World::save_state`]; bytes that are not a state of this format
     /// version, or are cut short or damaged, are an error saying which.
     pub fn load_state(bytes: &[u8]) -> Result<World, StateError> {
-        decode(WORLD_MAGIC, bytes)
+        let world: World = decode(WORLD_MAGIC, bytes)?;
+        world.check_decoded().map_err(StateError::Inconsistent)?;
+        Ok(world)
     }
 }

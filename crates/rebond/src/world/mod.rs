@@ -1,6 +1,7 @@
 //! The world: owns bodies and settings, and advances them in time. Its joint calls are in
 //! `joints.rs`.
 
+mod decoded;
 mod joints;
 
 use crate::arena::Arena;
@@ -169,7 +170,9 @@ pub struct World {
     joints: JointSet,
     broad_phase: BroadPhase,
     contacts: ContactCache,
+    #[cfg_attr(feature = "serde", serde(skip))]
     narrow_phase: NarrowPhase,
+    #[cfg_attr(feature = "serde", serde(skip))]
     solver: Solver,
     islands: Islands,
     ignored_pairs: IgnoredPairs,

@@ -1,0 +1,105 @@
+//! Checks of a world decoded from a state ([`World::load_state`]): a state whose checksum
+//! matches is still only bytes (the checksum guards against damage, not against bytes made to
+//! match it), so before a decoded world is handed out every index it stores is checked to be in
+//! range and every value the step reads to be finite and within the limits.
+
+use super::World;
+use crate::body::{BodyHandle, BodyType, RigidBody};
+use crate::limits::{MAX_ANGULAR_SPEED, MAX_MASS, MAX_SPEED, MIN_MASS};
+
+/// How far past a speed limit a decoded velocity may lie: the step holds velocities to the limits
+/// in `f32`, which may land a rounding above them.
+const LIMIT_ROUNDING: f32 = 1.0 + 1e-5;
+
+impl World {
+    /// Checks the invariants a decoded world must hold for the step to be safe to run: storage,
+    /// handles and indices in range, every body's values finite and in range, derived lists
+    /// consistent with what they derive from. Describes the first broken invariant.
+    pub(crate) fn check_decoded(&self) -> Result<(), String> {
+        self.settings
+            .validate()
+            .map_err(|error| error.to_string())?;
+        self.bodies.check_decoded()?;
+        let slots = self.bodies.slot_count();
+        for (index, body) in self.bodies.iter() {
+            let slot = index.slot();
+            check_body(body).map_err(|error| format!("body {slot}: {error}"))?;
+            let is_static = body.body_type == BodyType::Static;
+            let proxy_fits = body.proxy.is_some_and(|proxy| {
+                self.broad_phase.is_live(proxy)
+                    && proxy.is_static() == is_static
+                    && self.broad_phase.key(proxy) as usize == slot
+            });
+            if !proxy_fits {
+                return Err(format!("body {slot}'s broad-phase proxy is not its own"));
+            }
+        }
+        if self.broad_phase.proxy_count() != self.bodies.len() {
+            return Err("the broad phase holds proxies of no body".to_owned());
+        }
+        self.broad_phase.check_decoded(slots)?;
+        self.islands.check_decoded(&self.bodies)?;
+        let is_live = |handle: BodyHandle| self.bodies.get(handle.0).is_some();
+        self.contacts.check_decoded(is_live)?;
+        self.joints.check_decoded(is_live)?;
+        if self.bounds_of_slot.len() < slots
+            || self.touched_static_slots.iter().any(|&slot| slot >= slots)
+        {
+            return Err("bounding boxes are missing for some slots".to_owned());
+        }
+        Ok(())
+    }
+}
+
+/// Checks a decoded body: its shape, finite values, its mass and `1/m`, materials and speeds in
+/// range.
+fn check_body(body: &RigidBody) -> Result<(), String> {
+    body.shape.check_decoded()?;
+    let vectors = [
+        body.center_of_mass,
+        body.local_center_of_mass,
+        body.linear_velocity,
+        body.angular_velocity,
+        body.force,
+        body.torque,
+        body.constant_force,
+        body.constant_torque,
+        body.constant_force_point.unwrap_or_default(),
+    ];
+    let matrices = [
+        body.local_inertia,
+        body.local_inverse_inertia,
+        body.world_inverse_inertia,
+    ];
+    let mass_fits = match body.body_type {
+        BodyType::Dynamic => {
+            (MIN_MASS..=MAX_MASS).contains(&body.mass)
+                && (body.inverse_mass * body.mass - 1.0).abs() <= 1e-5
+        }
+        BodyType::Static | BodyType::Kinematic => body.inverse_mass == 0.0,
+    };
+    let finite = mass_fits
+        && vectors.iter().all(|vector| vector.is_finite())
+        && matrices.iter().all(|matrix| matrix.is_finite())
+        && body.rotation.is_normalized()
+        && [
+            body.mass,
+            body.inverse_mass,
+            body.sleep_time,
+            body.max_extent,
+        ]
+        .iter()
+        .all(|value| value.is_finite() && *value >= 0.0);
+    let in_range = [body.linear_damping, body.angular_damping, body.friction]
+        .iter()
+        .all(|value| value.is_finite() && *value >= 0.0)
+        && (0.0..=1.0).contains(&body.restitution)
+        && body.contact_force_threshold >= 0.0
+        && body.linear_velocity.length() <= MAX_SPEED * LIMIT_ROUNDING
+        && body.angular_velocity.length() <= MAX_ANGULAR_SPEED * LIMIT_ROUNDING;
+    if finite && in_range {
+        Ok(())
+    } else {
+        Err("a value is not finite or out of its range".to_owned())
+    }
+}
