@@ -10,7 +10,9 @@ use crate::error::{
     check_positive, check_range, Error, ErrorKind, Result,
 };
 use crate::filter::InteractionGroups;
-use crate::limits::{MAX_ANGULAR_SPEED, MAX_FORCE, MAX_MASS, MAX_SIZE, MAX_SPEED, MIN_MASS};
+use crate::limits::{
+    MAX_ANGULAR_SPEED, MAX_FORCE, MAX_INERTIA_RATIO, MAX_MASS, MAX_SIZE, MAX_SPEED, MIN_MASS,
+};
 use crate::mass::MassProperties;
 use crate::material::Material;
 use crate::math::{normalize_rotation, rotate_tensor, skew, Aabb, Mat3, Pose, Quat, Vec3};
@@ -834,7 +836,8 @@ fn dynamic_mass_properties(desc: &BodyDesc) -> Result<(MassProperties, Mat3)> {
     let properties = match desc.mass {
         Some(mass) => properties.scaled_to_mass(mass),
         None => properties,
-    };
+    }
+    .with_inertia_spread_at_most(MAX_INERTIA_RATIO);
     if let Some(inverse_inertia) = inverse_inertia(&properties) {
         let mass_out_of_range = !(MIN_MASS..=MAX_MASS).contains(&properties.mass);
         if desc.mass.is_none() && mass_out_of_range {

@@ -32,6 +32,14 @@ pub const MIN_MASS: f32 = 1.0e-6;
 /// the heavier one's in 32-bit floats, which then moves as if it were static.
 pub const MAX_MASS: f32 = 1.0e9;
 
+/// Largest spread of a dynamic body's principal moments of inertia, largest over smallest. A
+/// rod 4 m long and 2 cm thick is within it; a longer or thinner body has its moments raised
+/// (each by `tr I / 100,000`) until it is: with a wider spread the world inverse inertia
+/// `R I⁻¹ Rᵀ` is lost to `f32` rounding in its smallest direction, and contacts on the body feed
+/// on themselves until they overflow. Such a body turns about its long axis a little more slowly
+/// than its shape says.
+pub const MAX_INERTIA_RATIO: f32 = 1.0e5;
+
 /// Largest force, N, torque, N·m, or impulse, N·s, applied to a body.
 pub const MAX_FORCE: f32 = 1.0e12;
 

@@ -33,6 +33,24 @@ impl MassProperties {
         }
     }
 
+    /// The same solid with its principal moments of inertia at most `ratio` apart (largest over
+    /// smallest): where the smallest may lie below `tr I / ratio`, every moment is raised by that
+    /// much, `I + (tr I / ratio) 𝟙`. The smallest moment is at least `4 det I / (tr I)²` (the two
+    /// largest multiply to at most `(tr I / 2)²`), so a solid within the ratio by that bound is
+    /// returned as it is.
+    pub fn with_inertia_spread_at_most(&self, ratio: f32) -> Self {
+        let inertia = self.inertia.as_dmat3();
+        let trace = inertia.x_axis.x + inertia.y_axis.y + inertia.z_axis.z;
+        if 4.0 * inertia.determinant() * f64::from(ratio) >= trace.powi(3) {
+            return *self;
+        }
+        Self {
+            inertia: self.inertia
+                + Mat3::from_diagonal(Vec3::splat((trace / f64::from(ratio)) as f32)),
+            ..*self
+        }
+    }
+
     /// The same solid seen from a frame in which it sits at `position` rotated by `rotation`:
     /// `c' = p + R c`, `I' = R I Rᵀ` (still about its own centre of mass).
     pub fn transformed(&self, pose: &Pose) -> Self {

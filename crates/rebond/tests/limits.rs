@@ -7,8 +7,8 @@ mod common;
 
 use common::{world, DT, G};
 use rebond::limits::{
-    MAX_ANGULAR_SPEED, MAX_COORDINATE, MAX_FORCE, MAX_GRAVITY, MAX_MASS, MAX_SIZE, MAX_SPEED,
-    MAX_TIMESTEP, MIN_MASS, MIN_SIZE, MIN_TIMESTEP,
+    MAX_ANGULAR_SPEED, MAX_COORDINATE, MAX_FORCE, MAX_GRAVITY, MAX_INERTIA_RATIO, MAX_MASS,
+    MAX_SIZE, MAX_SPEED, MAX_TIMESTEP, MIN_MASS, MIN_SIZE, MIN_TIMESTEP,
 };
 use rebond::shape::{ConvexHull, TriMesh};
 use rebond::{
@@ -334,4 +334,34 @@ fn the_smallest_shapes_and_the_extreme_masses_rest() {
     );
     let state = world.body(heavy).unwrap();
     assert!((state.position().y - 0.5).abs() < 1e-3 && state.max_point_speed() < 1e-3);
+}
+
+#[test]
+fn a_body_thinner_than_the_inertia_spread_allows_has_its_moments_raised() {
+    // Principal moments of a solid cylinder of radius r and length L: m r²/2 about its axis,
+    // m (3r² + L²)/12 across it. A 4 m rod 2 cm thick spreads them 2.7e4 apart and keeps them;
+    // the fuzzer's 1,820 m rod 12.5 cm thick spreads them 1.4e8 apart, and has each raised by
+    // ε = tr I / MAX_INERTIA_RATIO: (λ + ε)/ε with tr I ≈ 2λ brings the spread to about half the
+    // ratio.
+    let moments = |radius: f32, half_height: f32| {
+        let mut world = World::new(WorldSettings::default()).unwrap();
+        let rod = Shape::cylinder(radius, half_height).unwrap();
+        let body = world.add_body(BodyDesc::dynamic(rod).mass(3.0)).unwrap();
+        let inertia = world.body(body).unwrap().local_inertia();
+        Vec3::new(inertia.x_axis.x, inertia.y_axis.y, inertia.z_axis.z)
+    };
+    let (radius, length) = (0.01_f32, 4.0_f32);
+    let kept = moments(radius, length / 2.0);
+    let (axial, across) = (
+        3.0 * radius * radius / 2.0,
+        3.0 * (3.0 * radius * radius + length * length) / 12.0,
+    );
+    assert!((kept.y / axial - 1.0).abs() < 1e-5, "{kept}");
+    assert!((kept.x / across - 1.0).abs() < 1e-5, "{kept}");
+    let raised = moments(0.0625, 910.0);
+    let spread = raised.max_element() / raised.min_element();
+    assert!(
+        (spread / (0.5 * MAX_INERTIA_RATIO) - 1.0).abs() < 1e-3,
+        "{raised}: {spread}"
+    );
 }

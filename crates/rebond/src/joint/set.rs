@@ -53,12 +53,8 @@ pub(crate) struct JointImpulses {
 }
 
 impl JointImpulses {
-    /// Whether every impulse is finite, so that it can warm-start the next step.
-    pub fn is_finite(&self) -> bool {
-        self.is_within(f32::MAX)
-    }
-
-    /// Whether every impulse is at most `limit` long (N·s or N·m·s; NaN is not).
+    /// Whether every impulse is at most `limit` long (N·s or N·m·s; NaN is not), so that it can
+    /// warm-start the next substep or step.
     pub fn is_within(&self, limit: f32) -> bool {
         [self.linear, self.angular, self.friction_couple]
             .iter()

@@ -17,8 +17,9 @@ use super::wide::{F32x4, Mask4, Vec3x4, LANES};
 use super::{BodyMotion, BodyState};
 use crate::collision::contact_cache::Contact;
 use crate::collision::MAX_MANIFOLD_POINTS;
+use crate::limits::MAX_SOLVER_IMPULSE;
 use crate::material::Material;
-use crate::math::Vec3A;
+use crate::math::{Vec3, Vec3A};
 
 /// What a solver pass reads of its bodies: both sides' spins and rotations, but of the linear
 /// velocities and moves only B's minus A's, since the impulses act on both along one direction
@@ -569,6 +570,17 @@ impl ContactLanes {
             contact.friction_impulse =
                 (tangent_1 * tangents[0][lane] + tangent_2 * tangents[1][lane]).into();
             contact.twist_impulse = self.twist_impulse.lane(lane);
+            // As for joints (`joints.rs`): impulses past what bodies within the limits exchange
+            // are not kept to warm-start from.
+            let impulses = [tangent_1, tangent_2, contact.twist_impulse].into_iter();
+            if !impulses
+                .chain(contact.normal_impulses)
+                .all(|impulse| impulse.abs() <= MAX_SOLVER_IMPULSE)
+            {
+                contact.normal_impulses = [0.0; MAX_MANIFOLD_POINTS];
+                contact.friction_impulse = Vec3::ZERO;
+                contact.twist_impulse = 0.0;
+            }
         }
     }
 

@@ -21,6 +21,7 @@ use super::softness::Softness;
 use super::stages::{ConstraintKind, StepContext};
 use super::{BodyMotion, BodyState, SolverBodies};
 use crate::joint::{JointFrames, JointImpulses, JointSet, JointType, Motor, Spring};
+use crate::limits::MAX_SOLVER_IMPULSE;
 use crate::math::{Quat, Vec3};
 
 /// Largest joint frequency as a fraction of the substep rate (as for contacts,
@@ -372,7 +373,14 @@ impl JointConstraint {
     }
 
     /// Applies the accumulated impulses again.
-    fn warm_start(&self, v: &mut Velocities) {
+    fn warm_start(&mut self, v: &mut Velocities) {
+        // The speed limits take momentum out between substeps; a joint that drags a body faster
+        // than they allow (round a fast kinematic body, say) answers with more impulse each
+        // substep, growing without bound until it overflows. Past what bodies within the limits
+        // exchange, it starts the substep again from nothing.
+        if !self.impulses.is_within(MAX_SOLVER_IMPULSE) {
+            self.impulses = JointImpulses::default();
+        }
         let (geometry, impulses, bodies) = (&self.geometry, &self.impulses, &self.bodies);
         if let Some(point) = &geometry.point {
             point.apply(bodies, v, impulses.linear);
@@ -714,9 +722,11 @@ impl ConstraintKind for JointConstraints {
     fn store_impulses(&self, joints: &mut JointSet) {
         for constraint in &self.constraints {
             if let Some(data) = joints.solver_data_mut(constraint.slot) {
-                // Impulses that overflowed (a motor of unlimited force that cannot reach its
-                // target within the speed limits) would poison every later step.
-                data.impulses = if constraint.impulses.is_finite() {
+                // Impulses past what bodies within the limits can exchange (a motor of unlimited
+                // force that cannot reach its target within the speed limits, a joint dragging a
+                // body round a fast kinematic one) would grow from step to step until they
+                // overflow and poison every later step.
+                data.impulses = if constraint.impulses.is_within(MAX_SOLVER_IMPULSE) {
                     constraint.impulses
                 } else {
                     JointImpulses::default()
