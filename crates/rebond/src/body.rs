@@ -408,6 +408,11 @@ impl RigidBody {
         Pose::new(self.position(), self.rotation)
     }
 
+    /// Pose of the centre of mass in the world.
+    pub(crate) fn center_pose(&self) -> Pose {
+        Pose::new(self.center_of_mass, self.rotation)
+    }
+
     /// World position of the body origin, metres.
     pub fn position(&self) -> Vec3 {
         self.center_of_mass - self.rotation * self.local_center_of_mass

@@ -321,50 +321,58 @@ impl ContactLanes {
         inverse_reach: f32,
     ) {
         let lanes = self;
-        let mut positions = [[Vec3A::ZERO; LANES]; MAX_MANIFOLD_POINTS];
+        // Each point's lever arm from A's centre of mass and the offset from B's to A's, as the
+        // contact's frame keeps them (`contact_frame.rs`).
+        let mut arms = [[Vec3A::ZERO; LANES]; MAX_MANIFOLD_POINTS];
+        let mut centers = [Vec3A::ZERO; LANES];
         let mut point_counts = F32x4::ZERO;
         let mut radius_ratios = F32x4::ZERO;
         for (lane, lane_contact) in lane_contacts.into_iter().enumerate() {
             lanes.set_contact(lane, &lane_contact, motions);
-            let points = lane_contact.contact.manifold.points();
-            for (point, slot) in points.iter().zip(&mut positions) {
-                slot[lane] = point.position.into();
+            let contact = lane_contact.contact;
+            let frame = &contact.frame.solver;
+            let count = contact.manifold.len();
+            for (slot, &arm) in arms.iter_mut().zip(&frame.arms[..count]) {
+                slot[lane] = arm.into();
             }
-            point_counts.set_lane(lane, points.len() as f32);
-            radius_ratios.set_lane(lane, lane_contact.contact.patch_radius_ratio);
+            centers[lane] = frame.centers.into();
+            point_counts.set_lane(lane, count as f32);
+            radius_ratios.set_lane(lane, contact.patch_radius_ratio);
         }
+        let centers = Vec3x4::from_lanes(centers);
         let a = BodyFrame::gather(motions, &lanes.body_a);
         let b = BodyFrame::gather(motions, &lanes.body_b);
         let masses = lanes.inverse_masses();
         let normal = lanes.normal;
-        let mut center = Vec3x4::ZERO;
+        let mut center_a = Vec3x4::ZERO;
         for (index, point) in lanes.points[..lanes.point_count].iter_mut().enumerate() {
-            let position = Vec3x4::from_lanes(positions[index]);
-            let (anchor_a, anchor_b) = (position - a.center_of_mass, position - b.center_of_mass);
+            let anchor_a = Vec3x4::from_lanes(arms[index]);
+            let anchor_b = anchor_a + centers;
             let in_manifold = point_counts.greater_than(F32x4::splat(index as f32));
             let jacobian = JacobianLanes::new((&a, &b), masses, (anchor_a, anchor_b), normal);
             point.normal = JacobianLanes {
                 mass: in_manifold.select(jacobian.mass, F32x4::ZERO),
                 ..jacobian
             };
-            center += position;
+            center_a += anchor_a;
         }
         let counts = point_counts.max(F32x4::ONE);
-        let center = Vec3x4 {
-            x: center.x / counts,
-            y: center.y / counts,
-            z: center.z / counts,
+        // The points' centre, as arms from A's and B's centres of mass.
+        let center_a = Vec3x4 {
+            x: center_a.x / counts,
+            y: center_a.y / counts,
+            z: center_a.z / counts,
         };
+        let center_b = center_a + centers;
         let mut square_distances = F32x4::ZERO;
-        for (index, point_positions) in positions[..lanes.point_count].iter().enumerate() {
-            let offset = Vec3x4::from_lanes(*point_positions) - center;
+        for (index, point_arms) in arms[..lanes.point_count].iter().enumerate() {
+            let offset = Vec3x4::from_lanes(*point_arms) - center_a;
             let in_manifold = point_counts.greater_than(F32x4::splat(index as f32));
             square_distances += in_manifold.select(offset.dot(offset), F32x4::ZERO);
         }
         // `⟨r⟩`, the patch's mean distance from its centre: a multiple of the points' root mean
         // square distance `ρ` from their centre (`contact_model::patch_radius_ratio`).
         lanes.twist_radius = radius_ratios * (square_distances / counts).sqrt();
-        let (center_a, center_b) = (center - a.center_of_mass, center - b.center_of_mass);
         for axis in 0..2 {
             let direction = lanes.tangents[axis];
             lanes.tangent[axis] =
@@ -428,8 +436,9 @@ impl ContactLanes {
         speculative.and(acts).any()
     }
 
-    /// Sets what lane `lane` takes straight from its contact: the bodies, the normal and its
-    /// tangents, the materials, the points' separations and the cached impulses.
+    /// Sets what lane `lane` takes straight from its contact: the bodies, the normal its frame
+    /// keeps (`contact_frame.rs`) and its tangents, the materials, the points' separations and
+    /// the cached impulses.
     fn set_contact(&mut self, lane: usize, lane_contact: &LaneContact, motions: &[BodyMotion]) {
         let LaneContact {
             contact,
@@ -444,7 +453,7 @@ impl ContactLanes {
             .set_lane(lane, motions[body_a].inverse_mass);
         self.inverse_mass_b
             .set_lane(lane, motions[body_b].inverse_mass);
-        let normal = Vec3A::from(contact.manifold.normal);
+        let normal = Vec3A::from(contact.frame.solver.normal);
         let (tangent_1, tangent_2) = normal.any_orthonormal_pair();
         self.normal.set_lane(lane, normal);
         self.tangents[0].set_lane(lane, tangent_1);

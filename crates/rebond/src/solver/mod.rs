@@ -27,9 +27,11 @@
 //! moving body, and `contact_lanes.rs` solves a lane set in SIMD lanes (`wide.rs`) from the
 //! constraint parts of `parts.rs`. What is left over goes into lane sets of one.
 //! Joints are solved one at a time, in slot order, from the scalar parts of `joint_parts.rs`.
+//! `contact_frame.rs` says why a recycled contact keeps its normal and lever arms.
 //! `contact_model.rs` holds the contact model's constants, `softness.rs` the soft constraint,
 //! `integration.rs` the time integration of the bodies.
 
+pub(crate) mod contact_frame;
 mod contact_lanes;
 pub mod contact_model;
 mod contacts;

@@ -49,10 +49,10 @@ impl BodyLanes {
     }
 }
 
-/// What a constraint builder reads of the bodies on one side of four constraints: centre of
-/// mass and inverse inertia at the start of the step.
+/// What a constraint builder reads of the bodies on one side of four constraints: the inverse
+/// inertia at the start of the step. The lever arms come with the constraints
+/// (`contact_frame.rs`).
 pub(super) struct BodyFrame {
-    pub center_of_mass: Vec3x4,
     /// `I⁻¹` in world axes.
     pub inverse_inertia: Mat3x4,
 }
@@ -65,7 +65,6 @@ impl BodyFrame {
         let [a, b, c, d] = *bodies;
         let motions = [&motions[a], &motions[b], &motions[c], &motions[d]];
         Self {
-            center_of_mass: Vec3x4::from_lanes(motions.map(|m| m.center_of_mass.into())),
             inverse_inertia: Mat3x4::from_lanes(motions.map(|m| &m.world_inverse_inertia)),
         }
     }

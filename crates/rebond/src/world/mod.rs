@@ -701,11 +701,14 @@ impl World {
                 continue;
             }
             let (pose_a, pose_b) = (body_a.pose(), body_b.pose());
+            // The contact cache keeps its frames at the centres of mass, whose lever arms the
+            // solver reads.
+            let (center_a, center_b) = (body_a.center_pose(), body_b.center_pose());
             // Only flat surfaces keep their contact features while they turn: a recycled point
             // on a rolling ball would lag behind the true contact, and the normal force there
             // would push the roll on.
             let recyclable = body_a.polyhedral && body_b.polyhedral;
-            if recyclable && contacts.recycle(body_a_handle, body_b_handle, &pose_a, &pose_b) {
+            if recyclable && contacts.recycle(body_a_handle, body_b_handle, &center_a, &center_b) {
                 continue;
             }
             let margin = settings.speculative_distance + dt * closing_speed_bound(body_a, body_b);
@@ -723,7 +726,7 @@ impl World {
                 &body_b.shape,
                 &pose_b,
                 margin,
-                &mut contacts.pair(body_a_handle, body_b_handle, &pose_a, &pose_b),
+                &mut contacts.pair(body_a_handle, body_b_handle, &center_a, &center_b),
             );
         }
         contacts.finish_step();
