@@ -76,6 +76,23 @@ def test_from_scene_reads_a_file_and_a_dict_alike(tmp_path):
     assert from_dict.angular_velocities()[1, 1] == pytest.approx(2.0)
 
 
+def test_rolling_resistance_slows_a_rolling_ball_at_five_sevenths_c_g():
+    world = rebond.World()
+    world.add_body(GROUND, type="static", position=[0, -0.5, 0], friction=0.8)
+    for index, resistance in enumerate([0.0, 0.1]):
+        world.add_body(
+            BALL, position=[0, 0.5, 3 * index - 1.5], linear_velocity=[2, 0, 0],
+            angular_velocity=[0, 0, -4], friction=0.8, rolling_resistance=resistance,
+        )
+    world.step(60)
+    free, resisted = world.linear_velocities()[1:, 0]
+    # Without resistance it rolls on at 2 m/s; with c = 0.1 it loses 5/7 c g = 0.70 m/s in 1 s.
+    assert free == pytest.approx(2.0, abs=1e-3)
+    assert resisted == pytest.approx(2.0 - 5 / 7 * 0.1 * 9.81, abs=0.02)
+    with pytest.raises(rebond.SceneError, match=r"bodies\[3\]\.rolling_resistance"):
+        world.add_body(BALL, rolling_resistance=-0.1)
+
+
 def test_numpy_values_are_accepted_in_scenes_and_bodies():
     world = rebond.World(gravity=np.array([0.0, -9.81, 0.0]), substeps=np.int64(4))
     index = world.add_body(

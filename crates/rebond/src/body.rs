@@ -72,6 +72,12 @@ pub struct BodyDesc {
     pub friction: f32,
     /// Coefficient of restitution, 0 to 1, default 0.
     pub restitution: f32,
+    /// Rolling resistance coefficient `c`, ≥ 0, dimensionless, default 0 (none): a contact
+    /// resists the rolling of the surfaces over each other with a torque of at most `c R N`, `R`
+    /// the radius the body rolls on ([`Shape::rolling_radius`]) and `N` the normal force, so a
+    /// ball rolling on flat ground slows at `(5/7) c g` and rests on slopes up to `atan c`
+    /// (docs/physics.md, "Rolling resistance"). A pair uses the larger coefficient of its two.
+    pub rolling_resistance: f32,
     /// World force applied during every step, newtons, at the centre of mass or at
     /// `constant_force_point`.
     pub constant_force: Vec3,
@@ -118,6 +124,7 @@ impl BodyDesc {
             mass: None,
             friction: DEFAULT_FRICTION,
             restitution: 0.0,
+            rolling_resistance: 0.0,
             constant_force: Vec3::ZERO,
             constant_force_point: None,
             constant_torque: Vec3::ZERO,
@@ -193,6 +200,12 @@ impl BodyDesc {
     /// Sets the coefficient of restitution.
     pub fn restitution(mut self, restitution: f32) -> Self {
         self.restitution = restitution;
+        self
+    }
+
+    /// Sets the rolling resistance coefficient.
+    pub fn rolling_resistance(mut self, rolling_resistance: f32) -> Self {
+        self.rolling_resistance = rolling_resistance;
         self
     }
 
@@ -286,6 +299,7 @@ pub struct RigidBody {
     pub(crate) angular_damping: f32,
     pub(crate) friction: f32,
     pub(crate) restitution: f32,
+    pub(crate) rolling_resistance: f32,
     pub(crate) can_sleep: bool,
     pub(crate) sleeping: bool,
     /// How long the body has been still, seconds (see [`crate::island`]).
@@ -320,6 +334,7 @@ impl RigidBody {
         }
         check_non_negative("friction", desc.friction)?;
         check_range("restitution", desc.restitution, 0.0, 1.0)?;
+        check_non_negative("rolling_resistance", desc.rolling_resistance)?;
         check_length("force", desc.constant_force, MAX_FORCE)?;
         if let Some(point) = desc.constant_force_point {
             check_length("force_point", point, MAX_SIZE)?;
@@ -364,6 +379,7 @@ impl RigidBody {
             angular_damping: desc.angular_damping,
             friction: desc.friction,
             restitution: desc.restitution,
+            rolling_resistance: desc.rolling_resistance,
             can_sleep: desc.can_sleep,
             sleeping: false,
             sleep_time: 0.0,
@@ -505,6 +521,11 @@ impl RigidBody {
     /// Coefficient of restitution.
     pub fn restitution(&self) -> f32 {
         self.restitution
+    }
+
+    /// Rolling resistance coefficient.
+    pub fn rolling_resistance(&self) -> f32 {
+        self.rolling_resistance
     }
 
     /// Linear and angular damping, 1/s.
@@ -718,13 +739,20 @@ impl RigidBody {
     }
 
     /// The surface material of compound child `child` (its own where it has one, else the
-    /// body's), or the body's for any other shape.
+    /// body's), or the body's for any other shape; the rolling radius is the child's shape's,
+    /// or the body's shape's.
     pub(crate) fn material_of_child(&self, child: u32) -> Material {
         let own = match &self.shape {
             Shape::Compound(compound) => compound.children().get(child as usize),
             _ => None,
         };
         Material {
+            rolling_resistance: own
+                .and_then(|child| child.rolling_resistance)
+                .unwrap_or(self.rolling_resistance),
+            rolling_radius: own
+                .map_or(&self.shape, |child| &child.shape)
+                .rolling_radius(),
             friction: own
                 .and_then(|child| child.friction)
                 .unwrap_or(self.friction),
@@ -772,6 +800,12 @@ impl RigidBody {
     /// Sets the coefficient of restitution, 0 to 1.
     pub fn set_restitution(&mut self, restitution: f32) -> Result<()> {
         self.restitution = check_range("restitution", restitution, 0.0, 1.0)?;
+        Ok(())
+    }
+
+    /// Sets the rolling resistance coefficient, ≥ 0.
+    pub fn set_rolling_resistance(&mut self, rolling_resistance: f32) -> Result<()> {
+        self.rolling_resistance = check_non_negative("rolling_resistance", rolling_resistance)?;
         Ok(())
     }
 

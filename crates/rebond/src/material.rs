@@ -1,5 +1,5 @@
-//! Surface materials: how two touching surfaces' friction coefficients and restitutions combine
-//! into the one each contact uses.
+//! Surface materials: how two touching surfaces' friction coefficients, restitutions and rolling
+//! resistances combine into the one each contact uses.
 
 /// How two values, one from each surface, combine into the contact's value. Every rule gives `v`
 /// for two equal values `v`, except [`CombineRule::Multiply`] (`v²`).
@@ -41,6 +41,12 @@ pub(crate) struct Material {
     pub friction: f32,
     /// Coefficient of restitution, 0 to 1.
     pub restitution: f32,
+    /// Rolling resistance coefficient `c`, ≥ 0, dimensionless: the resisting torque is at most
+    /// `c R N` (`solver/rolling.rs`).
+    pub rolling_resistance: f32,
+    /// The lever `R` of the rolling resistance, m: the radius the surface rolls on
+    /// ([`crate::Shape::rolling_radius`]).
+    pub rolling_radius: f32,
 }
 
 impl Material {
@@ -48,14 +54,27 @@ impl Material {
     pub const NONE: Self = Self {
         friction: 0.0,
         restitution: 0.0,
+        rolling_resistance: 0.0,
+        rolling_radius: 0.0,
     };
 
-    /// The material of a contact between surfaces `a` and `b`.
+    /// The material of a contact between surfaces `a` and `b`. The rolling resistance and its
+    /// lever are each the larger of the two (Box3D's rule): a ball with rolling resistance slows
+    /// on any ground, whose own coefficient is most often left at 0, and a box on a ball rolls on
+    /// the ball's radius.
     pub fn combine(a: Self, b: Self, friction: CombineRule, restitution: CombineRule) -> Self {
         Self {
             friction: friction.combine(a.friction, b.friction),
             restitution: restitution.combine(a.restitution, b.restitution),
+            rolling_resistance: a.rolling_resistance.max(b.rolling_resistance),
+            rolling_radius: a.rolling_radius.max(b.rolling_radius),
         }
+    }
+
+    /// The most rolling resistance torque per newton of normal force, `c R`, m; zero where the
+    /// contact has none.
+    pub fn rolling_lever(&self) -> f32 {
+        self.rolling_resistance * self.rolling_radius
     }
 }
 

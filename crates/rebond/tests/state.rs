@@ -7,8 +7,10 @@ use rebond::World;
 
 /// A scene with every shape and every joint kind, things falling, sliding, rolling, hanging,
 /// driven and asleep: a static floor, a sphere, a box, a capsule, a cylinder, a hull and a
-/// compound dropped on it; a heightfield and a triangle-mesh ramp with bodies rolling on them; a fixed, a ball (limits, friction), a revolute (limits, motor), a
-/// prismatic (limits, motor) and two distance joints (spring, rope).
+/// compound (one child with rolling resistance) dropped on it; a heightfield and a triangle-mesh
+/// ramp with bodies rolling on them (one with rolling resistance); a fixed, a ball (limits,
+/// friction), a revolute (limits, motor), a prismatic (limits, motor) and two distance joints
+/// (spring, rope).
 const EVERY_KIND: &str = r#"{
   "bodies": [
     {"name": "floor", "type": "static", "shape": {"type": "box", "half_extents": [8, 0.5, 8]},
@@ -26,7 +28,8 @@ const EVERY_KIND: &str = r#"{
     {"name": "gem", "shape": {"type": "convex_hull", "points": [[-0.3, 0, -0.3], [0.3, 0, -0.3],
      [0.3, 0, 0.3], [-0.3, 0, 0.3], [0, 0.5, 0]]}, "position": [3, 0.2, 1]},
     {"name": "dumbbell", "shape": {"type": "compound", "children": [
-       {"shape": {"type": "sphere", "radius": 0.2}, "position": [-0.4, 0, 0]},
+       {"shape": {"type": "sphere", "radius": 0.2}, "position": [-0.4, 0, 0],
+        "rolling_resistance": 0.1},
        {"shape": {"type": "box", "half_extents": [0.2, 0.2, 0.2]}, "position": [0.4, 0, 0]}]},
      "position": [0, 2.5, 2]},
     {"name": "glued", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "position": [-1.5, 1.2, 1]},
@@ -38,7 +41,8 @@ const EVERY_KIND: &str = r#"{
     {"name": "hill", "type": "static", "shape": {"type": "heightfield", "scale": [6, 1, 6],
      "heights": [[0, 0.2, 0, 0.1], [0.1, 0.8, 0.3, 0], [0, 0.4, 0.6, 0.2], [0.2, 0, 0.1, 0]]},
      "position": [12, 0, 0]},
-    {"name": "roller", "shape": {"type": "sphere", "radius": 0.25}, "position": [12, 1.5, 0.3]},
+    {"name": "roller", "shape": {"type": "sphere", "radius": 0.25}, "position": [12, 1.5, 0.3],
+     "rolling_resistance": 0.05},
     {"name": "tumbler", "shape": {"type": "box", "half_extents": [0.2, 0.2, 0.2]}, "position": [11, 1.5, -1]},
     {"name": "ramp", "type": "static", "shape": {"type": "trimesh",
      "vertices": [[-2, 0, -2], [2, 1, -2], [2, 1, 2], [-2, 0, 2], [0, 0.5, 0]],

@@ -131,6 +131,8 @@ fn every_bad_body_value_is_refused_and_the_world_is_unchanged() {
         (base().friction(-0.1), "friction"),
         (base().restitution(1.5), "restitution"),
         (base().restitution(-0.5), "restitution"),
+        (base().rolling_resistance(-0.1), "rolling_resistance"),
+        (base().rolling_resistance(f32::NAN), "rolling_resistance"),
         (base().constant_force(Vec3::splat(f32::NAN)), "force"),
         (base().constant_torque(Vec3::splat(f32::INFINITY)), "torque"),
         (base().damping(-1.0, 0.0), "linear_damping"),
@@ -184,6 +186,10 @@ fn setters_refuse_bad_values_and_keep_the_old_state() {
     assert_eq!(field_of(body.set_damping(-1.0, 0.0)).0, "linear_damping");
     assert_eq!(field_of(body.set_friction(f32::NAN)).0, "friction");
     assert_eq!(field_of(body.set_restitution(2.0)).0, "restitution");
+    assert_eq!(
+        field_of(body.set_rolling_resistance(-1.0)).0,
+        "rolling_resistance"
+    );
     assert_eq!(body.position(), Vec3::Y);
     assert_eq!(body.linear_velocity(), Vec3::ZERO);
     world.step(1.0 / 60.0).unwrap();

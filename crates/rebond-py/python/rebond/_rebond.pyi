@@ -68,6 +68,7 @@ class World:
         mass: float = ...,
         friction: float = ...,
         restitution: float = ...,
+        rolling_resistance: float = ...,
         force: Vector = ...,
         force_point: Vector = ...,
         torque: Vector = ...,

@@ -144,6 +144,9 @@ pub struct Contact {
     pub(crate) friction_impulse: Vec3,
     /// Angular friction impulse about the normal, N·m·s.
     pub(crate) twist_impulse: f32,
+    /// Rolling resistance impulse, an angular impulse on body B (its opposite on A), a world
+    /// vector in the contact plane, N·m·s (`solver/rolling.rs`).
+    pub(crate) rolling_impulse: Vec3,
     /// The surfaces' friction and restitution combined by the world's rules; set by the world
     /// each step, once the contact is made.
     pub(crate) material: Material,
@@ -200,6 +203,12 @@ impl Contact {
     /// The twisting friction impulse about the normal in the last step, N·m·s.
     pub fn twist_impulse(&self) -> f32 {
         self.twist_impulse
+    }
+
+    /// The rolling resistance's angular impulse on body B in the last step (the opposite acts
+    /// on body A), a world vector in the contact plane, N·m·s; zero without rolling resistance.
+    pub fn rolling_impulse(&self) -> Vec3 {
+        self.rolling_impulse
     }
 
     /// The contact's Coulomb friction coefficient: the two surfaces' combined by
@@ -279,6 +288,7 @@ impl ContactCache {
             normal_impulses: [0.0; MAX_MANIFOLD_POINTS],
             friction_impulse: Vec3::ZERO,
             twist_impulse: 0.0,
+            rolling_impulse: Vec3::ZERO,
             material: Material::NONE,
             patch_radius_ratio: 0.0,
             frame: ManifoldFrame::new(&manifold, pose_a, pose_b),
@@ -389,8 +399,8 @@ impl ContactCache {
 
     /// Sorts this step's contacts by key and gives each point the narrow phase found the normal
     /// impulse of the previous step's point with the same key and feature id (unmatched points
-    /// start from zero), and each such contact the friction and twist impulses of the previous
-    /// contact with its key.
+    /// start from zero), and each such contact the friction, twist and rolling impulses of the
+    /// previous contact with its key.
     pub fn finish_step(&mut self) {
         self.current.sort_unstable_by_key(|contact| contact.key);
         let mut previous = self.previous.iter().peekable();
@@ -402,6 +412,7 @@ impl ContactCache {
             };
             contact.friction_impulse = old.friction_impulse;
             contact.twist_impulse = old.twist_impulse;
+            contact.rolling_impulse = old.rolling_impulse;
             for (point, impulse) in contact
                 .manifold
                 .points()

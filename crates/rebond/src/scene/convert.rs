@@ -131,6 +131,9 @@ pub(super) fn body_desc(
     if let Some(value) = entry.restitution {
         desc.restitution = scalar(&field("restitution"), value)?;
     }
+    if let Some(value) = entry.rolling_resistance {
+        desc.rolling_resistance = scalar(&field("rolling_resistance"), value)?;
+    }
     if let Some(value) = entry.force {
         desc.constant_force = vector(&field("force"), value)?;
     }
@@ -273,6 +276,9 @@ fn compound_child(
     }
     if let Some(value) = entry.restitution {
         child.restitution = Some(scalar(&format!("{place}.restitution"), value)?);
+    }
+    if let Some(value) = entry.rolling_resistance {
+        child.rolling_resistance = Some(scalar(&format!("{place}.rolling_resistance"), value)?);
     }
     Ok(child)
 }

@@ -100,6 +100,8 @@ pub(super) struct BodyEntry {
     pub(super) mass: Option<f64>,
     pub(super) friction: Option<f64>,
     pub(super) restitution: Option<f64>,
+    /// Extension of the contract: the body's rolling resistance coefficient.
+    pub(super) rolling_resistance: Option<f64>,
     pub(super) force: Option<[f64; 3]>,
     pub(super) force_point: Option<[f64; 3]>,
     pub(super) torque: Option<[f64; 3]>,
@@ -216,6 +218,8 @@ pub(super) struct ChildEntry {
     pub(super) rotation: Option<[f64; 4]>,
     pub(super) friction: Option<f64>,
     pub(super) restitution: Option<f64>,
+    /// Extension of the contract: the child's rolling resistance coefficient.
+    pub(super) rolling_resistance: Option<f64>,
 }
 
 /// The joint types of the format.

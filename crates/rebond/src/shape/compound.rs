@@ -20,6 +20,9 @@ pub struct CompoundChild {
     pub friction: Option<f32>,
     /// The child's coefficient of restitution, 0 to 1; `None` (the default) for the body's.
     pub restitution: Option<f32>,
+    /// The child's rolling resistance coefficient, ≥ 0; `None` (the default) for the body's.
+    /// Its lever is the child's own rolling radius ([`Shape::rolling_radius`]).
+    pub rolling_resistance: Option<f32>,
 }
 
 impl CompoundChild {
@@ -31,6 +34,7 @@ impl CompoundChild {
             shape,
             friction: None,
             restitution: None,
+            rolling_resistance: None,
         }
     }
 
@@ -43,6 +47,12 @@ impl CompoundChild {
     /// Gives the child a restitution of its own.
     pub fn restitution(mut self, restitution: f32) -> Self {
         self.restitution = Some(restitution);
+        self
+    }
+
+    /// Gives the child a rolling resistance coefficient of its own.
+    pub fn rolling_resistance(mut self, rolling_resistance: f32) -> Self {
+        self.rolling_resistance = Some(rolling_resistance);
         self
     }
 }
@@ -58,7 +68,8 @@ impl Compound {
     /// A compound of at least one child. Child poses must be finite (their rotations are
     /// normalised here), their materials in range; a child may not be a compound or a
     /// halfspace. Errors name the field as `children[i].position`, `children[i].rotation`,
-    /// `children[i].friction`, `children[i].restitution` or `children[i].shape`.
+    /// `children[i].friction`, `children[i].restitution`, `children[i].rolling_resistance` or
+    /// `children[i].shape`.
     pub fn new(mut children: Vec<CompoundChild>) -> Result<Self> {
         if children.is_empty() {
             return Err(Error::new(
@@ -77,6 +88,10 @@ impl Compound {
             }
             if let Some(restitution) = child.restitution {
                 check_range("restitution", restitution, 0.0, 1.0)
+                    .map_err(|error| error.within(&place))?;
+            }
+            if let Some(resistance) = child.rolling_resistance {
+                check_non_negative("rolling_resistance", resistance)
                     .map_err(|error| error.within(&place))?;
             }
             let reason = match child.shape {

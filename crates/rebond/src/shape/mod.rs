@@ -267,6 +267,24 @@ impl Shape {
         }
     }
 
+    /// The radius the shape rolls on, metres, the lever of its rolling resistance: a sphere's,
+    /// capsule's or cylinder's radius; zero for flat-faced shapes, meshes and heightfields, which
+    /// rest on faces rather than roll (friction and the spread of their contact points hold them),
+    /// and for a compound, whose children each have their own.
+    pub fn rolling_radius(&self) -> f32 {
+        match self {
+            Shape::Sphere(sphere) => sphere.radius(),
+            Shape::Capsule(capsule) => capsule.radius(),
+            Shape::Cylinder(cylinder) => cylinder.radius(),
+            Shape::Cuboid(_)
+            | Shape::ConvexHull(_)
+            | Shape::Halfspace(_)
+            | Shape::TriMesh(_)
+            | Shape::HeightField(_)
+            | Shape::Compound(_) => 0.0,
+        }
+    }
+
     /// Rounding radius around the shape's core, metres: a sphere's or capsule's radius, zero
     /// for every other shape.
     pub fn core_radius(&self) -> f32 {

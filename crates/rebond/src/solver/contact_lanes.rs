@@ -461,6 +461,7 @@ impl ContactLanes {
         let Material {
             friction,
             restitution,
+            ..
         } = contact.material;
         self.friction.set_lane(lane, friction);
         self.restitution.set_lane(lane, restitution);
@@ -482,6 +483,16 @@ impl ContactLanes {
     /// Whether any lane bounces (has a restitution above zero).
     pub fn bounces(&self) -> bool {
         self.bounces
+    }
+
+    /// The accumulated normal impulse of lane `lane`'s points, N·s (`rolling.rs` bounds its
+    /// impulse by it).
+    pub fn normal_impulse_sum(&self, lane: usize) -> f32 {
+        let points = &self.points[..self.point_counts[lane]];
+        points
+            .iter()
+            .map(|point| point.normal_impulse.lane(lane))
+            .sum()
     }
 
     /// One collision of the four lanes' contacts on velocities `states` (the restitution

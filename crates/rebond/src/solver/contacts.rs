@@ -4,6 +4,7 @@
 
 use super::contact_lanes::{Collision, ContactLanes, LaneContact};
 use super::graph_colour::GraphColouring;
+use super::rolling::RollingConstraints;
 use super::softness::Softness;
 use super::stages::{ConstraintKind, StepContext};
 use super::{BodyMotion, BodyState, SolverBodies};
@@ -25,6 +26,8 @@ pub(crate) struct ContactConstraints {
     colouring: GraphColouring,
     /// The contacts in lane sets of up to four, in solving order.
     lanes: Vec<ContactLanes>,
+    /// The rolling resistance of the contacts that have some (`rolling.rs`).
+    rolling: RollingConstraints,
     /// The contacts' spring for this step's substep.
     softness: Softness,
     /// Approach speed below which nothing bounces, m/s.
@@ -103,6 +106,7 @@ impl ConstraintKind for ContactConstraints {
     ) {
         self.colour(contacts, solver_bodies);
         self.lanes.clear();
+        self.rolling.clear();
         // A step and a substep: how far ahead a contact's gap may close in this step's passes.
         let inverse_reach = context.inverse_h / (context.substeps + 1) as f32;
         for lane_set in self.colouring.lane_sets() {
@@ -120,11 +124,13 @@ impl ConstraintKind for ContactConstraints {
             let index = self.lanes.len();
             self.lanes.push(ContactLanes::EMPTY);
             self.lanes[index].fill(
-                lane_contacts,
+                lane_contacts.clone(),
                 &solver_bodies.states,
                 &solver_bodies.motions,
                 inverse_reach,
             );
+            self.rolling
+                .add(index, lane_contacts, &solver_bodies.motions);
         }
         self.softness = context.contact.softness(context.h, context.inverse_h);
         self.restitution_threshold = context.contact.restitution_threshold;
@@ -144,6 +150,7 @@ impl ConstraintKind for ContactConstraints {
         for lanes in &self.lanes {
             lanes.warm_start(states);
         }
+        self.rolling.warm_start(states);
     }
 
     fn prepare_biased_passes(&mut self, states: &[BodyState], context: &StepContext) {
@@ -165,6 +172,10 @@ impl ConstraintKind for ContactConstraints {
     ) {
         for lanes in &mut self.lanes {
             lanes.solve::<USE_BIAS>(states, context.inverse_h);
+        }
+        // Like friction, in the relax pass only.
+        if !USE_BIAS {
+            self.rolling.solve(&self.lanes, states);
         }
     }
 
@@ -209,5 +220,6 @@ impl ConstraintKind for ContactConstraints {
         for lanes in &self.lanes {
             lanes.store_impulses(contacts.contacts_mut());
         }
+        self.rolling.store_impulses(contacts.contacts_mut());
     }
 }

@@ -14,7 +14,7 @@
 //! | prepare biased passes | per substep | — | read: `Δc`, `Δθ` set the biased passes' targets |
 //! | solve (biased, ×2) | per substep | joint rows, then normal impulses, towards the targets (soft push-out) | — |
 //! | integrate positions | per substep | — | `c += h v`, `q` turned by `h ω`, `Δc`, `Δθ` |
-//! | relax | per substep | joint rows rigid; normal impulses without push-out, then friction | read: `Δc`, `Δθ` |
+//! | relax | per substep | joint rows rigid; normal impulses without push-out, then friction, then rolling resistance (`rolling.rs`) | read: `Δc`, `Δθ` |
 //! | restitution | once | the contacts with restitution collide again in sequence (`contacts.rs`) | — |
 //! | store impulses | once | — | — |
 //!
@@ -42,6 +42,7 @@ mod joint_parts;
 mod joints;
 mod normal_block;
 mod parts;
+mod rolling;
 mod softness;
 mod stages;
 mod wide;
