@@ -211,3 +211,44 @@ fn scene_files_take_rolling_resistance_and_name_a_bad_one() {
         "{error}"
     );
 }
+
+#[test]
+fn a_ball_spinning_in_place_about_the_vertical_stops_at_the_same_bound() {
+    // A ball touches at one point, where the twist friction has no lever; the rolling resistance
+    // resists that spin too, with the torque `c r m g`: `I ω̇ = −c r m g`, `I = 2/5 m r²`, so
+    // `ω̇ = −(5/2) c g / r` = 4.9 rad/s² for c = 0.1, r = 0.5 m, and 5 rad/s stops at 1.02 s.
+    let (spin, resistance) = (5.0, 0.1);
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    add_ground(&mut world, 0.8);
+    let ball = world
+        .add_body(
+            BodyDesc::dynamic(Shape::sphere(RADIUS).unwrap())
+                .position(Vec3::new(0.0, RADIUS, 0.0))
+                .angular_velocity(Vec3::new(0.0, spin, 0.0))
+                .friction(0.8)
+                .rolling_resistance(resistance)
+                .can_sleep(false),
+        )
+        .unwrap();
+    let rate = 2.5 * resistance * G / RADIUS;
+    for _ in 0..30 {
+        world.step(DT).unwrap();
+    }
+    let measured = world.body(ball).unwrap().angular_velocity().y;
+    let expected = spin - rate * 30.0 * DT;
+    // 1 % of the spin lost, as for the rolling ball.
+    assert!(
+        (measured - expected).abs() <= 0.01 * (spin - expected),
+        "spins at {measured} rad/s after 0.5 s, expected {expected}"
+    );
+    for _ in 30..66 {
+        world.step(DT).unwrap();
+    }
+    // Stopped a step after 1.02 s, and stays so.
+    let body = world.body(ball).unwrap();
+    assert!(
+        body.angular_velocity().length() < 1.0e-3,
+        "still spins at {}",
+        body.angular_velocity()
+    );
+}

@@ -3,14 +3,17 @@
 //! surfaces' relative rolling, Coulomb-like.
 //!
 //! The law: the relative angular velocity of the bodies, `ω_rel = ω_B − ω_A`, has its two
-//! components in the contact plane (rolling; the twist about the normal is the twist friction's)
-//! driven to zero by an angular impulse `L` in the plane, `Δω_A = −I_A⁻¹ L`, `Δω_B = +I_B⁻¹ L`,
-//! clamped to the disc `|L| ≤ c R Σλ_n`: `c` the rolling resistance coefficient (dimensionless,
-//! default 0), `R` the radius the surfaces roll on (m), `Σλ_n` the contact's normal impulse
-//! (N·s). As forces, the resisting torque is at most `c R N`: the normal force acting a distance
-//! `c R` ahead of the contact point, the classic coefficient of rolling resistance `F = c N`. A
-//! solid ball of radius `r` rolling without slip on flat ground then slows at `(5/7) c g`, and
-//! rests on a slope up to `atan c` (docs/physics.md, "Rolling resistance").
+//! components in the contact plane (rolling) driven to zero by an angular impulse `L` in the
+//! plane, `Δω_A = −I_A⁻¹ L`, `Δω_B = +I_B⁻¹ L`, clamped to `|L| ≤ c R Σλ_n`: `c` the rolling
+//! resistance coefficient (dimensionless, default 0), `R` the radius the surfaces roll on (m),
+//! `Σλ_n` the contact's normal impulse (N·s). As forces, the resisting torque is at most `c R N`:
+//! the normal force acting a distance `c R` ahead of the contact point, the classic coefficient
+//! of rolling resistance `F = c N`. A solid ball of radius `r` rolling without slip on flat ground
+//! then slows at `(5/7) c g`, and rests on a slope up to `atan c` (docs/physics.md, "Rolling
+//! resistance"). The spin about the normal is the twist friction's, except at a contact of one
+//! point (a ball, a rim), where the twist friction has no lever (`⟨r⟩ = 0`): there `L` takes in
+//! the spin about the normal too, within the same bound (as Box3D's does at every contact), so
+//! that a ball at rest does not spin on about the vertical for ever.
 //!
 //! Rolling contacts are few (round bodies given a coefficient), so each is solved alone, scalar,
 //! in the relax pass after the contacts' lane sets, with the normal impulse those just found; and
@@ -19,7 +22,7 @@
 use super::contact_lanes::{ContactLanes, LaneContact};
 use super::{BodyMotion, BodyState};
 use crate::collision::contact_cache::Contact;
-use crate::math::Vec3A;
+use crate::math::{Mat3, Vec3, Vec3A};
 
 /// The rolling resistance of one contact.
 #[derive(Debug, Clone, Copy)]
@@ -32,18 +35,18 @@ struct RollingConstraint {
     lane: usize,
     body_a: usize,
     body_b: usize,
-    /// The contact plane's two directions, along which `ω_rel` is driven to zero.
-    tangents: [Vec3A; 2],
-    /// `I_A⁻¹ t_k` and `I_B⁻¹ t_k`: how a unit impulse about `t_k` turns each body.
-    spin_a: [Vec3A; 2],
-    spin_b: [Vec3A; 2],
-    /// The inverse of `K_kl = t_k·(I_A⁻¹ + I_B⁻¹) t_l`, symmetric: `[k⁻¹₀₀, k⁻¹₀₁, k⁻¹₁₁]`,
-    /// kg·m².
-    mass: [f32; 3],
+    /// The axes about which `ω_rel` is driven to zero: the contact plane's two directions, and
+    /// the normal where the contact has one point (else zero: the twist friction's).
+    axes: [Vec3A; 3],
+    /// `I_A⁻¹ a_k` and `I_B⁻¹ a_k`: how a unit impulse about axis `a_k` turns each body.
+    spin_a: [Vec3A; 3],
+    spin_b: [Vec3A; 3],
+    /// The inverse of `K_kl = a_k·(I_A⁻¹ + I_B⁻¹) a_l`, kg·m².
+    mass: Mat3,
     /// `c R`, m: the most impulse per unit of normal impulse.
     lever: f32,
-    /// The accumulated impulse about each tangent, N·m·s.
-    impulse: [f32; 2],
+    /// The accumulated impulse about each axis, N·m·s.
+    impulse: Vec3,
 }
 
 /// This step's rolling resistance constraints, in a buffer reused from step to step.
@@ -76,34 +79,52 @@ impl RollingConstraints {
             let (body_a, body_b) = (lane_contact.body_a, lane_contact.body_b);
             let normal = Vec3A::from(contact.manifold.normal);
             let (tangent_1, tangent_2) = normal.any_orthonormal_pair();
-            let tangents = [tangent_1, tangent_2];
+            let twists = contact.manifold.len() == 1;
+            let axes = [
+                tangent_1,
+                tangent_2,
+                if twists { normal } else { Vec3A::ZERO },
+            ];
             let inverse_inertia_a = motions[body_a].world_inverse_inertia;
             let inverse_inertia_b = motions[body_b].world_inverse_inertia;
-            let spin_a = tangents.map(|tangent| inverse_inertia_a * tangent);
-            let spin_b = tangents.map(|tangent| inverse_inertia_b * tangent);
-            let k = |i: usize, j: usize| tangents[i].dot(spin_a[j] + spin_b[j]);
-            let (k00, k01, k11) = (k(0, 0), k(0, 1), k(1, 1));
-            let determinant = k00 * k11 - k01 * k01;
+            let spin_a = axes.map(|axis| inverse_inertia_a * axis);
+            let spin_b = axes.map(|axis| inverse_inertia_b * axis);
+            let components = |vector: Vec3A| {
+                Vec3::new(
+                    axes[0].dot(vector),
+                    axes[1].dot(vector),
+                    axes[2].dot(vector),
+                )
+            };
+            let mut stiffness = Mat3::from_cols(
+                components(spin_a[0] + spin_b[0]),
+                components(spin_a[1] + spin_b[1]),
+                components(spin_a[2] + spin_b[2]),
+            );
+            if !twists {
+                // The normal's row is all zero: 1 on the diagonal keeps `K` invertible, and its
+                // impulse stays zero, as the row's error always is.
+                stiffness.z_axis.z = 1.0;
+            }
             // One body at least turns (a contact has a moving body, and moving bodies have
             // inertia), so `K` is positive definite; the guard is for rounding alone.
-            let mass = if determinant > f32::MIN_POSITIVE {
-                [k11 / determinant, -k01 / determinant, k00 / determinant]
+            let mass = if stiffness.determinant() > f32::MIN_POSITIVE {
+                stiffness.inverse()
             } else {
-                [0.0; 3]
+                Mat3::ZERO
             };
-            let cached = Vec3A::from(contact.rolling_impulse);
             self.constraints.push(RollingConstraint {
                 contact: lane_contact.index,
                 lane_set,
                 lane,
                 body_a,
                 body_b,
-                tangents,
+                axes,
                 spin_a,
                 spin_b,
                 mass,
                 lever,
-                impulse: tangents.map(|tangent| cached.dot(tangent)),
+                impulse: components(contact.rolling_impulse.into()),
             });
         }
     }
@@ -129,47 +150,40 @@ impl RollingConstraints {
     pub fn store_impulses(&self, contacts: &mut [Contact]) {
         for constraint in &self.constraints {
             if let Some(contact) = contacts.get_mut(constraint.contact) {
-                let [t1, t2] = constraint.tangents;
-                let [i1, i2] = constraint.impulse;
-                contact.rolling_impulse = (t1 * i1 + t2 * i2).into();
+                contact.rolling_impulse = constraint
+                    .combine(&constraint.axes, constraint.impulse)
+                    .into();
             }
         }
     }
 }
 
 impl RollingConstraint {
-    /// Drives `ω_rel` in the contact plane to zero, the accumulated impulse clamped to
+    /// Drives `ω_rel` about the axes to zero, the accumulated impulse clamped to
     /// `|L| ≤ c R Σλ_n`.
     fn solve(&mut self, states: &mut [BodyState], normal_impulse: f32) {
         let relative = states[self.body_b].angular_velocity - states[self.body_a].angular_velocity;
-        let [t1, t2] = self.tangents;
-        let (w1, w2) = (t1.dot(relative), t2.dot(relative));
-        let [m00, m01, m11] = self.mass;
+        let [a1, a2, a3] = self.axes;
+        let error = Vec3::new(a1.dot(relative), a2.dot(relative), a3.dot(relative));
         let old = self.impulse;
-        let mut total = [
-            old[0] - (m00 * w1 + m01 * w2),
-            old[1] - (m01 * w1 + m11 * w2),
-        ];
-        let limit = self.lever * normal_impulse;
-        let length = total[0].hypot(total[1]);
-        if length > limit {
-            let scale = if length > 0.0 { limit / length } else { 0.0 };
-            total = total.map(|value| value * scale);
-        }
+        let total = (old - self.mass * error).clamp_length_max(self.lever * normal_impulse);
         self.impulse = total;
-        self.apply(states, [total[0] - old[0], total[1] - old[1]]);
+        self.apply(states, total - old);
     }
 
-    /// Applies the angular impulse `L = Σ impulse_k t_k` to body B and its opposite to body A;
-    /// solver body 0 (static or asleep) never changes.
-    fn apply(&self, states: &mut [BodyState], impulse: [f32; 2]) {
+    /// `Σ impulse_k v_k` for one vector `v_k` per axis.
+    fn combine(&self, vectors: &[Vec3A; 3], impulse: Vec3) -> Vec3A {
+        vectors[0] * impulse.x + vectors[1] * impulse.y + vectors[2] * impulse.z
+    }
+
+    /// Applies the angular impulse of components `impulse` about the axes to body B and its
+    /// opposite to body A; solver body 0 (static or asleep) never changes.
+    fn apply(&self, states: &mut [BodyState], impulse: Vec3) {
         if self.body_a != 0 {
-            states[self.body_a].angular_velocity -=
-                self.spin_a[0] * impulse[0] + self.spin_a[1] * impulse[1];
+            states[self.body_a].angular_velocity -= self.combine(&self.spin_a, impulse);
         }
         if self.body_b != 0 {
-            states[self.body_b].angular_velocity +=
-                self.spin_b[0] * impulse[0] + self.spin_b[1] * impulse[1];
+            states[self.body_b].angular_velocity += self.combine(&self.spin_b, impulse);
         }
     }
 }
