@@ -8,14 +8,16 @@
 //! the same corners are kept from step to step) instead of a manifold per triangle under it. Each
 //! point's id mixes the triangle's index into the id of its features, so warm starting follows a
 //! point as long as it stays on its triangle; the one point of a rounded shape (a sphere's lowest
-//! point) keeps its id across triangles, so a rolling ball keeps its impulse.
+//! point) keeps its id across triangles, so a rolling ball keeps its impulse. Two such points far
+//! apart are two places where the shape touches (a cylinder across a ridge, touching with both
+//! ends of its rim), and both are kept.
 
 use super::clipping::reduce_contacts_on_face;
 use super::feature_contact::DEEPEST_POINT_ID;
 use super::manifold::{ContactPoint, Manifold};
 use super::triangle_contact::collide_triangle;
 use crate::math::{Aabb, Pose, Vec3};
-use crate::shape::{Shape, Triangle};
+use crate::shape::{Shape, Triangle, ACTIVE_EDGE_ANGLE};
 
 /// Manifolds whose normals are within this cosine (1.8°) merge into one: coplanar triangles, and
 /// the gentle bends whose edges are not active (under 5°), give one surface.
@@ -97,7 +99,11 @@ impl MeshScratch {
                 self.manifolds.push((index, manifold));
             }
         }
-        self.merge();
+        // The one deepest point of a rounded shape, found by two triangles of a merged surface,
+        // lies under the shape within the sideways reach of a normal bent by up to
+        // `ACTIVE_EDGE_ANGLE` (`triangle_contact::holds_foot`), at most the shape's radius away.
+        let same_deepest = part.bounding_radius() * ACTIVE_EDGE_ANGLE.sin() + SAME_POINT_DISTANCE;
+        self.merge(same_deepest);
         let tangent_axis = mesh.pose.transform_vector(Vec3::X);
         for (group_index, group) in (0u32..).zip(&self.groups) {
             let points = &self.points[group.start..group.start + group.len];
@@ -107,14 +113,17 @@ impl MeshScratch {
                 .unwrap_or_else(|| normal.any_orthonormal_vector());
             emit(
                 group_index,
-                reduce_contacts_on_face(normal, tangent, points),
+                reduce_contacts_on_face(normal, tangent, points, true),
             );
         }
     }
 
     /// Groups `manifolds` by normal into `groups` and `points`, giving each point an id with its
-    /// triangle's index mixed in and merging points found twice.
-    fn merge(&mut self) {
+    /// triangle's index mixed in and merging points found twice: points within
+    /// [`SAME_POINT_DISTANCE`], and deepest points within `same_deepest`, m (of a rounded shape:
+    /// one point, whose id is kept); a deepest point farther from the group's is a point of its
+    /// own, with its triangle's index mixed into its id.
+    fn merge(&mut self, same_deepest: f32) {
         self.groups.clear();
         self.points.clear();
         let Self {
@@ -133,7 +142,9 @@ impl MeshScratch {
                     continue;
                 }
                 for point in manifold.points() {
-                    let id = if point.id == DEEPEST_POINT_ID {
+                    let id = if point.id == DEEPEST_POINT_ID
+                        && keeps_deepest_id(&points[start..], point, same_deepest)
+                    {
                         point.id
                     } else {
                         mix_id(*triangle, point.id)
@@ -159,6 +170,15 @@ impl MeshScratch {
             }
         }
     }
+}
+
+/// Whether the deepest point `point` keeps [`DEEPEST_POINT_ID`] in the group of `points`: it is
+/// the group's first deepest point, or its deepest point found again (within `same_deepest` of
+/// it), which [`add_point`] then merges with it.
+fn keeps_deepest_id(points: &[ContactPoint], point: &ContactPoint, same_deepest: f32) -> bool {
+    let mut deepest = points.iter().filter(|other| other.id == DEEPEST_POINT_ID);
+    deepest
+        .all(|other| other.position.distance_squared(point.position) <= same_deepest * same_deepest)
 }
 
 /// Adds `point` to the group starting at `start`, or, when the group holds a point within

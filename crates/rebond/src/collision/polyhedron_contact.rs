@@ -512,6 +512,7 @@ fn clipped_face_manifold<const CAPACITY: usize>(
         manifold_normal,
         tangent,
         &candidates[..count],
+        false,
     ))
 }
 

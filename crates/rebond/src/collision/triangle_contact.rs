@@ -15,6 +15,10 @@
 //!    rest on the same idea). The deepest point then sits under the shape's closest point, and is
 //!    left out when that foot lies off the triangle (the neighbour under it makes that point);
 //!    a shape beside or behind the plane there gets no contact.
+//!    Where the shape overlaps the triangle's plane and no point is left, the triangle still
+//!    holds the shape at the point of it nearest the foot (see [`nearest_hold`]): on a ridge too
+//!    gentle for an active edge, each of its two triangles finds the shape's deepest point over
+//!    the other, and without it neither would hold the shape up.
 //! 3. Points: the triangle's supporting feature (its face, an edge or a corner) and the shape's
 //!    are clipped against each other as for any convex pair
 //!    (`feature_contact::manifold_from_features`).
@@ -24,9 +28,10 @@ use super::feature_contact::{
     manifold_from_features, supporting_feature, Feature, DEEPEST_POINT_ID,
 };
 use super::gjk;
-use super::manifold::Manifold;
+use super::manifold::{ContactPoint, Manifold};
 use super::{PosedCore, SupportMap};
 use crate::math::{Pose, Vec3};
+use crate::query::line_entry;
 use crate::shape::{Shape, Triangle, ACTIVE_EDGE_ANGLE};
 
 /// A normal within this cosine of the face normal (0.8°) is taken as the face normal: closer
@@ -141,8 +146,39 @@ pub fn collide_triangle(
     );
     if !deepest_here {
         manifold.retain(|point| point.id != DEEPEST_POINT_ID);
+        if manifold.is_empty() && closest.is_none() {
+            if let Some(point) = nearest_hold(triangle, face, shape, pose, deepest.point_a, margin)
+            {
+                manifold.push(point);
+            }
+        }
     }
     (!manifold.is_empty()).then_some(manifold)
+}
+
+/// Where the triangle holds a shape overlapping its plane whose deepest point's `foot` lies off
+/// it, when nothing else does: at the triangle's point `q` nearest the foot (on its rim), the
+/// shape's surface straight above or below it along the face normal, as the deepest point, or
+/// `None` where the shape does not reach over `q` or is apart by more than `margin`. Across a
+/// ridge (a convex bend of under `ACTIVE_EDGE_ANGLE`, whose edge is not active), the two planes
+/// meet at the edge, so the depth there is the surface's: a cylinder lying across the ridge is
+/// held where it crosses it. A foot off a flat or concave edge is held by the neighbour under it,
+/// and this point, no deeper than that one, only joins it.
+fn nearest_hold(
+    triangle: &Triangle,
+    face: Vec3,
+    shape: &Shape,
+    pose: &Pose,
+    foot: Vec3,
+    margin: f32,
+) -> Option<ContactPoint> {
+    let (nearest, _) = triangle.closest_point(foot);
+    let separation = line_entry(shape, pose, nearest, face)?;
+    (separation <= margin).then(|| ContactPoint {
+        position: nearest + face * (0.5 * separation),
+        separation,
+        id: DEEPEST_POINT_ID,
+    })
 }
 
 /// Whether the point `foot` of the triangle's plane, under a point of the shape `distance` from

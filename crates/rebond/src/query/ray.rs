@@ -125,6 +125,17 @@ impl Crossing {
     }
 }
 
+/// Where the line `origin + t·direction` (world, unit direction) enters the convex `shape` placed
+/// at `pose` (not a compound, mesh or heightfield), as `t`, which is negative where `origin` lies
+/// inside; `None` where the line misses it. For the contacts of a shape with a triangle
+/// (`collision::triangle_contact`): how deep the shape reaches below a point of the triangle.
+pub(crate) fn line_entry(shape: &Shape, pose: &Pose, origin: Vec3, direction: Vec3) -> Option<f32> {
+    let local_origin = pose.inverse_transform_point(origin);
+    let local_direction = pose.inverse_transform_vector(direction);
+    let crossing = line_crossing(shape, local_origin, local_direction)?;
+    crossing.enter.is_finite().then_some(crossing.enter)
+}
+
 /// Where the line `origin + t·direction` (local frame, unit direction) crosses a convex shape.
 fn line_crossing(shape: &Shape, origin: Vec3, direction: Vec3) -> Option<Crossing> {
     match shape {

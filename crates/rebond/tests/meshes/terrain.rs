@@ -121,18 +121,34 @@ fn hills() -> (Vec<Vec<f32>>, Vec3) {
     (heights, Vec3::new(40.0, 1.0, 40.0))
 }
 
-/// The worst depth below the terrain of any body's lowest point over the whole run, and the
-/// fastest point speed (`|v| + |ω| r`) of any body over the last second, for 100 bodies of
-/// `shapes` (in turn) poured from 1 to 5 m above random points of the hills, sleeping off, run
-/// for 10 s.
-fn pour(shapes: &[Shape]) -> (f32, f32) {
+/// What one pour measured.
+struct Pour {
+    /// The worst depth below the terrain of any body's lowest point over the whole run, m.
+    deepest: f32,
+    /// The same over the last 5 s, once everything has landed, m.
+    deepest_settled: f32,
+    /// The fastest point speed (`|v| + |ω| r`) of any body over the last second, m/s.
+    fastest_at_rest: f32,
+    /// The first step after which every body stayed asleep, if they all fell asleep.
+    all_asleep_from: Option<usize>,
+}
+
+/// The rolling resistance given to the poured shapes, as the built-in `terrain` scene gives its
+/// balls, capsules and cylinders (flat-faced shapes have no rolling radius, so it does nothing to
+/// them): they rest on slopes up to atan 0.3 = 17°.
+const ROLLING_RESISTANCE: f32 = 0.3;
+
+/// 100 bodies of `shapes` (in turn) poured from 1 to 5 m above random points of the hills
+/// (generator seeded with `seed`), with rolling resistance `rolling_resistance` and sleeping on
+/// or off, run for 10 s.
+fn pour(shapes: &[Shape], seed: u64, rolling_resistance: f32, sleeping: bool) -> Pour {
     let (heights, scale) = hills();
     let terrain = HeightField::new(&heights, scale).unwrap();
     let mut world = world(Vec3::new(0.0, -G, 0.0));
     world
         .add_body(BodyDesc::static_body(Shape::HeightField(terrain.clone())).friction(0.7))
         .unwrap();
-    let mut rng = Random(15);
+    let mut rng = Random(seed);
     let mut bodies = Vec::new();
     for index in 0..100 {
         let (x, z) = (rng.range(-12.0, 12.0), rng.range(-12.0, 12.0));
@@ -143,31 +159,47 @@ fn pour(shapes: &[Shape]) -> (f32, f32) {
                     .position(Vec3::new(x, ground + 1.0 + rng.range(0.0, 4.0), z))
                     .rotation(Quat::from_rotation_arc(Vec3::Y, rng.unit_vector()))
                     .friction(0.7)
-                    .can_sleep(false),
+                    .rolling_resistance(rolling_resistance)
+                    .can_sleep(sleeping),
             )
             .unwrap();
         bodies.push(body);
     }
-    let (steps, window) = (600, 60);
-    let (mut deepest, mut fastest_at_rest) = (0.0f32, 0.0f32);
+    let (steps, settled, window) = (600, 300, 60);
+    let mut pour = Pour {
+        deepest: 0.0,
+        deepest_settled: 0.0,
+        fastest_at_rest: 0.0,
+        all_asleep_from: None,
+    };
     for step in 0..steps {
         world.step(DT).unwrap();
+        let mut all_asleep = true;
         for &handle in &bodies {
             let body = world.body(handle).unwrap();
+            all_asleep &= body.is_sleeping();
             let pose = body.pose();
             let down = pose.inverse_transform_vector(Vec3::NEG_Y);
             let lowest = pose.transform_point(body.shape().support(down).unwrap());
             if let Some(ground) = terrain.height_at(lowest.x, lowest.z) {
-                deepest = deepest.max(ground - lowest.y);
+                pour.deepest = pour.deepest.max(ground - lowest.y);
+                if step >= settled {
+                    pour.deepest_settled = pour.deepest_settled.max(ground - lowest.y);
+                }
             }
             if step >= steps - window {
                 let speed = body.linear_velocity().length()
                     + body.angular_velocity().length() * body.shape().bounding_radius();
-                fastest_at_rest = fastest_at_rest.max(speed);
+                pour.fastest_at_rest = pour.fastest_at_rest.max(speed);
             }
         }
+        if !all_asleep {
+            pour.all_asleep_from = None;
+        } else if pour.all_asleep_from.is_none() {
+            pour.all_asleep_from = Some(step);
+        }
     }
-    (deepest, fastest_at_rest)
+    pour
 }
 
 fn flat_faced_shapes() -> [Shape; 2] {
@@ -184,35 +216,142 @@ fn flat_faced_shapes() -> [Shape; 2] {
     ]
 }
 
-#[test]
-fn shapes_poured_on_terrain_never_sink_below_it() {
+/// The five shapes of the built-in `terrain` scene: ball, box, capsule, cylinder, hull.
+fn mixed_shapes() -> [Shape; 5] {
     let [cuboid, hull] = flat_faced_shapes();
-    let shapes = [
+    [
         Shape::sphere(0.3).unwrap(),
         cuboid,
         Shape::capsule(0.2, 0.3).unwrap(),
         Shape::cylinder(0.3, 0.2).unwrap(),
         hull,
-    ];
-    let (deepest, _) = pour(&shapes);
-    // 2.5 cm: the lowest point of a convex body resting on the surface lies on or above it, and
-    // a resting contact settles well under a millimetre deep; landing and tumbling bodies dip
-    // deeper for a step, most of all cylinders, whose caps are sampled at four rim points (the
-    // same pour on a box ground reads 1.7 cm, all of it a cylinder's; this one 2.1 cm, a
-    // cylinder tumbling at 0.35 m/s whose rim dips between its points). A body through the
-    // terrain would read its whole size.
-    assert!(deepest < 0.025, "a body sank {deepest} m below the surface");
+    ]
+}
+
+#[test]
+fn shapes_poured_on_terrain_never_sink_below_it() {
+    // Eight pours, sleeping off, so that every body is stepped and measured all along.
+    for seed in 1..=8 {
+        let pour = pour(&mixed_shapes(), seed, ROLLING_RESISTANCE, false);
+        // 2.5 cm while landing: a body falling at up to 10 m/s that lands on one corner or rim
+        // point turns in the next step by more than its manifold, which holds the features near
+        // that point, sees on its far side (a cylinder's far rim swings down by up to 9 cm in a
+        // step). Seeds 1 to 16 read at most 2.0 cm, all of it cylinders' and capsules' at
+        // landing; before the narrow phase held a shape across a gentle ridge (a rim over two
+        // bent triangles, each finding the deepest point over the other) and kept every point
+        // of a cap resting across bent triangles, they read up to 9.4 cm (seed 1). A body
+        // through the terrain would read its whole size.
+        assert!(
+            pour.deepest < 0.025,
+            "seed {seed}: a body sank {} m below the surface",
+            pour.deepest
+        );
+        // 2 mm once landed (the last 5 s): the lowest point of a convex body resting on the
+        // surface lies on or above it, and a resting contact settles well under a millimetre
+        // deep (seeds 1 to 16: at most 0.7 mm).
+        assert!(
+            pour.deepest_settled < 0.002,
+            "seed {seed}: a landed body sank {} m below the surface",
+            pour.deepest_settled
+        );
+    }
+}
+
+#[test]
+fn shapes_poured_on_terrain_come_to_rest() {
+    // Balls, capsules and cylinders with the rolling resistance of the built-in scene, boxes and
+    // hulls held by friction: every body asleep by 8 s (seeds 1 to 16: all asleep by step 460,
+    // 7.7 s; without rolling resistance the round ones roll on in the bowls for ever, and
+    // cylinders standing on a cap across bent triangles rocked on at 1 to 6 cm/s).
+    for seed in 1..=4 {
+        let pour = pour(&mixed_shapes(), seed, ROLLING_RESISTANCE, true);
+        let asleep_from = pour.all_asleep_from.unwrap_or(usize::MAX);
+        assert!(
+            asleep_from < 480,
+            "seed {seed}: all asleep only from step {asleep_from}"
+        );
+    }
 }
 
 #[test]
 fn flat_faced_shapes_poured_on_terrain_come_to_rest() {
-    // Balls, capsules and cylinders roll on down any slope (the engine has no rolling
-    // resistance), so resting is asked of boxes and hulls, which friction holds on the hills.
-    let (deepest, fastest_at_rest) = pour(&flat_faced_shapes());
-    assert!(deepest < 0.02, "a body sank {deepest} m below the surface");
-    // 1 cm/s over the last second with sleeping off: resting bodies, no creeping or jitter.
+    // Sleeping off: resting bodies, no creeping or jitter.
+    let pour = pour(&flat_faced_shapes(), 15, 0.0, false);
     assert!(
-        fastest_at_rest < 0.01,
-        "a body still moved at {fastest_at_rest} m/s in the last second"
+        pour.deepest < 0.02,
+        "a body sank {} m below the surface",
+        pour.deepest
     );
+    // 1 cm/s over the last second with sleeping off.
+    assert!(
+        pour.fastest_at_rest < 0.01,
+        "a body still moved at {} m/s in the last second",
+        pour.fastest_at_rest
+    );
+}
+
+#[test]
+fn a_cylinder_lying_across_a_gentle_ridge_is_held_on_the_ridge() {
+    // A roof: two planes falling 2° away from the ridge x = 0, bent by 4°, under the 5° of an
+    // active edge and over the 1.8° within which the two faces' manifolds merge. A cylinder
+    // lying on its side across the ridge touches the faces only along the ridge line: each face
+    // finds the cylinder's deepest point (along its own normal) over the other face, and drops
+    // it, and the line's crossings of the ridge are dropped as points of an inactive edge. Each
+    // face now holds the cylinder at its point nearest that foot, on the ridge, at the depth
+    // there. Before, it sank 5.2 mm lying square across the ridge and 3.6 mm at 0.7 rad.
+    let slope = 2.0f32.to_radians().tan();
+    let (samples, size) = (41, 8.0);
+    let heights: Vec<Vec<f32>> = (0..samples)
+        .map(|_| {
+            (0..samples)
+                .map(|j| -((j as f32 / (samples - 1) as f32 - 0.5) * size).abs() * slope)
+                .collect()
+        })
+        .collect();
+    let terrain = HeightField::new(&heights, Vec3::new(size, 1.0, size)).unwrap();
+    let (radius, half_height) = (0.3, 0.2);
+    for yaw in [0.0f32, 0.7] {
+        let mut world = world(Vec3::new(0.0, -G, 0.0));
+        world
+            .add_body(BodyDesc::static_body(Shape::HeightField(terrain.clone())).friction(0.7))
+            .unwrap();
+        let on_side = Quat::from_rotation_z(std::f32::consts::FRAC_PI_2);
+        let cylinder = world
+            .add_body(
+                BodyDesc::dynamic(Shape::cylinder(radius, half_height).unwrap())
+                    .position(Vec3::new(0.05, radius + 0.01, 0.1))
+                    .rotation(Quat::from_rotation_y(yaw) * on_side)
+                    .friction(0.7)
+                    .can_sleep(false),
+            )
+            .unwrap();
+        // The deepest of 64 × 5 points of its round side below the surface, after landing.
+        let mut deepest = 0.0f32;
+        for step in 0..240 {
+            world.step(DT).unwrap();
+            let pose = world.body(cylinder).unwrap().pose();
+            for k in 0..64 {
+                let angle = k as f32 / 64.0 * std::f32::consts::TAU;
+                for along in [-1.0f32, -0.5, 0.0, 0.5, 1.0] {
+                    let local = Vec3::new(
+                        radius * angle.cos(),
+                        along * half_height,
+                        radius * angle.sin(),
+                    );
+                    let point = pose.transform_point(local);
+                    if let Some(ground) = terrain.height_at(point.x, point.z) {
+                        if step >= 20 {
+                            deepest = deepest.max(ground - point.y);
+                        }
+                    }
+                }
+            }
+        }
+        // 2 mm: measured 0.0 mm square across and 1.1 mm at 0.7 rad. (At 0.3 rad it still
+        // sinks 4.7 mm, 5.2 mm before: a case this does not reach, left for later.)
+        assert!(
+            deepest < 0.002,
+            "yaw {yaw}: the cylinder sank {deepest} m below the ridge"
+        );
+    }
 }
