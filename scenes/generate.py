@@ -655,8 +655,14 @@ def terrain_height(u, v):
             + 0.6 * math.sin(u * 5.0 + v * 7.0) + bowl)
 
 
+# Rolling resistance of the terrain's balls, capsules and cylinders: they rest on slopes up to
+# atan 0.3 = 17 degrees and come to rest in the hollows instead of rolling on for ever.
+TERRAIN_ROLLING_RESISTANCE = 0.3
+
+
 def terrain():
-    """500 mixed shapes poured on hilly terrain: a 256 x 256 heightfield over 128 m x 128 m."""
+    """500 mixed shapes poured on hilly terrain: a 256 x 256 heightfield over 128 m x 128 m; the
+    round ones with rolling resistance."""
     samples = 256
     size = 128.0
     heights = [[round(terrain_height(j / (samples - 1), i / (samples - 1)), 3)
@@ -672,11 +678,15 @@ def terrain():
         ground = terrain_height(u, v)
         position = [(u - 0.5) * size, ground + 2.0 + 10.0 * rng.next(), (v - 0.5) * size]
         axis = normalized([rng.symmetric(1.0), rng.symmetric(1.0), rng.symmetric(1.0) + 0.01])
-        bodies.append({
-            "name": f"shape_{index}", "shape": mixed_shape(index, rng),
+        shape = mixed_shape(index, rng)
+        body = {
+            "name": f"shape_{index}", "shape": shape,
             "position": rounded(position), "rotation": rounded(axis_angle(axis, rng.next() * 6.0)),
             "friction": 0.7,
-        })
+        }
+        if shape["type"] in ("sphere", "capsule", "cylinder"):
+            body["rolling_resistance"] = TERRAIN_ROLLING_RESISTANCE
+        bodies.append(body)
     write_scene("terrain.json", bodies, compact=True)
 
 
