@@ -264,6 +264,12 @@ fn values_out_of_range_are_refused() {
         "must not be negative, got -0.1",
     );
     assert_refused(
+        "negative_rolling_resistance",
+        &scene_with(&format!(r#"{{{BALL}, "rolling_resistance": -0.1}}"#)),
+        "bodies[1].rolling_resistance",
+        "must not be negative, got -0.1",
+    );
+    assert_refused(
         "negative_linear_damping",
         &scene_with(&format!(r#"{{{BALL}, "linear_damping": -1}}"#)),
         "bodies[1].linear_damping",

@@ -410,7 +410,7 @@ pub fn reduce_contacts(normal: Vec3, candidates: &[ContactPoint]) -> Manifold {
 /// point nearest it moves onto it (position and separation), keeping its id: the manifold reaches
 /// the full depth and its set of ids stays the same. On a `bent` surface (triangles of a mesh
 /// merged into one manifold, not quite coplanar), so do, after it, the dropped points that
-/// penetrate deeper than every kept point not yet moved ([`reach_deepest`]).
+/// penetrate deeper than every kept point not yet moved (`reach_deepest`).
 pub fn reduce_contacts_on_face(
     normal: Vec3,
     tangent: Vec3,

@@ -16,7 +16,7 @@
 //!    left out when that foot lies off the triangle (the neighbour under it makes that point);
 //!    a shape beside or behind the plane there gets no contact.
 //!    Where the shape overlaps the triangle's plane and no point is left, the triangle still
-//!    holds the shape at the point of it nearest the foot (see [`nearest_hold`]): on a ridge too
+//!    holds the shape at the point of it nearest the foot (`nearest_hold`): on a ridge too
 //!    gentle for an active edge, each of its two triangles finds the shape's deepest point over
 //!    the other, and without it neither would hold the shape up.
 //! 3. Points: the triangle's supporting feature (its face, an edge or a corner) and the shape's
