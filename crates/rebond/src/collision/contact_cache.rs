@@ -444,6 +444,7 @@ impl ContactCache {
                         .all(|impulse| (0.0..=MAX_SOLVER_IMPULSE).contains(impulse))
                     && contact.friction_impulse.abs().max_element() <= 2.0 * MAX_SOLVER_IMPULSE
                     && contact.twist_impulse.abs() <= MAX_SOLVER_IMPULSE
+                    && contact.rolling_impulse.length() <= MAX_SOLVER_IMPULSE
                     && contact.patch_radius_ratio.is_finite()
                     && manifold.len() <= MAX_MANIFOLD_POINTS
                     && manifold

@@ -90,9 +90,14 @@ fn check_body(body: &RigidBody) -> Result<(), String> {
         ]
         .iter()
         .all(|value| value.is_finite() && *value >= 0.0);
-    let in_range = [body.linear_damping, body.angular_damping, body.friction]
-        .iter()
-        .all(|value| value.is_finite() && *value >= 0.0)
+    let in_range = [
+        body.linear_damping,
+        body.angular_damping,
+        body.friction,
+        body.rolling_resistance,
+    ]
+    .iter()
+    .all(|value| value.is_finite() && *value >= 0.0)
         && (0.0..=1.0).contains(&body.restitution)
         && body.contact_force_threshold >= 0.0
         && body.linear_velocity.length() <= MAX_SPEED * LIMIT_ROUNDING
