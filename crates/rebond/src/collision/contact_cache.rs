@@ -63,6 +63,19 @@ impl ManifoldFrame {
         }
     }
 
+    /// Whether every value is finite.
+    fn is_finite(&self) -> bool {
+        let solver = &self.solver;
+        let points = self.local_points.iter().flatten();
+        [self.local_normal, solver.normal, solver.centers]
+            .iter()
+            .chain(points)
+            .chain(&solver.arms)
+            .all(|vector| vector.is_finite())
+            && self.relative_pose.position.is_finite()
+            && self.relative_pose.rotation.is_finite()
+    }
+
     /// Whether B's pose relative to A is still within the recycling tolerances.
     fn still_fits(&self, relative_pose: &Pose) -> bool {
         let moved = relative_pose
@@ -446,6 +459,7 @@ impl ContactCache {
                     && contact.twist_impulse.abs() <= MAX_SOLVER_IMPULSE
                     && contact.rolling_impulse.length() <= MAX_SOLVER_IMPULSE
                     && contact.patch_radius_ratio.is_finite()
+                    && contact.frame.is_finite()
                     && manifold.len() <= MAX_MANIFOLD_POINTS
                     && manifold
                         .points()

@@ -22,6 +22,7 @@
 use super::contact_lanes::{ContactLanes, LaneContact};
 use super::{BodyMotion, BodyState};
 use crate::collision::contact_cache::Contact;
+use crate::limits::MAX_SOLVER_IMPULSE;
 use crate::math::{Mat3, Vec3, Vec3A};
 
 /// The rolling resistance of one contact.
@@ -150,9 +151,16 @@ impl RollingConstraints {
     pub fn store_impulses(&self, contacts: &mut [Contact]) {
         for constraint in &self.constraints {
             if let Some(contact) = contacts.get_mut(constraint.contact) {
-                contact.rolling_impulse = constraint
+                let impulse: Vec3 = constraint
                     .combine(&constraint.axes, constraint.impulse)
                     .into();
+                // As for the other impulses (`contact_lanes.rs`): past what bodies within the
+                // limits exchange, not kept to warm-start from.
+                contact.rolling_impulse = if impulse.length() <= MAX_SOLVER_IMPULSE {
+                    impulse
+                } else {
+                    Vec3::ZERO
+                };
             }
         }
     }
