@@ -13,27 +13,38 @@ mod common;
 
 use common::{add_ground, add_incline, world, DT, G};
 use rebond::scene::Scene;
-use rebond::{BodyDesc, CompoundChild, Pose, Quat, Shape, Vec3};
+use rebond::{BodyDesc, BodyHandle, CompoundChild, Pose, Quat, Shape, Vec3, World};
 
 const RADIUS: f32 = 0.5;
 
-#[test]
-fn a_rolling_ball_slows_at_five_sevenths_c_g_and_stops_where_the_closed_form_says() {
-    let (launch, resistance) = (3.0, 0.1);
+/// A ball of radius [`RADIUS`] and rolling resistance `resistance` on the ground (friction 0.8,
+/// both), moving at `velocity` and turning at `spin`, sleeping off.
+fn ball_on_ground(velocity: Vec3, spin: Vec3, resistance: f32) -> (World, BodyHandle) {
     let mut world = world(Vec3::new(0.0, -G, 0.0));
-    // Friction 0.8: rolling with the resistance asks `5/7 c` = 0.07 of the normal force.
     add_ground(&mut world, 0.8);
     let ball = world
         .add_body(
             BodyDesc::dynamic(Shape::sphere(RADIUS).unwrap())
                 .position(Vec3::new(0.0, RADIUS, 0.0))
-                .linear_velocity(Vec3::new(launch, 0.0, 0.0))
-                .angular_velocity(Vec3::new(0.0, 0.0, -launch / RADIUS))
+                .linear_velocity(velocity)
+                .angular_velocity(spin)
                 .friction(0.8)
                 .rolling_resistance(resistance)
                 .can_sleep(false),
         )
         .unwrap();
+    (world, ball)
+}
+
+#[test]
+fn a_rolling_ball_slows_at_five_sevenths_c_g_and_stops_where_the_closed_form_says() {
+    let (launch, resistance) = (3.0, 0.1);
+    // Friction 0.8: rolling with the resistance asks `5/7 c` = 0.07 of the normal force.
+    let (mut world, ball) = ball_on_ground(
+        Vec3::new(launch, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -launch / RADIUS),
+        resistance,
+    );
     let deceleration = 5.0 / 7.0 * resistance * G;
     let stop_time = launch / deceleration;
     let stop_distance = launch * launch / (2.0 * deceleration);
@@ -218,18 +229,7 @@ fn a_ball_spinning_in_place_about_the_vertical_stops_at_the_same_bound() {
     // resists that spin too, with the torque `c r m g`: `I ω̇ = −c r m g`, `I = 2/5 m r²`, so
     // `ω̇ = −(5/2) c g / r` = 4.9 rad/s² for c = 0.1, r = 0.5 m, and 5 rad/s stops at 1.02 s.
     let (spin, resistance) = (5.0, 0.1);
-    let mut world = world(Vec3::new(0.0, -G, 0.0));
-    add_ground(&mut world, 0.8);
-    let ball = world
-        .add_body(
-            BodyDesc::dynamic(Shape::sphere(RADIUS).unwrap())
-                .position(Vec3::new(0.0, RADIUS, 0.0))
-                .angular_velocity(Vec3::new(0.0, spin, 0.0))
-                .friction(0.8)
-                .rolling_resistance(resistance)
-                .can_sleep(false),
-        )
-        .unwrap();
+    let (mut world, ball) = ball_on_ground(Vec3::ZERO, Vec3::new(0.0, spin, 0.0), resistance);
     let rate = 2.5 * resistance * G / RADIUS;
     for _ in 0..30 {
         world.step(DT).unwrap();

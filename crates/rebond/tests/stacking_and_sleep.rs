@@ -161,17 +161,22 @@ fn a_column_leans_under_a_torque_as_its_contact_springs_and_gravity_give() {
     );
 }
 
-#[test]
-fn a_twenty_row_pyramid_stands_for_ten_seconds() {
+/// A flat pyramid of unit boxes, `rows` on the ground (friction 0.6) down to one at the top.
+fn flat_pyramid(rows: usize) -> (World, Vec<(BodyHandle, Vec3)>) {
     let mut world = world(Vec3::new(0.0, -G, 0.0));
     add_ground(&mut world, 0.6);
-    let rows = 20;
     let positions = (0..rows).flat_map(|row| {
         let count = rows - row;
         (0..count)
             .map(move |i| Vec3::new(i as f32 - 0.5 * (count - 1) as f32, 0.5 + row as f32, 0.0))
     });
     let boxes = add_boxes(&mut world, positions);
+    (world, boxes)
+}
+
+#[test]
+fn a_twenty_row_pyramid_stands_for_ten_seconds() {
+    let (mut world, boxes) = flat_pyramid(20);
     assert_eq!(boxes.len(), 210);
     let drift = largest_drift(&mut world, &boxes, 10.0);
     assert!(drift < 0.05, "a box moved {drift} m");
@@ -266,15 +271,7 @@ fn a_forty_box_column_stands_at_four_substeps_on_soft_springs() {
 #[ignore = "5,050 boxes for 1,000 steps; run with \
             `cargo test --release -p rebond --test stacking_and_sleep -- --ignored`"]
 fn a_hundred_row_flat_pyramid_stands_at_the_default_substeps() {
-    let mut world = world(Vec3::new(0.0, -G, 0.0));
-    add_ground(&mut world, 0.6);
-    let rows = 100;
-    let positions = (0..rows).flat_map(|row| {
-        let count = rows - row;
-        (0..count)
-            .map(move |i| Vec3::new(i as f32 - 0.5 * (count - 1) as f32, 0.5 + row as f32, 0.0))
-    });
-    let boxes = add_boxes(&mut world, positions);
+    let (mut world, boxes) = flat_pyramid(100);
     let drift = largest_drift(&mut world, &boxes, 1000.0 * DT);
     assert!(drift < 0.10, "a box moved {drift} m");
 }
