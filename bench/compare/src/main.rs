@@ -5,8 +5,16 @@
 //! first from one round to the next, and collects each child's `RESULT` line: median step time,
 //! peak memory (VmHWM of the child) and stability figures. It prints a table, then one line per
 //! scene in the form `SCENE ratio=R rebond_ms=A rapier_ms=B rebond_mb=C rapier_mb=D`, followed
-//! by `rebond_gap_m=G rapier_gap_m=H` (the largest joint gap over the run) for scenes with joints,
-//! and by each engine's `*_surface_depth_m`, `*_end_surface_depth_m` and `*_moving` for the piles.
+//! by each engine's `*_drift_m` and `*_sink_m` for the stacks, by `rebond_gap_m=G rapier_gap_m=H`
+//! (the largest joint gap over the run) for scenes with joints, and by each engine's
+//! `*_surface_depth_m`, `*_end_surface_depth_m` and `*_moving` for the piles.
+//!
+//! The stacks' figures: *drift*, the largest distance of any dynamic body from its start position
+//! after any step; *sink*, the largest drop below its start height after any step of the top body
+//! (`column`, `column40`) or of any body (the pyramids) ([`scenes::Sink`]).
+//!
+//! `COMPARE_REBOND_SUBSTEPS=N` runs rebond at N substeps instead of [`SUBSTEPS`] (rapier keeps
+//! [`SUBSTEPS`]); the `RESULT` line gives each engine's `substeps`.
 //!
 //! Every scene is described once, engine-neutrally ([`scenes::Scene`]), and built from that
 //! description in each engine, so shapes, sizes, masses, poses and materials are the same by
@@ -40,7 +48,7 @@ use measure::{alternate, median, ms, peak_memory_mib, thread_cpu_ms};
 use rapier_engine::RapierEngine;
 use rays::{run_rays, RAY_ROUNDS};
 use rebond_engine::RebondEngine;
-use scenes::{build_scene, FRICTION, RESTITUTION, SUBSTEPS};
+use scenes::{build_scene, rebond_substeps, Sink, FRICTION, RESTITUTION, SUBSTEPS};
 use surface::Surface;
 
 /// Steps at the start of each run left out of the timing (still simulated and checked).
@@ -51,6 +59,7 @@ const SCENES: &[(&str, usize, usize)] = &[
     ("pyramid", 600, 5),
     ("rain", 300, 5),
     ("column", 600, 5),
+    ("column40", 600, 5),
     ("many_pyramids", 300, 5),
     ("large_pyramid", 300, 5),
     ("mixed", 300, 5),
@@ -120,6 +129,7 @@ fn run_child(engine_name: &str, scene_name: &str, steps: usize) {
     let mut times = Vec::with_capacity(steps);
     let mut wall_times = Vec::with_capacity(steps);
     let mut max_drift = 0.0f32;
+    let mut max_sink = 0.0f32;
     let mut deepest = 0.0f32;
     let mut deepest_reeval = 0.0f32;
     let mut max_gap = 0.0f32;
@@ -158,6 +168,7 @@ fn run_child(engine_name: &str, scene_name: &str, steps: usize) {
             .sqrt();
             max_drift = max_drift.max(d);
         }
+        max_sink = max_sink.max(scene.sink.drop(&start, &current));
         if let Some(surface) = &surface {
             engine.rotations(&mut rotations);
             surface_depth = surface_depth.max(surface.deepest(&current, &rotations));
@@ -165,8 +176,8 @@ fn run_child(engine_name: &str, scene_name: &str, steps: usize) {
         if trace > 0 && (step + 1) % trace == 0 {
             let top = current.iter().map(|p| p[1]).fold(f32::MIN, f32::max);
             eprintln!(
-                "step {:>5}  {elapsed:>8.3} ms  drift {max_drift:.4} m  deepest {:.4} m  \
-                 highest {top:.3} m  max speed {:.3} m/s  contacts {}  joint gap {:.4} m",
+                "step {:>5}  {elapsed:>8.3} ms  drift {max_drift:.4} m  sink {max_sink:.4} m  \
+                 deepest {:.4} m  highest {top:.3} m  max speed {:.3} m/s  contacts {}  joint gap {:.4} m",
                 step + 1,
                 -deepest,
                 engine.max_speed(),
@@ -211,14 +222,20 @@ fn run_child(engine_name: &str, scene_name: &str, steps: usize) {
     let end_speed = engine.max_speed();
     let contacts = engine.contact_points();
     let mb = peak_memory_mib();
+    let substeps = if is_rapier {
+        SUBSTEPS
+    } else {
+        rebond_substeps()
+    };
     println!(
-        "RESULT engine={engine_name} scene={scene_name} bodies={body_count} steps={steps} \
+        "RESULT engine={engine_name} scene={scene_name} bodies={body_count} steps={steps} substeps={substeps} \
          median_ms={median_ms:.4} wall_median_ms={wall_median_ms:.4} mean_ms={mean_ms:.4} p90_ms={p90_ms:.4} max_ms={max_ms:.4} \
-         build_ms={build_ms:.1} mb={mb:.1} drift_m={} penetration_m={:.5} reeval_penetration_m={} \
+         build_ms={build_ms:.1} mb={mb:.1} drift_m={} sink_m={} penetration_m={:.5} reeval_penetration_m={} \
          end_max_speed={end_speed:.3} end_max_height={max_height:.3} escaped={escaped} \
          non_finite={non_finite} contacts={contacts} joints={} joint_gap_m={} sag_m={} \
          surface_depth_m={} end_surface_depth_m={} end_moving={}",
         if scene.is_stack { format!("{max_drift:.5}") } else { "-".to_string() },
+        if scene.sink == Sink::None { "-".to_string() } else { format!("{max_sink:.5}") },
         0.0 - deepest,
         if is_rapier { format!("{:.5}", 0.0 - deepest_reeval) } else { "-".to_string() },
         scene.joints.len(),
@@ -265,8 +282,12 @@ impl Run {
 fn run_driver(only: &[String], rounds_override: Option<usize>, steps_override: Option<usize>) {
     let exe = std::env::current_exe().expect("own path");
     let started = Instant::now();
+    let substeps = match rebond_substeps() {
+        SUBSTEPS => format!("{SUBSTEPS} substeps"),
+        other => format!("{SUBSTEPS} substeps (rebond {other})"),
+    };
     println!(
-        "rebond vs rapier3d {}: dt = 1/60 s, {SUBSTEPS} substeps, sleeping off, one thread, \
+        "rebond vs rapier3d {}: dt = 1/60 s, {substeps}, sleeping off, one thread, \
          friction {FRICTION}, restitution {RESTITUTION}; ms/step = median thread CPU time per step \
          (wall-clock median alongside), first {WARMUP_STEPS} steps not timed",
         rapier3d::VERSION
@@ -354,9 +375,9 @@ fn run_driver(only: &[String], rounds_override: Option<usize>, steps_override: O
     }
     println!();
     println!(
-        "| scene | engine | max drift m | deepest penetration m | rapier re-evaluated m | below surface, deepest / at end m | end max speed m/s | moving at end | end max height m | escaped | max joint gap m | middle plank sag m | cpu mean / p90 / max ms | build ms | contact points at end |"
+        "| scene | engine | max drift m | max sink m | deepest penetration m | rapier re-evaluated m | below surface, deepest / at end m | end max speed m/s | moving at end | end max height m | escaped | max joint gap m | middle plank sag m | cpu mean / p90 / max ms | build ms | contact points at end |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (scene, _, _, runs) in &summary {
         for (e, engine_runs) in runs.iter().enumerate() {
             // Stability figures come from the first round; every round runs the same scene and
@@ -364,14 +385,16 @@ fn run_driver(only: &[String], rounds_override: Option<usize>, steps_override: O
             let r = &engine_runs[0];
             let same = engine_runs.iter().all(|o| {
                 o.get("drift_m") == r.get("drift_m")
+                    && o.get("sink_m") == r.get("sink_m")
                     && o.get("penetration_m") == r.get("penetration_m")
                     && o.get("joint_gap_m") == r.get("joint_gap_m")
                     && o.get("surface_depth_m") == r.get("surface_depth_m")
             });
             println!(
-                "| {scene} | {} | {} | {} | {} | {} / {} | {} | {} | {} | {}{} | {} | {} | {} / {} / {} | {:.0} | {} |",
+                "| {scene} | {} | {} | {} | {} | {} | {} / {} | {} | {} | {} | {}{} | {} | {} | {} / {} / {} | {:.0} | {} |",
                 ENGINES[e],
                 r.get("drift_m"),
+                r.get("sink_m"),
                 r.get("penetration_m"),
                 r.get("reeval_penetration_m"),
                 r.get("surface_depth_m"),
@@ -395,7 +418,7 @@ fn run_driver(only: &[String], rounds_override: Option<usize>, steps_override: O
             );
             if !same {
                 println!(
-                    "|   | {} | (stability figures differ between rounds) | | | | | | | | | | | | |",
+                    "|   | {} | (stability figures differ between rounds) | | | | | | | | | | | | | |",
                     ENGINES[e]
                 );
             }
@@ -406,6 +429,15 @@ fn run_driver(only: &[String], rounds_override: Option<usize>, steps_override: O
     println!();
     for (scene, _, _, runs) in &summary {
         let (a, b) = (med(&runs[0], "median_ms"), med(&runs[1], "median_ms"));
+        let stack = match runs[0][0].get("drift_m") {
+            "-" => String::new(),
+            drift => format!(
+                " rebond_drift_m={drift} rapier_drift_m={} rebond_sink_m={} rapier_sink_m={}",
+                runs[1][0].get("drift_m"),
+                runs[0][0].get("sink_m"),
+                runs[1][0].get("sink_m"),
+            ),
+        };
         let gaps = match runs[0][0].get("joint_gap_m") {
             "-" => String::new(),
             gap => format!(
@@ -427,7 +459,7 @@ fn run_driver(only: &[String], rounds_override: Option<usize>, steps_override: O
             ),
         };
         println!(
-            "{scene} ratio={:.3} rebond_ms={a:.3} rapier_ms={b:.3} rebond_mb={:.1} rapier_mb={:.1}{gaps}{surface}",
+            "{scene} ratio={:.3} rebond_ms={a:.3} rapier_ms={b:.3} rebond_mb={:.1} rapier_mb={:.1}{stack}{gaps}{surface}",
             a / b,
             med(&runs[0], "mb"),
             med(&runs[1], "mb"),

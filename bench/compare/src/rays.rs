@@ -4,7 +4,7 @@
 use crate::measure::{alternate, median, ms, thread_cpu_ms};
 use crate::rapier_engine::RapierEngine;
 use crate::rebond_engine::RebondEngine;
-use crate::scenes::{fixed_box, Jitter, Scene};
+use crate::scenes::{fixed_box, Jitter, Scene, Sink};
 use crate::Engine;
 
 /// Number of boxes in the ray scene, and of rays cast per round.
@@ -62,6 +62,7 @@ fn ray_scene() -> (Scene, Vec<RaySpec>) {
             bodies,
             joints: Vec::new(),
             is_stack: false,
+            sink: Sink::None,
             sag_body: None,
         },
         rays,

@@ -1,6 +1,8 @@
 //! Building and stepping the scenes in rebond, and its stability figures.
 
-use crate::scenes::{JointKind, Scene, ShapeSpec, DT, FRICTION, GRAVITY, RESTITUTION, SUBSTEPS};
+use crate::scenes::{
+    rebond_substeps, JointKind, Scene, ShapeSpec, DT, FRICTION, GRAVITY, RESTITUTION,
+};
 use crate::Engine;
 
 pub fn rebond_shape(shape: &ShapeSpec) -> rebond::Shape {
@@ -41,7 +43,7 @@ impl RebondEngine {
         use rebond::{BodyDesc, JointDesc, Quat, Vec3, World, WorldSettings};
         let mut world = World::new(WorldSettings {
             gravity: Vec3::new(0.0, GRAVITY, 0.0),
-            substeps: SUBSTEPS,
+            substeps: rebond_substeps(),
             ..WorldSettings::default()
         })
         .expect("settings");

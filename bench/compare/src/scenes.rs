@@ -9,6 +9,15 @@ use std::f32::consts::FRAC_PI_2;
 pub const DT: f32 = 1.0 / 60.0;
 /// Substeps per step (rebond `substeps`, rapier `num_solver_iterations`).
 pub const SUBSTEPS: u32 = 4;
+
+/// rebond's substeps: [`SUBSTEPS`], unless `COMPARE_REBOND_SUBSTEPS` sets another count (to run
+/// rebond alone at, say, its default 8; rapier keeps [`SUBSTEPS`]).
+pub fn rebond_substeps() -> u32 {
+    std::env::var("COMPARE_REBOND_SUBSTEPS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(SUBSTEPS)
+}
 /// Gravity along −Y, m/s².
 pub const GRAVITY: f32 = -9.81;
 /// Friction coefficient of every body, both engines.
@@ -84,11 +93,46 @@ pub struct JointSpec {
     pub axis: [f32; 3],
 }
 
+/// Which dynamic bodies the sink figure of a stack watches.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Sink {
+    /// Not a stack: no sink figure.
+    None,
+    /// The top body of a column (the last dynamic body, in scene order).
+    Top,
+    /// Every dynamic body (pyramids).
+    Any,
+}
+
+impl Sink {
+    /// The largest drop below its start height of a watched body, m (0 when none is below its
+    /// start): `max(start_y - y)` over the watched bodies, clamped at 0. `start` and `current`
+    /// are the dynamic bodies' positions, in scene order; non-finite positions are skipped.
+    pub fn drop(self, start: &[[f32; 3]], current: &[[f32; 3]]) -> f32 {
+        let pairs = current.len().min(start.len());
+        let skip = match self {
+            Sink::None => return 0.0,
+            Sink::Top => pairs.saturating_sub(1),
+            Sink::Any => 0,
+        };
+        current
+            .iter()
+            .zip(start)
+            .skip(skip)
+            .filter(|(now, _)| now[1].is_finite())
+            .map(|(now, then)| then[1] - now[1])
+            .fold(0.0, f32::max)
+    }
+}
+
 pub struct Scene {
     pub bodies: Vec<BodySpec>,
     pub joints: Vec<JointSpec>,
     /// Whether the largest drift of a dynamic body from its start is a meaningful figure.
     pub is_stack: bool,
+    /// The stacks' sink: the largest drop below its start height over the run of the top body
+    /// (columns) or of any body (pyramids).
+    pub sink: Sink,
     /// A dynamic body (index among the dynamic bodies, in scene order) whose drop below its start
     /// height at the end of the run is reported: the bridge's middle plank.
     pub sag_body: Option<usize>,
@@ -192,10 +236,11 @@ pub fn build_scene(name: &str) -> Scene {
             grid.fill(&mut bodies, &[unit_box()], |_, _| 0.0);
             false
         }
-        // 20 boxes stacked.
-        "column" => {
+        // 20 boxes stacked; `column40`: 40.
+        "column" | "column40" => {
             bodies.push(ground(10.0, 10.0));
-            for layer in 0..20 {
+            let height = if name == "column40" { 40 } else { 20 };
+            for layer in 0..height {
                 bodies.push(dynamic(
                     unit_box(),
                     [0.0, 0.5 + layer as f32, 0.0],
@@ -330,10 +375,16 @@ pub fn build_scene(name: &str) -> Scene {
         }
         other => panic!("unknown scene {other:?}"),
     };
+    let sink = match name {
+        "column" | "column40" => Sink::Top,
+        _ if is_stack => Sink::Any,
+        _ => Sink::None,
+    };
     Scene {
         bodies,
         joints,
         is_stack,
+        sink,
         sag_body,
     }
 }
@@ -659,4 +710,46 @@ pub fn bumpy_mesh() -> ShapeSpec {
         }
     }
     ShapeSpec::TriMesh { vertices, indices }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{build_scene, ShapeSpec, Sink};
+
+    /// `column40` is `column` twice as tall: unit boxes 1 m apart, the lowest on the ground's top
+    /// (y = 0); the sink watches the top box of both, every box of the pyramids.
+    #[test]
+    fn column40_is_a_taller_column() {
+        for (name, height) in [("column", 20), ("column40", 40)] {
+            let scene = build_scene(name);
+            let boxes: Vec<_> = scene.bodies.iter().filter(|body| !body.fixed).collect();
+            assert_eq!(boxes.len(), height, "{name}");
+            for (layer, body) in boxes.iter().enumerate() {
+                assert!(matches!(body.shape, ShapeSpec::Cuboid([0.5, 0.5, 0.5])));
+                assert_eq!(body.position, [0.0, 0.5 + layer as f32, 0.0], "{name}");
+                assert_eq!(body.rotation, [0.0; 3]);
+            }
+            assert!(scene.is_stack);
+            assert_eq!(scene.sink, Sink::Top, "{name}");
+        }
+        for name in ["pyramid", "many_pyramids", "large_pyramid"] {
+            assert_eq!(build_scene(name).sink, Sink::Any, "{name}");
+        }
+        assert_eq!(build_scene("rain").sink, Sink::None);
+    }
+
+    /// The sink is the largest drop below the start height of the watched bodies, never
+    /// negative; rising and sideways moves do not count, non-finite positions are skipped.
+    #[test]
+    fn sink_is_the_largest_drop() {
+        let start = [[0.0, 0.5, 0.0], [0.0, 1.5, 0.0], [0.0, 2.5, 0.0]];
+        let current = [[0.3, 0.2, 0.0], [0.0, 1.4, 0.0], [0.0, 2.45, 0.0]];
+        assert!((Sink::Top.drop(&start, &current) - 0.05).abs() < 1e-6);
+        assert!((Sink::Any.drop(&start, &current) - 0.3).abs() < 1e-6);
+        assert_eq!(Sink::None.drop(&start, &current), 0.0);
+        let risen = [[5.0, 0.6, 0.0], [0.0, 1.5, 0.0], [0.0, 2.6, 0.0]];
+        assert_eq!(Sink::Any.drop(&start, &risen), 0.0);
+        let broken = [[0.0, f32::NAN, 0.0], [0.0, 1.5, 0.0], [0.0, 2.0, 0.0]];
+        assert_eq!(Sink::Any.drop(&start, &broken), 0.5);
+    }
 }
