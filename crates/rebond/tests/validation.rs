@@ -312,6 +312,26 @@ fn a_car_torn_apart_by_an_unlimited_motor_stays_finite() {
 }
 
 #[test]
+fn a_car_with_an_axle_anchored_kilometres_away_stays_finite() {
+    // Found by fuzzing the scene loader: the `car` with one axle anchored 9 km from the chassis.
+    // Corrected at the joint's stiffness through a 9 km lever, the error asked for velocities
+    // of 1e17 within one pass, which overflowed in three steps. Joints now correct their
+    // position error at 100 m/s at most.
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../fuzz/regressions/scene_loader/car-axle-anchor-9-km-away.json"
+    );
+    let mut scene = rebond::scene::Scene::from_file(path).unwrap();
+    for _ in 0..600 {
+        scene.world_mut().step(1.0 / 60.0).unwrap();
+        for (_, body) in scene.world().bodies() {
+            assert!(body.position().is_finite() && body.rotation().is_finite());
+            assert!(body.linear_velocity().is_finite() && body.angular_velocity().is_finite());
+        }
+    }
+}
+
+#[test]
 fn a_capsule_past_every_limit_is_refused() {
     // Found by fuzzing library calls: a capsule of radius 2e37 with a mass of 2e37 spinning at
     // 2e37 rad/s stepped to a non-finite body. Each value is now refused where it enters.

@@ -230,7 +230,7 @@ impl GroupSystem {
         self.work.extend(
             self.rows
                 .iter()
-                .map(|row| row.velocity(states) + softness.bias_rate * row.error),
+                .map(|row| row.velocity(states) + softness.bias(row.error)),
         );
         for i in 0..n {
             let first = self.first[i];

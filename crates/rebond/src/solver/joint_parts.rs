@@ -28,6 +28,12 @@ pub(super) struct Velocities {
     pub angular: [Vec3; 2],
 }
 
+/// Fastest a joint corrects its position error, m/s or rad/s: a joint whose anchors were set
+/// kilometres apart would otherwise ask, through levers as long, for velocities that overflow
+/// within a pass (found by fuzzing the scene loader). Ordinary errors, centimetres at tens of
+/// hertz, ask for metres a second.
+const MAX_CORRECTION_SPEED: f32 = 100.0;
+
 /// How hard one solve of a part pushes towards `C = 0`: the soft spring's coefficients, or
 /// rigid and without position correction (the relax pass).
 #[derive(Debug, Clone, Copy)]
@@ -53,6 +59,17 @@ impl RowSoftness {
             bias_rate: if use_bias { softness.bias_rate } else { 0.0 },
             ..Self::RIGID
         }
+    }
+
+    /// The velocity with which a row corrects the position error `error`: `b C`, at most
+    /// [`MAX_CORRECTION_SPEED`] either way.
+    pub fn bias(&self, error: f32) -> f32 {
+        (self.bias_rate * error).clamp(-MAX_CORRECTION_SPEED, MAX_CORRECTION_SPEED)
+    }
+
+    /// [`RowSoftness::bias`] of three rows' errors, at most [`MAX_CORRECTION_SPEED`] long.
+    pub fn bias_vector(&self, error: Vec3) -> Vec3 {
+        (self.bias_rate * error).clamp_length_max(MAX_CORRECTION_SPEED)
     }
 
     /// The soft spring in biased passes, rigid otherwise.
@@ -101,7 +118,7 @@ fn block_impulse(
     softness: RowSoftness,
     accumulated: &mut Vec3,
 ) -> Vec3 {
-    let target = velocity + softness.bias_rate * error;
+    let target = velocity + softness.bias_vector(error);
     let impulse = -softness.mass_scale * (mass * target) - softness.impulse_scale * *accumulated;
     *accumulated += impulse;
     impulse
@@ -319,7 +336,7 @@ impl AxisPart {
         softness: RowSoftness,
         accumulated: &mut f32,
     ) {
-        let target = self.velocity(v) + softness.bias_rate * error;
+        let target = self.velocity(v) + softness.bias(error);
         let impulse =
             -softness.mass_scale * self.mass * target - softness.impulse_scale * *accumulated;
         *accumulated += impulse;
@@ -343,7 +360,7 @@ impl AxisPart {
             (gap * inverse_h, 1.0, 0.0)
         } else {
             (
-                softness.bias_rate * gap,
+                softness.bias(gap),
                 softness.mass_scale,
                 softness.impulse_scale,
             )
@@ -479,7 +496,7 @@ impl PlanePart {
         softness: RowSoftness,
         accumulated: &mut Vec3,
     ) {
-        let target = [0, 1].map(|i| self.rows[i].velocity(v) + softness.bias_rate * errors[i]);
+        let target = [0, 1].map(|i| self.rows[i].velocity(v) + softness.bias(errors[i]));
         let previous = [0, 1].map(|i| accumulated.dot(self.axes[i]));
         let impulses = [0, 1].map(|i| {
             -softness.mass_scale * (self.mass[i][0] * target[0] + self.mass[i][1] * target[1])
