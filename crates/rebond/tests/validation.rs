@@ -295,20 +295,17 @@ fn a_car_torn_apart_by_an_unlimited_motor_stays_finite() {
     // anchors, one of 1,070 kg, and a −100 rad/s motor of unlimited force, which asks for about
     // 1e9 N. The solver's velocities, held to the speed limits only as forces were integrated,
     // grew from substep to substep until they overflowed within three steps.
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../fuzz/regressions/scene_loader/nonfinite-car-with-overlaps-and-unlimited-motor.json"
+    step_fuzzed_scene(
+        "nonfinite-car-with-overlaps-and-unlimited-motor.json",
+        |world| {
+            let limit = world.settings().max_linear_speed;
+            for (_, body) in world.bodies() {
+                assert!(body.position().is_finite() && body.rotation().is_finite());
+                assert!(body.linear_velocity().length() <= limit * (1.0 + 1e-6));
+                assert!(body.angular_velocity().is_finite());
+            }
+        },
     );
-    let mut scene = rebond::scene::Scene::from_file(path).unwrap();
-    let limit = scene.world().settings().max_linear_speed;
-    for _ in 0..600 {
-        scene.world_mut().step(1.0 / 60.0).unwrap();
-        for (_, body) in scene.world().bodies() {
-            assert!(body.position().is_finite() && body.rotation().is_finite());
-            assert!(body.linear_velocity().length() <= limit * (1.0 + 1e-6));
-            assert!(body.angular_velocity().is_finite());
-        }
-    }
 }
 
 #[test]
@@ -317,17 +314,25 @@ fn a_car_with_an_axle_anchored_kilometres_away_stays_finite() {
     // Corrected at the joint's stiffness through a 9 km lever, the error asked for velocities
     // of 1e17 within one pass, which overflowed in three steps. Joints now correct their
     // position error at 100 m/s at most.
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../fuzz/regressions/scene_loader/car-axle-anchor-9-km-away.json"
-    );
-    let mut scene = rebond::scene::Scene::from_file(path).unwrap();
-    for _ in 0..600 {
-        scene.world_mut().step(1.0 / 60.0).unwrap();
-        for (_, body) in scene.world().bodies() {
+    step_fuzzed_scene("car-axle-anchor-9-km-away.json", |world| {
+        for (_, body) in world.bodies() {
             assert!(body.position().is_finite() && body.rotation().is_finite());
             assert!(body.linear_velocity().is_finite() && body.angular_velocity().is_finite());
         }
+    });
+}
+
+/// Loads `fuzz/regressions/scene_loader/FILE` and runs `check` on its world after each of 600
+/// steps.
+fn step_fuzzed_scene(file: &str, mut check: impl FnMut(&World)) {
+    let folder = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../fuzz/regressions/scene_loader/"
+    );
+    let mut scene = rebond::scene::Scene::from_file(format!("{folder}{file}")).unwrap();
+    for _ in 0..600 {
+        scene.world_mut().step(1.0 / 60.0).unwrap();
+        check(scene.world());
     }
 }
 
