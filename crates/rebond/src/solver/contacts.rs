@@ -123,14 +123,16 @@ impl ConstraintKind for ContactConstraints {
             });
             let index = self.lanes.len();
             self.lanes.push(ContactLanes::EMPTY);
-            self.lanes[index].fill(
+            let rolls = self.lanes[index].fill(
                 lane_contacts.clone(),
                 &solver_bodies.states,
                 &solver_bodies.motions,
                 inverse_reach,
             );
-            self.rolling
-                .add(index, lane_contacts, &solver_bodies.motions);
+            if rolls {
+                self.rolling
+                    .add(index, lane_contacts, &solver_bodies.motions);
+            }
         }
         self.softness = context.contact.softness(context.h, context.inverse_h);
         self.restitution_threshold = context.contact.restitution_threshold;

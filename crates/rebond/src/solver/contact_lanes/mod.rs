@@ -297,13 +297,15 @@ impl ContactLanes {
     /// which must share no moving body, warm-started from their cached impulses. What differs
     /// from contact to contact (normal, tangents, materials) is set lane by lane; the Jacobians
     /// of every point and of the friction and twist are then computed for the four lanes at once.
+    /// Returns whether one of the contacts has rolling resistance, so the caller walks them
+    /// again for it only then.
     pub fn fill<'a>(
         &mut self,
         lane_contacts: impl IntoIterator<Item = LaneContact<'a>>,
         states: &[BodyState],
         motions: &[BodyMotion],
         inverse_reach: f32,
-    ) {
+    ) -> bool {
         let lanes = self;
         // Each point's lever arm from A's centre of mass and the offset from B's to A's, as the
         // contact's frame keeps them (`contact_frame.rs`).
@@ -311,9 +313,11 @@ impl ContactLanes {
         let mut centers = [Vec3A::ZERO; LANES];
         let mut point_counts = F32x4::ZERO;
         let mut radius_ratios = F32x4::ZERO;
+        let mut rolls = false;
         for (lane, lane_contact) in lane_contacts.into_iter().enumerate() {
             lanes.set_contact(lane, &lane_contact, motions);
             let contact = lane_contact.contact;
+            rolls |= contact.material.rolling_lever() > 0.0;
             let frame = &contact.frame.solver;
             let count = contact.manifold.len();
             for (slot, &arm) in arms.iter_mut().zip(&frame.arms[..count]) {
@@ -386,6 +390,7 @@ impl ContactLanes {
         if speculative.any() {
             lanes.may_block = lanes.acts_within_step(speculative, states, inverse_reach);
         }
+        rolls
     }
 
     /// Whether, in some lane of `speculative` (its points all apart), a point may meet an impact
