@@ -293,6 +293,7 @@ pub fn clip_polygon_within<const CAPACITY: usize>(
 /// side comes as its index, which tags the points it makes, and the distance of a point outside
 /// it: a reference face whose sides have a simpler form (a box face in the box's frame) skips the
 /// general planes.
+#[inline]
 pub fn clip_by_sides<const CAPACITY: usize, Distance: Fn(Vec3) -> f32>(
     incident: &[Vec3],
     sides: impl Iterator<Item = (u8, Distance)>,

@@ -49,6 +49,7 @@ mod wide;
 
 use crate::arena::Arena;
 use crate::body::{BodyType, RigidBody};
+use crate::collision::FAST_MOTION_REACHES;
 use crate::math::{Mat3, Quat, Vec3, Vec3A};
 pub(crate) use contact_model::ContactSettings;
 use contacts::ContactConstraints;
@@ -155,6 +156,8 @@ pub(crate) struct SolverBodies {
     solver_index_of_slot: Vec<usize>,
     /// Arena slot of each solver body (index 0 unused).
     slot_of_solver_index: Vec<usize>,
+    /// Each solver body's orientation at the start of the step, for the continuous pass.
+    start_rotations: Vec<Quat>,
 }
 
 impl SolverBodies {
@@ -171,6 +174,8 @@ impl SolverBodies {
         self.motions.push(BodyMotion::FIXED);
         self.slot_of_solver_index.clear();
         self.slot_of_solver_index.push(0);
+        self.start_rotations.clear();
+        self.start_rotations.push(Quat::IDENTITY);
         for &slot in awake {
             let Some((_, body)) = bodies.at_slot(slot) else {
                 continue;
@@ -184,6 +189,7 @@ impl SolverBodies {
                 delta_rotation: Vec3A::ZERO,
             });
             self.motions.push(BodyMotion::from_body(body));
+            self.start_rotations.push(body.rotation);
         }
     }
 
@@ -211,13 +217,40 @@ impl SolverBodies {
     /// far past the limits (a joint pulling together bodies placed metres apart, a motor of
     /// unlimited force), and from step to step such velocities feed on themselves until they
     /// overflow.
-    fn scatter(&mut self, bodies: &mut Arena<RigidBody>, limits: SpeedLimits) {
+    /// Lists in `fast` (ascending slots) the dynamic bodies that moved farther than
+    /// [`FAST_MOTION_REACHES`] times their reach ([`FastMotion`]).
+    fn scatter(
+        &mut self,
+        bodies: &mut Arena<RigidBody>,
+        limits: SpeedLimits,
+        fast: &mut Vec<FastMotion>,
+    ) {
+        fast.clear();
         let solved = self.states.iter_mut().zip(&self.motions);
-        for ((state, motion), &slot) in solved.zip(&self.slot_of_solver_index).skip(1) {
+        let bodies_of = solved
+            .zip(&self.slot_of_solver_index)
+            .zip(&self.start_rotations);
+        for (((state, motion), &slot), &start_rotation) in bodies_of.skip(1) {
             if motion.is_dynamic {
                 limits.hold(state);
             }
             if let Some(body) = bodies.at_slot_mut(slot) {
+                let (delta_position, delta_rotation) =
+                    (state.delta_position.into(), state.delta_rotation.into());
+                if motion.is_dynamic
+                    && FastMotion::travel(delta_position, delta_rotation, body.max_extent)
+                        > FAST_MOTION_REACHES * body.max_extent
+                {
+                    fast.push(FastMotion {
+                        slot,
+                        delta_position,
+                        delta_rotation: FastMotion::path_rotation(
+                            start_rotation,
+                            motion.rotation,
+                            delta_rotation,
+                        ),
+                    });
+                }
                 body.linear_velocity = state.linear_velocity.into();
                 body.angular_velocity = state.angular_velocity.into();
                 body.center_of_mass = motion.center_of_mass;
@@ -230,6 +263,39 @@ impl SolverBodies {
     }
 }
 
+/// A dynamic body that moved farther over the step than [`FAST_MOTION_REACHES`] times its reach
+/// (its largest distance from its centre of mass): the contacts, made for motions up to that
+/// many times the reaches of the pair
+/// (`World::update_contacts`), may have missed what it met, so the continuous pass sweeps it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct FastMotion {
+    /// Arena slot of the body.
+    pub slot: usize,
+    /// How far its centre of mass moved over the step, m.
+    pub delta_position: Vec3,
+    /// How it turned, a world rotation vector, rad: one that takes its orientation at the start
+    /// of the step exactly to the one at the end, of the turns about that axis the one nearest
+    /// `Σ h ω` ([`FastMotion::path_rotation`]).
+    pub delta_rotation: Vec3,
+}
+
+impl FastMotion {
+    /// The rotation vector `θ` with `exp(θ) start = end` nearest `turned` (the substeps' `Σ h ω`,
+    /// which does not compose to `end` exactly when `ω` changed its axis): the shortest arc's axis
+    /// `u` and angle `φ`, plus the whole turns `θ = u (φ + 2πk)` that bring it closest.
+    fn path_rotation(start: Quat, end: Quat, turned: Vec3) -> Vec3 {
+        let (axis, angle) = (end * start.inverse()).normalize().to_axis_angle();
+        let turns = ((turned.dot(axis) - angle) / std::f32::consts::TAU).round();
+        axis * (angle + turns * std::f32::consts::TAU)
+    }
+
+    /// Upper bound of how far a point of a body of reach `reach` moved, m:
+    /// `|Δc| + |Δθ| reach`.
+    fn travel(delta_position: Vec3, delta_rotation: Vec3, reach: f32) -> f32 {
+        delta_position.length() + delta_rotation.length() * reach
+    }
+}
+
 /// Buffers reused from step to step, so a steady scene allocates nothing: the bodies, and the
 /// constraints of each kind. [`Solver::step`] (`stages.rs`) runs the stages over them.
 #[derive(Debug, Clone, Default)]
@@ -238,4 +304,16 @@ pub(crate) struct Solver {
     bodies: SolverBodies,
     joints: JointConstraints,
     contacts: ContactConstraints,
+    /// The fast bodies of the last step, by ascending slot.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    fast: Vec<FastMotion>,
+}
+
+impl Solver {
+    /// The dynamic bodies that moved farther than [`FAST_MOTION_REACHES`] times their reach in
+    /// the last step, by ascending
+    /// arena slot.
+    pub fn fast_bodies(&self) -> &[FastMotion] {
+        &self.fast
+    }
 }

@@ -1,6 +1,7 @@
 //! The world: owns bodies and settings, and advances them in time. Its joint calls are in
 //! `joints.rs`.
 
+mod continuous;
 mod decoded;
 mod joints;
 
@@ -9,7 +10,8 @@ use crate::body::{BodyDesc, BodyHandle, BodyType, RigidBody};
 use crate::collision::broad_phase::BroadPhase;
 use crate::collision::contact_cache::{Contact, ContactCache};
 use crate::collision::narrow_phase::NarrowPhase;
-use crate::collision::SPECULATIVE_DISTANCE;
+use crate::collision::time_of_impact::Impact;
+use crate::collision::{FAST_MOTION_REACHES, SPECULATIVE_DISTANCE};
 use crate::error::{
     check_length, check_non_negative, check_positive, check_range, Error, ErrorKind, Result,
 };
@@ -63,8 +65,10 @@ pub struct WorldSettings {
     /// bodies do not jitter); 0 makes every approach with restitution bounce.
     pub restitution_threshold: f32,
     /// Contact points are made while two surfaces are still this far apart, m, ≥ 0, default
-    /// 0.02, plus the distance they can close in one step, so the solver stops approaching bodies
-    /// before they touch.
+    /// 0.02, plus the distance they can close in one step while that is within four times the
+    /// sizes of the moving bodies, so the solver stops approaching bodies before they touch. A
+    /// body moving farther than that in a step is swept instead, and stopped where it first
+    /// meets another (the continuous pass).
     pub speculative_distance: f32,
     /// A body slower than this counts as still, m/s, ≥ 0, default 0.05: the speed of its
     /// fastest point, `|v| + r_max |ω|`.
@@ -187,6 +191,9 @@ pub struct World {
     /// Arena slots of static bodies lent out by [`World::body_mut`] since the last step, whose
     /// bounding boxes the next step refreshes in case they were moved.
     touched_static_slots: Vec<usize>,
+    /// The continuous pass's bodies to put back, by slot, with where.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    impacts: Vec<(usize, Impact)>,
 }
 
 /// Marks the broad-phase proxies of the bodies in arena `slots` asleep or awake.
@@ -222,6 +229,7 @@ impl World {
             step_work: StepWork::default(),
             bounds_of_slot: Vec::new(),
             touched_static_slots: Vec::new(),
+            impacts: Vec::new(),
         })
     }
 
@@ -593,6 +601,7 @@ impl World {
                 },
             },
         );
+        self.stop_fast_bodies();
         self.joints.finish_step(dt);
         self.refilter_broken_joints();
         let substep_length = dt / self.settings.substeps as f32;
@@ -631,8 +640,7 @@ impl World {
     ///
     /// The contact margin of a pair grows with how fast its bodies move, so that two bodies
     /// closing in within this step already have speculative points:
-    /// [`WorldSettings::speculative_distance`] plus
-    /// `dt · (|v_A − v_B| + |ω_A| r_A + |ω_B| r_B)`.
+    /// [`WorldSettings::speculative_distance`] plus [`speculative_reach`].
     fn update_contacts(&mut self, dt: f32) {
         let Self {
             settings,
@@ -668,11 +676,12 @@ impl World {
                 return false;
             };
             !(body_a.sensor && body_b.sensor)
-                && body_a
-                    .collision_groups
-                    .interacts_with(body_b.collision_groups)
-                && !(ignored_pairs.contains(BodyHandle(index_a), BodyHandle(index_b))
-                    || joints.excludes(BodyHandle(index_a), BodyHandle(index_b)))
+                && pair_interacts(
+                    (BodyHandle(index_a), body_a),
+                    (BodyHandle(index_b), body_b),
+                    ignored_pairs,
+                    joints,
+                )
         });
         contacts.begin_step();
         events.begin_sensor_step();
@@ -711,7 +720,7 @@ impl World {
             if recyclable && contacts.recycle(body_a_handle, body_b_handle, &center_a, &center_b) {
                 continue;
             }
-            let margin = settings.speculative_distance + dt * closing_speed_bound(body_a, body_b);
+            let margin = settings.speculative_distance + speculative_reach(body_a, body_b, dt);
             if !bounds_within(
                 &bounds_of_slot[key_a as usize],
                 &bounds_of_slot[key_b as usize],
@@ -814,6 +823,39 @@ fn bounds_within(a: &Aabb, b: &Aabb, margin: f32) -> bool {
 }
 
 /// `|v_A − v_B| + |ω_A| r_A + |ω_B| r_B`: no two points of the bodies close in faster, m/s.
+/// Whether two bodies may touch: their groups interact, and neither an ignored pair nor a joint
+/// keeps them apart.
+#[inline]
+fn pair_interacts(
+    (handle_a, a): (BodyHandle, &RigidBody),
+    (handle_b, b): (BodyHandle, &RigidBody),
+    ignored_pairs: &IgnoredPairs,
+    joints: &JointSet,
+) -> bool {
+    a.collision_groups.interacts_with(b.collision_groups)
+        && !(ignored_pairs.contains(handle_a, handle_b) || joints.excludes(handle_a, handle_b))
+}
+
+/// How far past the speculative distance a pair's contacts are made, m: the distance the two
+/// bodies can close in the step, `dt · (|v_A − v_B| + |ω_A| r_A + |ω_B| r_B)`, while it is no
+/// more than [`FAST_MOTION_REACHES`] times the sum of the reaches `r` of the bodies that move;
+/// past that, nothing, and the continuous pass sweeps the fast body (`continuous.rs`).
+fn speculative_reach(a: &RigidBody, b: &RigidBody, dt: f32) -> f32 {
+    let reach = |body: &RigidBody| {
+        if body.body_type == BodyType::Static {
+            0.0
+        } else {
+            body.max_extent
+        }
+    };
+    let closing = dt * closing_speed_bound(a, b);
+    if closing <= FAST_MOTION_REACHES * (reach(a) + reach(b)) {
+        closing
+    } else {
+        0.0
+    }
+}
+
 fn closing_speed_bound(a: &RigidBody, b: &RigidBody) -> f32 {
     (a.linear_velocity - b.linear_velocity).length()
         + a.max_extent * a.angular_velocity.length()
