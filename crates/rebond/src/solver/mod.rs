@@ -217,12 +217,15 @@ impl SolverBodies {
     /// far past the limits (a joint pulling together bodies placed metres apart, a motor of
     /// unlimited force), and from step to step such velocities feed on themselves until they
     /// overflow.
-    /// Lists in `fast` (ascending slots) the dynamic bodies that moved farther than
-    /// [`FAST_MOTION_REACHES`] times their reach ([`FastMotion`]).
+    ///
+    /// Lists in `fast` (ascending slots) the dynamic bodies that moved, or at the start of the
+    /// step of length `dt` were moving fast enough to move, farther than [`FAST_MOTION_REACHES`]
+    /// times their reach ([`FastMotion`]): either way their contacts were made no farther ahead.
     fn scatter(
         &mut self,
         bodies: &mut Arena<RigidBody>,
         limits: SpeedLimits,
+        dt: f32,
         fast: &mut Vec<FastMotion>,
     ) {
         fast.clear();
@@ -237,10 +240,9 @@ impl SolverBodies {
             if let Some(body) = bodies.at_slot_mut(slot) {
                 let (delta_position, delta_rotation) =
                     (state.delta_position.into(), state.delta_rotation.into());
-                if motion.is_dynamic
-                    && FastMotion::travel(delta_position, delta_rotation, body.max_extent)
-                        > FAST_MOTION_REACHES * body.max_extent
-                {
+                let travel = FastMotion::travel(delta_position, delta_rotation, body.max_extent)
+                    .max(dt * body.max_point_speed());
+                if motion.is_dynamic && travel > FAST_MOTION_REACHES * body.max_extent {
                     fast.push(FastMotion {
                         slot,
                         delta_position,
@@ -263,9 +265,9 @@ impl SolverBodies {
     }
 }
 
-/// A dynamic body that moved farther over the step than [`FAST_MOTION_REACHES`] times its reach
-/// (its largest distance from its centre of mass): the contacts, made for motions up to that
-/// many times the reaches of the pair
+/// A dynamic body that moved, or was moving fast enough to move, farther over the step than
+/// [`FAST_MOTION_REACHES`] times its reach (its largest distance from its centre of mass): the
+/// contacts, made for motions up to that many times the reaches of the pair
 /// (`World::update_contacts`), may have missed what it met, so the continuous pass sweeps it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct FastMotion {

@@ -153,7 +153,8 @@ impl Solver {
         self.run(ConstraintStage::Restitution, &context);
         self.joints.store_impulses(joints);
         self.contacts.store_impulses(contacts);
-        self.bodies.scatter(bodies, context.limits, &mut self.fast);
+        self.bodies
+            .scatter(bodies, context.limits, settings.dt, &mut self.fast);
     }
 
     /// Runs `stage` over every kind of constraint, one kind after another.
