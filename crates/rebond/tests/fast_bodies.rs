@@ -349,9 +349,9 @@ fn shapes_shot_down_stop_on_a_plane_and_a_mesh() {
     // against triangles. (A turned box much faster would spin past the engine's angular speed
     // limit, 377 rad/s at 8 substeps, on its corner.) The lowest point must never end a step
     // more than the pass leaves a body below the floor: a quarter of the reach for the ball
-    // (2.5 cm), 2 cm for the boxes (measured: under 0.03 mm, and 1.7 cm for the turned box on
+    // (2.5 cm), 2 cm for the boxes (measured: under 0.03 mm, and 5 mm for the turned box on
     // the plane). The ball and the face-down box must come to rest (under 0.5 m/s and 0.5 rad/s
-    // after 2 s, the bound); the turned box slides away on the 2 km floor.
+    // after 2 s, the bound); the turned box tumbles away over the 2 km floor.
     let floors = [
         Shape::halfspace(Vec3::Y).unwrap(),
         Shape::trimesh(
