@@ -94,6 +94,18 @@ pub(crate) struct Impact {
     pub normal: Vec3,
 }
 
+impl Impact {
+    /// Keeps in `earliest` whichever of it and `impact` comes first (the one already kept on a
+    /// tie).
+    pub fn keep_earliest(earliest: &mut Option<Impact>, impact: Option<Impact>) {
+        if let Some(impact) = impact {
+            if earliest.is_none_or(|kept| impact.t < kept.t) {
+                *earliest = Some(impact);
+            }
+        }
+    }
+}
+
 /// One convex piece of the other body: a convex part that moves with it, a triangle of a fixed
 /// mesh or heightfield, or a fixed halfspace (unit outward normal, a point of its plane).
 enum Target<'a> {
@@ -121,11 +133,7 @@ pub(crate) fn time_of_impact(
     let mut earliest: Option<Impact> = None;
     let mut consider = |part: &Shape, part_pose: Pose, target: &Target| {
         let impact = part_impact(part, &part_pose, motion_a, target, tolerances);
-        if let Some(impact) = impact {
-            if earliest.is_none_or(|earliest| impact.t < earliest.t) {
-                earliest = Some(impact);
-            }
-        }
+        Impact::keep_earliest(&mut earliest, impact);
     };
     let pose_b = motion_b.pose_at(1.0);
     for (part, part_pose) in local_parts(a) {

@@ -240,9 +240,12 @@ impl SolverBodies {
             if let Some(body) = bodies.at_slot_mut(slot) {
                 let (delta_position, delta_rotation) =
                     (state.delta_position.into(), state.delta_rotation.into());
-                let travel = FastMotion::travel(delta_position, delta_rotation, body.max_extent)
-                    .max(dt * body.max_point_speed());
-                if motion.is_dynamic && travel > FAST_MOTION_REACHES * body.max_extent {
+                let fast_enough = |reach: f32| {
+                    FastMotion::travel(delta_position, delta_rotation, reach)
+                        .max(dt * body.max_point_speed())
+                        > FAST_MOTION_REACHES * reach
+                };
+                if motion.is_dynamic && fast_enough(body.max_extent) {
                     fast.push(FastMotion {
                         slot,
                         delta_position,

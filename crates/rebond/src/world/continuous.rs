@@ -95,11 +95,7 @@ impl World {
                         &other_motion,
                         tolerances,
                     );
-                    if let Some(impact) = impact {
-                        if earliest.is_none_or(|earliest| impact.t < earliest.t) {
-                            earliest = Some(impact);
-                        }
-                    }
+                    Impact::keep_earliest(&mut earliest, impact);
                     true
                 });
             }
