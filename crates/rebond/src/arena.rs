@@ -137,6 +137,7 @@ impl<T> Arena<T> {
 
     /// Checks a decoded arena's bookkeeping: the free list names exactly the empty slots, once
     /// each, and the count is the live items'. Describes the first broken invariant.
+    #[cfg(feature = "serde")]
     pub(crate) fn check_decoded(&self) -> Result<(), String> {
         let live = self.slots.iter().filter(|slot| slot.item.is_some()).count();
         if live != self.len || u32::try_from(self.slots.len()).is_err() {

@@ -18,7 +18,9 @@
 //! without one touches nothing asleep.
 
 use crate::arena::Arena;
-use crate::body::{BodyType, RigidBody};
+#[cfg(feature = "serde")]
+use crate::body::BodyType;
+use crate::body::RigidBody;
 use crate::collision::contact_cache::Contact;
 use crate::math::Vec3;
 use crate::sorted::merge_into;
@@ -133,6 +135,7 @@ impl Islands {
     /// Checks decoded islands against `bodies`: the awake list ascending, of live moving bodies
     /// that are not asleep; every sleeping group a list without loops through slots of the arena,
     /// starting at its members' root. Describes the first broken invariant.
+    #[cfg(feature = "serde")]
     pub fn check_decoded(&self, bodies: &Arena<RigidBody>) -> Result<(), String> {
         let moving_and_awake = |slot: usize| {
             bodies

@@ -397,6 +397,7 @@ impl BroadPhase {
     /// Checks a decoded broad phase against the bodies' keys (`slot_count` arena slots): both
     /// trees whole, every proxy to be queried live, every pair sorted and naming keys below
     /// `slot_count`. Describes the first broken invariant.
+    #[cfg(feature = "serde")]
     pub(crate) fn check_decoded(&self, slot_count: usize) -> Result<(), String> {
         for side in [&self.static_side, &self.moving_side] {
             side.tree.validate()?;
@@ -433,6 +434,7 @@ impl BroadPhase {
     }
 
     /// Whether `handle` names a live proxy.
+    #[cfg(feature = "serde")]
     pub(crate) fn is_live(&self, handle: ProxyHandle) -> bool {
         self.side(handle.is_static())
             .tree

@@ -7,6 +7,7 @@ use std::ops::Range;
 use super::manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
 use super::narrow_phase::{PartCache, PartContacts};
 use crate::body::BodyHandle;
+#[cfg(feature = "serde")]
 use crate::limits::MAX_SOLVER_IMPULSE;
 use crate::material::Material;
 use crate::math::{Pose, Vec3, Vec3A};
@@ -64,6 +65,7 @@ impl ManifoldFrame {
     }
 
     /// Whether every value is finite.
+    #[cfg(feature = "serde")]
     fn is_finite(&self) -> bool {
         let solver = &self.solver;
         let points = self.local_points.iter().flatten();
@@ -442,6 +444,7 @@ impl ContactCache {
     /// Checks decoded contacts: this step's and the parked ones sorted by key, of live bodies
     /// (`is_live`), with at most [`MAX_MANIFOLD_POINTS`] points, finite values and impulses a
     /// step can have accumulated. Describes the first broken invariant.
+    #[cfg(feature = "serde")]
     pub(crate) fn check_decoded(&self, is_live: impl Fn(BodyHandle) -> bool) -> Result<(), String> {
         let parked = self.parked.iter().map(|parked| &parked.contact);
         for contacts in [self.current.iter().collect::<Vec<_>>(), parked.collect()] {

@@ -5,6 +5,7 @@ use super::{Joint, JointBreakEvent, JointDesc, JointHandle, JointType};
 use crate::arena::Arena;
 use crate::body::{BodyHandle, RigidBody};
 use crate::filter::ordered;
+#[cfg(feature = "serde")]
 use crate::limits::MAX_SOLVER_IMPULSE;
 use crate::math::{Quat, Vec3};
 
@@ -257,6 +258,7 @@ impl JointSet {
     /// Checks decoded joints: the arena whole, each joint's description valid, its bodies live
     /// (`is_live`), its frames and solver data finite, and the excluded pairs those of the
     /// joints. Describes the first broken invariant.
+    #[cfg(feature = "serde")]
     pub fn check_decoded(&self, is_live: impl Fn(BodyHandle) -> bool) -> Result<(), String> {
         self.joints.check_decoded()?;
         let mut excluded = Vec::new();

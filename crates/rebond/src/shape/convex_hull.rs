@@ -241,6 +241,7 @@ impl ConvexHull {
     /// every face and edge naming vertices and faces of the hull, the groups of four built from
     /// them, values finite. (Building the hull again from its vertices may not give the same
     /// faces for a sliver, so the hull is checked, not rebuilt.)
+    #[cfg(feature = "serde")]
     pub(crate) fn check_decoded(&self) -> std::result::Result<(), String> {
         let (vertex_count, face_count) = (self.vertices.len(), self.faces.len());
         let names_vertices = |indices: &[u32]| indices.iter().all(|&i| (i as usize) < vertex_count);

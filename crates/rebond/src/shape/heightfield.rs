@@ -101,6 +101,7 @@ impl HeightField {
 
     /// Checks a decoded heightfield: it is the one [`HeightField::new`] builds from its own
     /// heights and scale.
+    #[cfg(feature = "serde")]
     pub(crate) fn check_decoded(&self) -> std::result::Result<(), String> {
         let data = &self.data;
         if data.cols < 2 || data.heights.len() != data.rows.saturating_mul(data.cols) {

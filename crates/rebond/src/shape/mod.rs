@@ -110,6 +110,7 @@ impl Shape {
 
     /// Checks a decoded shape: it is the one its constructor builds from its own defining
     /// values (a compound's children each so), or an error saying what differs.
+    #[cfg(feature = "serde")]
     pub(crate) fn check_decoded(&self) -> std::result::Result<(), String> {
         let rebuilt = match self {
             Shape::Sphere(sphere) => Shape::sphere(sphere.radius()),

@@ -2,6 +2,7 @@
 //! `joints.rs`.
 
 mod continuous;
+#[cfg(feature = "serde")]
 mod decoded;
 mod joints;
 
