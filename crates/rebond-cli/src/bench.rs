@@ -131,10 +131,9 @@ pub fn bench(source: &SceneSource, options: BenchOptions) -> Result<BenchReport,
 fn turn_sleep_off(world: &mut World) {
     let handles: Vec<_> = world.bodies().map(|(handle, _)| handle).collect();
     for handle in handles {
-        world
-            .body_mut(handle)
-            .expect("the world just listed the handle")
-            .set_can_sleep(false);
+        if let Ok(body) = world.body_mut(handle) {
+            body.set_can_sleep(false);
+        }
     }
 }
 
