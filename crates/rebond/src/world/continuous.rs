@@ -8,7 +8,8 @@
 //! the step loses the rest of that body's motion, and a joint to it stretches until the joint
 //! pulls it back.
 
-use super::{pair_interacts, World};
+use super::contact_update::pair_interacts;
+use super::World;
 use crate::body::{BodyHandle, RigidBody};
 use crate::collision::time_of_impact::{time_of_impact, Impact, ImpactTolerances, Motion};
 use crate::math::{Pose, Vec3};
