@@ -496,8 +496,8 @@ fn reach_deepest(manifold: &mut Manifold, candidates: &[ContactPoint], kept: &[u
 }
 
 /// A dropped point deeper than every kept point by more than this, metres, is reached by moving
-/// the nearest kept point onto it ([`reduce_contacts_on_face`]). Well below the solver's 1 mm slop
-/// and the 0.1 mm to which contact depths are checked, well above the f32 rounding (1e-6 m) that
+/// the nearest kept point onto it ([`reduce_contacts_on_face`]). Well below the 0.1 mm to which
+/// contact depths are checked, well above the f32 rounding (1e-6 m) that
 /// makes the corners of a face resting flat differ in depth.
 pub const DEEPEST_SLACK: f32 = 2.0e-5;
 

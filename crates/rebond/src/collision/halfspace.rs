@@ -19,9 +19,8 @@ const MAX_CANDIDATES: usize = 64;
 const CYLINDER_RIM_SAMPLES: usize = 4;
 
 /// The rim sample nearest a cap's deepest rim point moves onto that point when it lies deeper by
-/// more than this, metres (the solver's 1 mm slop, below which depth errors do not matter): a
-/// cylinder standing flat keeps its square of samples, a tilted or lying one reaches its deepest
-/// spot, under the id of the sample it replaces.
+/// more than this, metres: a cylinder standing flat keeps its square of samples, a tilted or
+/// lying one reaches its deepest spot, under the id of the sample it replaces.
 const DEEPEST_SNAP_DISTANCE: f32 = 1.0e-3;
 
 /// Candidate points of B below (or within `margin` above) the plane.

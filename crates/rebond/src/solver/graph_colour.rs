@@ -15,7 +15,7 @@
 use super::wide::LANES;
 
 /// Colours open at a time. A box in a stack or a pile touches about a dozen others, and the
-/// colours fill quickly; 16 or 32 gave the same step times on `pyramid` and `rain` (2026-12-01).
+/// colours fill quickly; more open colours do not make the bench's stacks or piles faster.
 pub const OPEN_COLOURS: usize = 8;
 
 /// The lane sets of one step's constraints, in buffers reused from step to step.

@@ -1,8 +1,9 @@
 //! The step as a pipeline of stages (Box3D's solver stages): the body stages integrate, the
 //! constraint stages run over every kind of constraint through one interface,
 //! [`ConstraintKind`]: joints (`joints.rs`, their restitution does nothing) and contacts
-//! (`contacts.rs`). [`Solver::run`] is where the order of the kinds in a stage is set: joints
-//! first, so the contacts, solved last, are the most nearly met when a pass ends.
+//! (`contacts.rs`). [`Solver::run`] is where the order of the kinds in a stage is set: contacts
+//! first, then joints, so the joints, solved last, are the most nearly met when a pass ends (with
+//! the joints first, a pile of ragdolls opened a joint by 3.7 cm; `docs/design-notes/joints.md`).
 
 use super::contact_model::ContactSettings;
 use super::integration::{SpeedLimits, MAX_ROTATION_PER_SUBSTEP};
@@ -15,8 +16,8 @@ use crate::joint::JointSet;
 use crate::math::Vec3;
 
 /// Biased passes per substep. Lane sets converge more slowly than solving the contacts strictly
-/// one after another: with one pass the 20-box column of the tests topples at 4 substeps, with
-/// two it stands.
+/// one after another: with one pass the bench's stacks keep moving instead of coming to rest
+/// (`docs/design-notes/contact-model.md`).
 const BIASED_ITERATIONS: usize = 2;
 
 /// What the stages of one step share.

@@ -40,8 +40,7 @@ struct PassLanes {
 }
 
 impl PassLanes {
-    /// Inlined, as is [`Self::finish`]: as calls they pass their lanes through memory, about
-    /// 100 instructions more a pass (callgrind, `pyramid`).
+    /// Inlined, as is [`Self::finish`]: as calls they would pass their lanes through memory.
     #[inline(always)]
     fn gather(states: &[BodyState], bodies_a: &[usize; LANES], bodies_b: &[usize; LANES]) -> Self {
         let a = bodies_a.map(|body| &states[body]);
@@ -675,8 +674,8 @@ impl ContactLanes {
     }
 
     /// [`Self::solve`], with `BLOCK` where some lane is [`Self::apart`]: two functions, so
-    /// that the lane sets of resting contacts run without the block solve's code, which cost
-    /// them 12 % more instructions as a branch inside (callgrind, `pyramid`).
+    /// that the lane sets of resting contacts run without the block solve's code, which as a
+    /// branch inside would slow them all.
     fn solve_pass<const USE_BIAS: bool, const BLOCK: bool>(
         &mut self,
         states: &mut [BodyState],
