@@ -396,6 +396,13 @@ fn bodies_asleep_on_a_floor_that_stops_interacting_wake_and_fall() {
         .contacts()
         .iter()
         .any(|contact| contact.bodies() == pair));
+    // The floor, which no longer interacts with the boxes, touches nothing.
+    assert!(
+        !world
+            .touching_pairs()
+            .any(|(a, b)| a == ground || b == ground),
+        "the floor still touches a box"
+    );
     assert!(world.touching_pairs().all(|touching| touching == pair));
 }
 
