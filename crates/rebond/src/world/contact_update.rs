@@ -26,16 +26,20 @@ impl World {
     /// closing in within this step already have speculative points:
     /// [`WorldSettings::speculative_distance`] plus [`speculative_reach`].
     pub(super) fn update_contacts(&mut self, dt: f32) {
+        self.update_pairs(dt);
+        self.collide_pairs(dt);
+        self.finish_contacts();
+    }
+
+    /// Refreshes the boxes of the awake bodies and of the static bodies lent out (swept over
+    /// the step in the broad phase), then the broad phase's pairs, keeping only pairs that
+    /// interact.
+    fn update_pairs(&mut self, dt: f32) {
         let Self {
-            settings,
             bodies,
             joints,
             broad_phase,
-            contacts,
-            narrow_phase,
             ignored_pairs,
-            events,
-            narrow_phase_pair_tests,
             bounds_of_slot,
             islands,
             touched_static_slots,
@@ -67,6 +71,23 @@ impl World {
                     joints,
                 )
         });
+    }
+
+    /// Walks the broad phase's pairs: a pair with a sensor becomes a candidate for the overlap
+    /// test, a pair of which no body is awake keeps its parked contacts, a recycled pair its
+    /// manifolds, and the others within their margin of each other go through the narrow phase.
+    fn collide_pairs(&mut self, dt: f32) {
+        let Self {
+            settings,
+            bodies,
+            broad_phase,
+            contacts,
+            narrow_phase,
+            events,
+            narrow_phase_pair_tests,
+            bounds_of_slot,
+            ..
+        } = self;
         contacts.begin_step();
         events.begin_sensor_step();
         *narrow_phase_pair_tests = 0;
@@ -123,6 +144,18 @@ impl World {
             );
         }
         contacts.finish_step();
+    }
+
+    /// Gives each of this step's contacts its combined material and its patch's radius ratio,
+    /// and wakes the sleepers an awake mover touches.
+    fn finish_contacts(&mut self) {
+        let Self {
+            settings,
+            bodies,
+            contacts,
+            islands,
+            ..
+        } = self;
         for contact in contacts.contacts_mut() {
             if contact.manifold.is_empty() {
                 continue;
