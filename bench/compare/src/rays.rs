@@ -1,10 +1,11 @@
-//! The `--rays` mode: the same rays against the same static boxes in both engines, cast through
-//! each engine's query API in one process.
+//! The `--rays` mode: the same rays against the same static scenes in both engines, cast through
+//! each engine's query API in one process: 10,000 boxes, then the `mesh_pile` ground (a bumpy
+//! mesh of 32,768 triangles).
 
 use crate::measure::{alternate, median, ms, thread_cpu_ms};
 use crate::rapier_engine::RapierEngine;
 use crate::rebond_engine::RebondEngine;
-use crate::scenes::{fixed_box, Jitter, Scene, Sink};
+use crate::scenes::{bumpy_mesh, fixed, fixed_box, Jitter, Scene, Sink};
 use crate::Engine;
 
 /// Number of boxes in the ray scene, and of rays cast per round.
@@ -69,6 +70,39 @@ fn ray_scene() -> (Scene, Vec<RaySpec>) {
     )
 }
 
+/// The `mesh_pile` scene's ground alone, and 10,000 rays (SplitMix64, seed 0x6d65) from random
+/// points 1–20 m above its 64 m square, in random directions that go down at least a fifth as
+/// fast as they go sideways, so most meet the mesh, some past its edge.
+fn mesh_ray_scene() -> (Scene, Vec<RaySpec>) {
+    let mut jitter = Jitter(0x6d65);
+    let rays = (0..RAY_COUNT)
+        .map(|_| {
+            let origin = [
+                uniform(&mut jitter, -32.0, 32.0),
+                uniform(&mut jitter, 1.0, 20.0),
+                uniform(&mut jitter, -32.0, 32.0),
+            ];
+            let direction = loop {
+                let v = unit_vector(&mut jitter);
+                if v[1] < -0.2 {
+                    break v;
+                }
+            };
+            (origin, direction)
+        })
+        .collect();
+    (
+        Scene {
+            bodies: vec![fixed(bumpy_mesh())],
+            joints: Vec::new(),
+            is_stack: false,
+            sink: Sink::None,
+            sag_body: None,
+        },
+        rays,
+    )
+}
+
 /// Casts every ray for its nearest hit with the normal, through `world.cast_ray` (validation,
 /// the broad-phase trees, the exact shapes); writes each distance (infinity for a miss).
 fn rebond_rays(world: &rebond::World, rays: &[rebond::Ray], distances: &mut [f32]) {
@@ -95,13 +129,20 @@ fn rapier_rays(
     }
 }
 
-/// Builds the ray scene in both engines (one step each, so rapier's BVH is built), counts the
-/// rays on which they disagree, then times `rounds` rounds of 10,000 rays per engine, alternating
-/// which engine goes first, and prints the medians and their ratio.
+/// Runs both ray scenes ([`compare_rays`]): the boxes, then the mesh.
 pub fn run_rays(rounds: usize) {
-    let (scene, ray_specs) = ray_scene();
-    let mut rebond_engine = RebondEngine::new(&scene);
-    let mut rapier_engine = RapierEngine::new(&scene);
+    let (boxes, box_rays) = ray_scene();
+    compare_rays("boxes", &format!("{RAY_COUNT} static boxes"), &boxes, &box_rays, rounds);
+    let (mesh, mesh_rays) = mesh_ray_scene();
+    compare_rays("mesh", "a mesh of 32,768 triangles", &mesh, &mesh_rays, rounds);
+}
+
+/// Builds `scene` in both engines (one step each, so rapier's BVH is built), counts the rays on
+/// which they disagree, then times `rounds` rounds of the rays per engine, alternating which
+/// engine goes first, and prints the medians and their ratio.
+fn compare_rays(name: &str, what: &str, scene: &Scene, ray_specs: &[RaySpec], rounds: usize) {
+    let mut rebond_engine = RebondEngine::new(scene);
+    let mut rapier_engine = RapierEngine::new(scene);
     rebond_engine.step();
     rapier_engine.step();
     let rebond_ray_list: Vec<rebond::Ray> = ray_specs
@@ -156,8 +197,8 @@ pub fn run_rays(rounds: usize) {
     });
     let [rebond_ms, rapier_ms] = times.map(|mut t| median(&mut t));
     println!(
-        "rebond vs rapier3d {}: {RAY_COUNT} rays against {RAY_COUNT} static boxes, nearest hit \
-         with normal, median thread CPU time of {rounds} rounds per engine",
+        "rebond vs rapier3d {}: {RAY_COUNT} rays against {what}, nearest hit with normal, \
+         median thread CPU time of {rounds} rounds per engine",
         rapier3d::VERSION
     );
     let row = |engine: &str, median_ms: f64, distances: &[f32]| {
@@ -172,7 +213,8 @@ pub fn run_rays(rounds: usize) {
     println!("{}", row("rebond", rebond_ms, &rebond_distances));
     println!("{}", row("rapier3d", rapier_ms, &rapier_distances));
     println!(
-        "rays ratio={:.3} rebond_ms={rebond_ms:.3} rapier_ms={rapier_ms:.3} disagreements={disagreements}",
+        "rays {name} ratio={:.3} rebond_ms={rebond_ms:.3} rapier_ms={rapier_ms:.3} \
+         disagreements={disagreements}",
         rebond_ms / rapier_ms
     );
 }

@@ -158,7 +158,7 @@ fn dynamic(shape: ShapeSpec, position: [f32; 3], rotation: [f32; 3]) -> BodySpec
 }
 
 /// A fixed body of `shape` at the origin.
-fn fixed(shape: ShapeSpec) -> BodySpec {
+pub fn fixed(shape: ShapeSpec) -> BodySpec {
     BodySpec {
         fixed: true,
         shape,
