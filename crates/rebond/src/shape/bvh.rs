@@ -12,6 +12,11 @@ use crate::math::{Aabb, Vec3};
 /// the nodes for little gain in a query, as a leaf's boxes are tested one by one anyway.
 const LEAF_SIZE: usize = 4;
 
+/// Bits of the Morton curve per axis: the curve orders the items to a cell of `1 / 2²¹` of the
+/// mesh's largest extent (5 mm over 10 km). With fewer bits, the small triangles of a large mesh
+/// share cells, and within a cell the curve keeps their index order, which need not be near.
+const MORTON_BITS: u32 = 21;
+
 /// Deepest hierarchy a walk can follow: every level halves the items, so 64 levels hold far more
 /// than `u32::MAX` items.
 const MAX_DEPTH: usize = 64;
@@ -48,7 +53,7 @@ pub struct Bvh {
 
 impl Bvh {
     /// The hierarchy over `boxes` (item `i` has box `boxes[i]`). The items are sorted once along
-    /// a Morton curve through their centres (30 bits, 10 per axis, over the cube around the
+    /// a Morton curve through their centres ([`MORTON_BITS`] per axis, over the cube around the
     /// centres' bounds: with each axis over its own span, a terrain's few metres of height would
     /// get as many bits as its width and split it by height near the root, into nodes that each
     /// span the whole terrain, which a vertical ray or a body's box then all enter), and
@@ -67,19 +72,20 @@ impl Bvh {
                 (low.min(c), high.max(c))
             });
         let span = Vec3::splat((high - low).max_element().max(f32::MIN_POSITIVE));
-        let mut keys: Vec<u64> = (0u32..)
+        let last_cell = ((1u32 << MORTON_BITS) - 1) as f32;
+        let mut keys: Vec<(u64, u32)> = (0u32..)
             .zip(boxes)
             .map(|(index, b)| {
-                let cell =
-                    ((b.center() - low) / span * 1023.0).clamp(Vec3::ZERO, Vec3::splat(1023.0));
+                let cell = ((b.center() - low) / span * last_cell)
+                    .clamp(Vec3::ZERO, Vec3::splat(last_cell));
                 let code = spread_bits(cell.x as u32)
                     | (spread_bits(cell.y as u32) << 1)
                     | (spread_bits(cell.z as u32) << 2);
-                (u64::from(code) << 32) | u64::from(index)
+                (code, index)
             })
             .collect();
         keys.sort_unstable();
-        let order: Vec<u32> = keys.into_iter().map(|key| key as u32).collect();
+        let order: Vec<u32> = keys.into_iter().map(|(_, index)| index).collect();
         build_node(boxes, &order, 0, order.len(), &mut nodes);
         // Halving leaves between 2 and 4 items, so the estimate above can fall short.
         nodes.shrink_to_fit();
@@ -141,13 +147,14 @@ impl Bvh {
     }
 }
 
-/// The 10 low bits of `value` spread to every third bit (bit `k` to bit `3k`).
-fn spread_bits(value: u32) -> u32 {
-    let mut x = value & 0x3FF;
-    x = (x | (x << 16)) & 0x0300_00FF;
-    x = (x | (x << 8)) & 0x0300_F00F;
-    x = (x | (x << 4)) & 0x030C_30C3;
-    (x | (x << 2)) & 0x0924_9249
+/// The [`MORTON_BITS`] low bits of `value` spread to every third bit (bit `k` to bit `3k`).
+fn spread_bits(value: u32) -> u64 {
+    let mut x = u64::from(value) & 0x1F_FFFF;
+    x = (x | (x << 32)) & 0x001F_0000_0000_FFFF;
+    x = (x | (x << 16)) & 0x001F_0000_FF00_00FF;
+    x = (x | (x << 8)) & 0x100F_00F0_0F00_F00F;
+    x = (x | (x << 4)) & 0x10C3_0C30_C30C_30C3;
+    (x | (x << 2)) & 0x1249_2492_4924_9249
 }
 
 /// Builds the subtree of the items `order[start..end]` at the end of `nodes` (its root is the
@@ -218,6 +225,56 @@ mod tests {
             .collect();
         assert_eq!(found, expected);
         assert_eq!(expected.len(), 4 * 2);
+    }
+
+    /// A 4 km strip of 1 m triangles in a scrambled order: the curve's cells must be finer than
+    /// the triangles, or the triangles sharing one go into leaves in their index order, leaves
+    /// that span the cell, and a vertical line enters several of them (with 10 bits, 4 m cells:
+    /// 44 nodes of a 15-level hierarchy).
+    #[test]
+    fn a_long_scrambled_strip_keeps_its_leaves_small() {
+        let (along, across) = (4096, 8);
+        let count = along * across * 2;
+        let boxes: Vec<Aabb> = (0..count)
+            .map(|k| {
+                let cell = (k * 7919) % count / 2;
+                let (x, z) = ((cell % along) as f32, (cell / along) as f32);
+                let y = 0.3 * (0.05 * x).sin();
+                Aabb::new(
+                    Vec3::new(x, y - 0.01, z),
+                    Vec3::new(x + 1.0, y + 0.01, z + 1.0),
+                )
+            })
+            .collect();
+        let bvh = Bvh::build(&boxes);
+        let levels = (count / LEAF_SIZE).ilog2() as usize + 1;
+        for k in 0..200 {
+            let (x, z) = (3.3 + 20.37 * k as f32, 0.5 + (k % 7) as f32);
+            let mut entered = 0;
+            bvh.walk_boxes(
+                |bounds| {
+                    let inside = (bounds.min.x..=bounds.max.x).contains(&x)
+                        && (bounds.min.z..=bounds.max.z).contains(&z);
+                    entered += usize::from(inside);
+                    inside
+                },
+                |_| {},
+            );
+            assert!(
+                entered <= 2 * levels,
+                "a vertical line entered {entered} nodes of a {levels}-level hierarchy"
+            );
+        }
+    }
+
+    #[test]
+    fn spreading_puts_bit_k_at_bit_3k() {
+        for value in [0u32, 1, 2, 0x15_5555, 0x1F_FFFF, 0x12_3456, 0xFFFF_FFFF] {
+            let expected = (0..MORTON_BITS)
+                .filter(|k| value >> k & 1 == 1)
+                .fold(0u64, |code, k| code | 1 << (3 * k));
+            assert_eq!(spread_bits(value), expected, "{value:#x}");
+        }
     }
 
     /// A vertical line through a bumpy terrain of 8,192 triangles (64 m square, heights within
