@@ -31,7 +31,7 @@ use super::gjk;
 use super::manifold::{ContactPoint, Manifold};
 use super::{PosedCore, SupportMap};
 use crate::math::{Pose, Vec3};
-use crate::query::line_entry;
+use crate::shape::line::line_entry;
 use crate::shape::{Shape, Triangle, ACTIVE_EDGE_ANGLE};
 
 /// A normal within this cosine of the face normal (0.8°) is taken as the face normal: closer

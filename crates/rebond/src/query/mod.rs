@@ -44,7 +44,6 @@ mod shape_cast;
 mod world_queries;
 
 pub(crate) use overlap::shapes_overlap;
-pub(crate) use ray::line_entry;
 
 use std::fmt;
 

@@ -11,6 +11,7 @@ mod cuboid;
 mod cylinder;
 mod halfspace;
 mod heightfield;
+pub(crate) mod line;
 mod sphere;
 mod triangle;
 mod trimesh;
