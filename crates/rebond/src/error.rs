@@ -160,6 +160,15 @@ impl fmt::Display for Error {
 
 impl std::error::Error for Error {}
 
+/// Runs `check` with no field name, and again with `field()` only when it fails: the checks of a
+/// long list (a mesh's vertices, a heightfield's samples) format no names while the values pass.
+pub(crate) fn check_named<T>(
+    check: impl Fn(&str) -> Result<T>,
+    field: impl FnOnce() -> String,
+) -> Result<T> {
+    check("").or_else(|_| check(&field()))
+}
+
 /// Checks that `value` is finite.
 pub(crate) fn check_finite(field: &str, value: f32) -> Result<f32> {
     if value.is_finite() {

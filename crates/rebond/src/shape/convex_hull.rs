@@ -16,7 +16,7 @@ use std::collections::BTreeMap;
 
 use glam::{DMat3, DVec3, Vec4};
 
-use crate::error::{check_length, Error, ErrorKind, Result};
+use crate::error::{check_length, check_named, Error, ErrorKind, Result};
 use crate::limits::MAX_SIZE;
 use crate::mass::MassProperties;
 use crate::math::{Aabb, Pose, Vec3};
@@ -221,7 +221,10 @@ impl ConvexHull {
     /// ([`ErrorKind::DegenerateHull`]). Building takes `O(n log n)` time for typical clouds.
     pub fn new(points: &[Vec3]) -> Result<Self> {
         for (index, &point) in points.iter().enumerate() {
-            check_length(&format!("points[{index}]"), point, MAX_SIZE)?;
+            check_named(
+                |field| check_length(field, point, MAX_SIZE),
+                || format!("points[{index}]"),
+            )?;
         }
         if points.len() < 4 {
             return Err(degenerate("fewer than 4 points"));

@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use super::triangle::{edge_flags, Triangle};
 use super::trimesh::placed_bounds;
-use crate::error::{check_finite, check_length, check_size, Error, ErrorKind, Result};
+use crate::error::{check_finite, check_length, check_named, check_size, Error, ErrorKind, Result};
 use crate::limits::MAX_SIZE;
 use crate::math::{Aabb, Pose, Vec3};
 
@@ -62,9 +62,13 @@ impl HeightField {
                 ));
             }
             for (j, &height) in row.iter().enumerate() {
-                let field = format!("heights[{i}][{j}]");
-                check_finite(&field, height)?;
-                check_length(&field, Vec3::new(0.0, height * scale.y, 0.0), MAX_SIZE)?;
+                check_named(
+                    |field| {
+                        check_finite(field, height)?;
+                        check_length(field, Vec3::new(0.0, height * scale.y, 0.0), MAX_SIZE)
+                    },
+                    || format!("heights[{i}][{j}]"),
+                )?;
                 flat.push(height);
             }
         }

@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use super::bvh::Bvh;
 use super::triangle::{edge_flags, Triangle};
-use crate::error::{check_length, Error, ErrorKind, Result};
+use crate::error::{check_length, check_named, Error, ErrorKind, Result};
 use crate::limits::MAX_SIZE;
 use crate::math::{Aabb, Pose, Vec3};
 
@@ -42,9 +42,10 @@ impl TriMesh {
     /// (`indices[k]`), or no triangle of positive area (`indices`).
     pub fn new(vertices: Vec<Vec3>, indices: &[[u32; 3]]) -> Result<Self> {
         for (index, &vertex) in vertices.iter().enumerate() {
-            if !vertex.is_finite() || vertex.abs().max_element() > MAX_SIZE {
-                check_length(&format!("vertices[{index}]"), vertex, MAX_SIZE)?;
-            }
+            check_named(
+                |field| check_length(field, vertex, MAX_SIZE),
+                || format!("vertices[{index}]"),
+            )?;
         }
         let mut triangles = Vec::with_capacity(indices.len());
         for (index, triangle) in indices.iter().enumerate() {

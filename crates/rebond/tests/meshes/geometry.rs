@@ -50,6 +50,11 @@ fn bad_mesh_and_heightfield_input_names_its_place() {
     );
     let error = Shape::trimesh(vec![Vec3::ZERO, Vec3::NAN], &[[0, 1, 1]]).unwrap_err();
     assert_eq!(error.field, "vertices[1]");
+    // Each coordinate within the size limit, the vertex beyond it: as a hull's point would be.
+    let far = Vec3::new(0.9, 0.9, 0.0) * rebond::limits::MAX_SIZE;
+    let error = Shape::trimesh(vec![Vec3::ZERO, Vec3::X, far], &[[0, 1, 2]]).unwrap_err();
+    assert_eq!(error.field, "vertices[2]");
+    assert!(matches!(error.kind, ErrorKind::TooLarge { .. }));
     let error = Shape::heightfield(&[vec![0.0, 1.0], vec![0.5]], Vec3::ONE).unwrap_err();
     assert_eq!(error.field, "heights[1]");
     let error = Shape::heightfield(&[vec![0.0, 1.0]], Vec3::ONE).unwrap_err();
