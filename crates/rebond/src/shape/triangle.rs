@@ -109,10 +109,31 @@ pub fn edge_flags(corners: &[Vec3; 3], normal: Vec3, edge: usize, neighbour: Opt
     let (Some(inward), Some(away)) = (across(corners[(edge + 2) % 3]), across(far)) else {
         return both;
     };
-    let bend = (-normal.dot(away)).atan2(-inward.dot(away));
-    if bend > ACTIVE_EDGE_ANGLE {
+    bend_flags(-inward.dot(away), -normal.dot(away), edge)
+}
+
+/// `cos` and `sin` of [`ACTIVE_EDGE_ANGLE`].
+const ACTIVE_EDGE_COS: f32 = 0.996_194_7;
+const ACTIVE_EDGE_SIN: f32 = 0.087_155_74;
+
+/// The flags of an edge bent by `φ = atan2(y, x)`: `φ > ACTIVE_EDGE_ANGLE` where `(x, y)` lies
+/// above the x axis and `y cos A > x sin A` (`sin(φ − A) > 0`), `φ < −A` below it and
+/// `−y cos A > x sin A`; folded flat back (`y = ±0`, `x < 0`) as `atan2` has it, `±π`. Building
+/// a mesh or heightfield tests every edge, so the test does without `atan2`.
+fn bend_flags(x: f32, y: f32, edge: usize) -> u8 {
+    let front = if y == 0.0 {
+        x < 0.0 && y.is_sign_positive()
+    } else {
+        y > 0.0 && y * ACTIVE_EDGE_COS > x * ACTIVE_EDGE_SIN
+    };
+    let back = if y == 0.0 {
+        x < 0.0 && y.is_sign_negative()
+    } else {
+        y < 0.0 && -y * ACTIVE_EDGE_COS > x * ACTIVE_EDGE_SIN
+    };
+    if front {
         1 << edge
-    } else if bend < -ACTIVE_EDGE_ANGLE {
+    } else if back {
         1 << (edge + 3)
     } else {
         0
@@ -138,6 +159,34 @@ mod tests {
         assert_eq!(ridge, 1 << 2);
         assert_eq!(valley, 1 << 5);
         assert_eq!(edge_flags(&corners, normal, 1, None), (1 << 1) | (1 << 4));
+    }
+
+    /// The bend test without `atan2` flags edges as `atan2` would, all round the circle.
+    #[test]
+    fn bends_are_flagged_as_their_angles_give() {
+        let (sin, cos) = ACTIVE_EDGE_ANGLE.sin_cos();
+        assert!((ACTIVE_EDGE_SIN - sin).abs() < 1e-7 && (ACTIVE_EDGE_COS - cos).abs() < 1e-7);
+        for k in 0..10_000 {
+            let angle =
+                -std::f32::consts::PI + 2.0 * std::f32::consts::PI * (k as f32 + 0.37) / 1e4;
+            let (y, x) = angle.sin_cos();
+            let (x, y) = (3.0 * x, 3.0 * y);
+            let bend = y.atan2(x);
+            if (bend.abs() - ACTIVE_EDGE_ANGLE).abs() < 1e-5 {
+                continue;
+            }
+            let expected = if bend > ACTIVE_EDGE_ANGLE {
+                1 << 1
+            } else if bend < -ACTIVE_EDGE_ANGLE {
+                1 << 4
+            } else {
+                0
+            };
+            assert_eq!(bend_flags(x, y, 1), expected, "angle {angle}");
+        }
+        assert_eq!(bend_flags(-1.0, 0.0, 0), 1);
+        assert_eq!(bend_flags(-1.0, -0.0, 0), 1 << 3);
+        assert_eq!(bend_flags(1.0, 0.0, 0), 0);
     }
 
     #[test]
