@@ -28,8 +28,12 @@ pub(crate) struct ContactConstraints {
     lanes: Vec<ContactLanes>,
     /// The rolling resistance of the contacts that have some (`rolling.rs`).
     rolling: RollingConstraints,
-    /// The contacts' spring for this step's substep.
+    /// The contacts' spring for this step's substep, the fastest push-out (m/s) and `1/h`.
     softness: Softness,
+    push_speed: f32,
+    inverse_h: f32,
+    /// The lane sets that may solve lanes as a block this step, by index into `lanes`.
+    blocking: Vec<usize>,
     /// Approach speed below which nothing bounces, m/s.
     restitution_threshold: f32,
     /// The lane sets with restitution, by index into `lanes`, in solving order.
@@ -135,6 +139,15 @@ impl ConstraintKind for ContactConstraints {
             }
         }
         self.softness = context.contact.softness(context.h, context.inverse_h);
+        self.push_speed = context.contact.push_speed;
+        self.inverse_h = context.inverse_h;
+        self.blocking.clear();
+        let blocking = self
+            .lanes
+            .iter()
+            .enumerate()
+            .filter(|(_, lanes)| lanes.may_block());
+        self.blocking.extend(blocking.map(|(index, _)| index));
         self.restitution_threshold = context.contact.restitution_threshold;
         self.bouncing.clear();
         let bouncing = self
@@ -148,21 +161,21 @@ impl ConstraintKind for ContactConstraints {
         }
     }
 
+    /// The warm start, and each point's target for the substep's biased passes, from the
+    /// poses, in one sweep ([`ContactLanes::set_targets`]).
     fn warm_start(&mut self, states: &mut [BodyState], _motions: &[BodyMotion]) {
-        for lanes in &self.lanes {
+        for lanes in &mut self.lanes {
             lanes.warm_start(states);
+            lanes.set_targets(states, &self.softness, self.push_speed, self.inverse_h);
         }
         self.rolling.warm_start(states);
     }
 
-    fn prepare_biased_passes(&mut self, states: &[BodyState], context: &StepContext) {
-        for lanes in &mut self.lanes {
-            lanes.prepare_biased_passes(
-                states,
-                &self.softness,
-                context.contact.push_speed,
-                context.inverse_h,
-            );
+    /// Which lanes solve as a block, from the velocities after every warm start (the targets
+    /// are set with the warm start).
+    fn prepare_biased_passes(&mut self, states: &[BodyState], _context: &StepContext) {
+        for &index in &self.blocking {
+            self.lanes[index].prepare_block(states);
         }
     }
 

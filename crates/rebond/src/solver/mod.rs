@@ -10,13 +10,17 @@
 //! |---|---|---|---|
 //! | prepare | once | read: each kind builds its constraints | read, at the start of the step |
 //! | integrate velocities | per substep | `v += h (g + F/m)`, `ω += h I⁻¹τ`, damped, limited | — |
-//! | warm start | per substep | the accumulated impulses applied again | read: joints follow the poses |
-//! | prepare biased passes | per substep | — | read: `Δc`, `Δθ` set the biased passes' targets |
+//! | warm start | per substep | the accumulated impulses applied again | read: joints follow the poses; `Δc`, `Δθ` set the contacts' targets for the biased passes |
+//! | prepare biased passes | per substep | read: which contacts meet an impact as a block | — |
 //! | solve (biased, ×2) | per substep | normal impulses, then joint rows, towards the targets (soft push-out) | — |
 //! | integrate positions | per substep | — | `c += h v`, `q` turned by `h ω`, `Δc`, `Δθ` |
 //! | relax | per substep | normal impulses without push-out, then friction, then rolling resistance (`rolling.rs`); then joint rows, rigid | read: `Δc`, `Δθ` |
 //! | restitution | once | the contacts with restitution collide again in sequence (`contacts.rs`) | — |
 //! | store impulses | once | — | — |
+//!
+//! The contacts set their biased passes' targets, which depend on the poses alone, in the warm
+//! start's sweep over their lane sets: one sweep over the lane sets instead of two, which keeps
+//! large scenes' lane sets from being read from memory twice a substep.
 //!
 //! The warm start applies last step's impulses in the first substep, the impulses accumulated
 //! so far in the others; the impulses stored go back to the contacts for the next step's warm

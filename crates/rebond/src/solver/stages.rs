@@ -70,10 +70,12 @@ pub(crate) trait ConstraintKind {
         context: &StepContext,
     );
 
-    /// Applies the accumulated impulses again, at the substep's poses (`motions`).
+    /// Applies the accumulated impulses again, at the substep's poses (`motions`); a kind may
+    /// also set its biased passes' targets from those poses here, in the same sweep.
     fn warm_start(&mut self, states: &mut [BodyState], motions: &[BodyMotion]);
 
-    /// Sets what the biased passes of the substep aim at, from its poses.
+    /// What the biased passes of the substep need once every kind has warm-started: the
+    /// velocities are the substep's then.
     fn prepare_biased_passes(&mut self, states: &[BodyState], context: &StepContext);
 
     /// One pass over the constraints: with position correction (`USE_BIAS`), or without it

@@ -566,9 +566,11 @@ impl ContactLanes {
     /// substep (speculative contact), so a touchdown is perfectly inelastic. Penetrating, it is
     /// a soft constraint pushing out at `bias_rate · s`, at most `push_speed`, at every
     /// depth: no dead zone, in which a resting contact would hold no position and stacks would
-    /// wander (docs/physics.md, "Position correction"). Then, where the lane set
-    /// [`Self::may_block`], which lanes the substep solves as a block ([`Self::prepare_block`]).
-    pub fn prepare_biased_passes(
+    /// wander (docs/physics.md, "Position correction"). It reads the poses alone, so it runs
+    /// with the warm start, which changes only velocities, in one sweep over the lane sets
+    /// (`contacts.rs`); which lanes the substep solves as a block is found after the warm start
+    /// ([`Self::prepare_block`]).
+    pub fn set_targets(
         &mut self,
         states: &[BodyState],
         softness: &Softness,
@@ -590,9 +592,11 @@ impl ContactLanes {
                 impulse_scale: apart.select(F32x4::ZERO, F32x4::splat(softness.impulse_scale)),
             };
         }
-        if self.may_block {
-            self.prepare_block(states);
-        }
+    }
+
+    /// Whether the lane set may solve lanes as a block this step ([`Self::prepare_block`]).
+    pub fn may_block(&self) -> bool {
+        self.may_block
     }
 
     /// In a lane set that [`Self::may_block`]: marks as [`Self::apart`] the lanes whose points
@@ -606,7 +610,7 @@ impl ContactLanes {
     /// another: resting contacts that flicker apart keep their springs (without the speed, 6 %
     /// of the 100-row pyramid's passes took the block).
     #[inline(never)]
-    fn prepare_block(&mut self, states: &[BodyState]) {
+    pub fn prepare_block(&mut self, states: &[BodyState]) {
         let a = BodyLanes::gather(states, &self.body_a);
         let b = BodyLanes::gather(states, &self.body_b);
         // A point is apart where its bias is above zero (a push's never is), and a lane is all
