@@ -89,6 +89,13 @@ fn sweep_collisions(
     }
 }
 
+/// Lists in `list`, by index into `lanes` and in solving order, the lane sets `keep` holds for.
+fn list_lane_sets(lanes: &[ContactLanes], keep: fn(&ContactLanes) -> bool, list: &mut Vec<usize>) {
+    list.clear();
+    let kept = lanes.iter().enumerate().filter(|(_, lanes)| keep(lanes));
+    list.extend(kept.map(|(index, _)| index));
+}
+
 /// The solver bodies of `contact`, or `None` when neither moves this step. Every contact's
 /// bodies are in the world: removing a body removes its contacts.
 fn constraint_bodies(solver_bodies: &SolverBodies, contact: &Contact) -> Option<(usize, usize)> {
@@ -141,21 +148,9 @@ impl ConstraintKind for ContactConstraints {
         self.softness = context.contact.softness(context.h, context.inverse_h);
         self.push_speed = context.contact.push_speed;
         self.inverse_h = context.inverse_h;
-        self.blocking.clear();
-        let blocking = self
-            .lanes
-            .iter()
-            .enumerate()
-            .filter(|(_, lanes)| lanes.may_block());
-        self.blocking.extend(blocking.map(|(index, _)| index));
+        list_lane_sets(&self.lanes, ContactLanes::may_block, &mut self.blocking);
         self.restitution_threshold = context.contact.restitution_threshold;
-        self.bouncing.clear();
-        let bouncing = self
-            .lanes
-            .iter()
-            .enumerate()
-            .filter(|(_, lanes)| lanes.bounces());
-        self.bouncing.extend(bouncing.map(|(index, _)| index));
+        list_lane_sets(&self.lanes, ContactLanes::bounces, &mut self.bouncing);
         if !self.bouncing.is_empty() {
             self.start.clone_from(&solver_bodies.states);
         }
