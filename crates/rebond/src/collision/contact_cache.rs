@@ -5,127 +5,14 @@
 use std::ops::Range;
 
 use super::manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
+use super::manifold_frame::{Centre, ManifoldFrame, PlacedBody};
 use super::narrow_phase::{PartCache, PartContacts};
 use crate::body::BodyHandle;
 #[cfg(feature = "serde")]
 use crate::limits::MAX_SOLVER_IMPULSE;
 use crate::material::Material;
-use crate::math::{Pose, Vec3, Vec3A};
-use crate::solver::contact_frame::ContactFrame;
+use crate::math::{Pose, Vec3};
 use crate::sorted::merge_into;
-use glam::Mat3A;
-
-/// A manifold is rebuilt from its stored points instead of running the narrow phase again while
-/// B has moved less than this relative to A since the manifold was computed, metres. The solver
-/// keeps a recycled manifold's normal and lever arms (`solver/contact_frame.rs`), so this is also
-/// how far a pair moves before its contacts feel their bodies' lean. More would hold tall stacks
-/// better (a 40-box column at 4 substeps swayed 17 cm at its top in 1,000 steps with 1 mm, 5.0 cm
-/// with 5 mm, 1.9 cm with 1 cm), but at 1e4 m from the origin, where a coordinate is rounded to
-/// 1 mm, a resting box then jitters at 0.17 m/s, and with 1 cm shapes poured on a heightfield
-/// sink 3.9 cm below it: carried points lag behind the surface they stand on.
-pub const RECYCLE_MAX_TRANSLATION: f32 = 1.0e-3;
-
-/// ... and turned less than this, radians (1°), measured as `cos(angle / 2)`.
-const RECYCLE_MIN_HALF_ANGLE_COSINE: f32 = 0.999_961_9;
-
-/// Where a manifold was computed, so it can be rebuilt while the two bodies barely move relative
-/// to each other (as Jolt's body-pair cache does): every point follows the bodies' surfaces. The
-/// bodies' frames here are their centres of mass' (position and rotation).
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct ManifoldFrame {
-    /// Pose of body B in body A's frame when the manifold was computed.
-    relative_pose: Pose,
-    /// The normal in A's frame.
-    local_normal: Vec3,
-    /// Each point's surface point on A in A's frame, and on B in B's frame.
-    local_points: [[Vec3; 2]; MAX_MANIFOLD_POINTS],
-    /// The normal and lever arms the solver keeps while the manifold is recycled.
-    pub(crate) solver: ContactFrame,
-}
-
-impl ManifoldFrame {
-    /// Records `manifold`, computed with the centres of mass at `pose_a` and `pose_b`. A point at
-    /// `position` with separation `s` has its surface points at `position ∓ n s / 2`.
-    fn new(manifold: &Manifold, pose_a: &Pose, pose_b: &Pose) -> Self {
-        let mut local_points = [[Vec3::ZERO; 2]; MAX_MANIFOLD_POINTS];
-        for (point, local) in manifold.points().iter().zip(&mut local_points) {
-            let half_gap = 0.5 * point.separation * manifold.normal;
-            *local = [
-                pose_a.inverse_transform_point(point.position - half_gap),
-                pose_b.inverse_transform_point(point.position + half_gap),
-            ];
-        }
-        Self {
-            relative_pose: pose_a.inverse().mul_pose(pose_b),
-            local_normal: pose_a.inverse_transform_vector(manifold.normal),
-            local_points,
-            solver: ContactFrame::new(manifold, pose_a.position, pose_b.position),
-        }
-    }
-
-    /// Whether every value is finite.
-    #[cfg(feature = "serde")]
-    fn is_finite(&self) -> bool {
-        let solver = &self.solver;
-        let points = self.local_points.iter().flatten();
-        [self.local_normal, solver.normal, solver.centers]
-            .iter()
-            .chain(points)
-            .chain(&solver.arms)
-            .all(|vector| vector.is_finite())
-            && self.relative_pose.position.is_finite()
-            && self.relative_pose.rotation.is_finite()
-    }
-
-    /// Whether B's pose relative to A is still within the recycling tolerances.
-    fn still_fits(&self, relative_pose: &Pose) -> bool {
-        let moved = relative_pose
-            .position
-            .distance_squared(self.relative_pose.position);
-        let half_angle_cosine = relative_pose
-            .rotation
-            .dot(self.relative_pose.rotation)
-            .abs();
-        moved <= RECYCLE_MAX_TRANSLATION * RECYCLE_MAX_TRANSLATION
-            && half_angle_cosine >= RECYCLE_MIN_HALF_ANGLE_COSINE
-    }
-
-    /// The manifold with its points carried along with the bodies now at `pose_a` and `pose_b`:
-    /// same ids, separations measured again along the carried normal.
-    fn rebuild(&self, manifold: &Manifold, a: &PlacedBody, b: &PlacedBody) -> Manifold {
-        let mut rebuilt = *manifold;
-        let normal = a.rotation * Vec3A::from(self.local_normal);
-        rebuilt.normal = normal.into();
-        for (point, [on_a, on_b]) in rebuilt.points_mut().iter_mut().zip(&self.local_points) {
-            let surface_a = a.place(*on_a);
-            let surface_b = b.place(*on_b);
-            point.separation = normal.dot(surface_b - surface_a);
-            point.position = (0.5 * (surface_a + surface_b)).into();
-        }
-        rebuilt
-    }
-}
-
-/// A body's pose with its rotation as a SIMD matrix, to place several body points cheaply.
-struct PlacedBody {
-    position: Vec3A,
-    rotation: Mat3A,
-}
-
-impl PlacedBody {
-    fn new(pose: &Pose) -> Self {
-        Self {
-            position: pose.position.into(),
-            rotation: Mat3A::from_quat(pose.rotation),
-        }
-    }
-
-    /// Body point to world point.
-    fn place(&self, point: Vec3) -> Vec3A {
-        self.position + self.rotation * Vec3A::from(point)
-    }
-}
 
 /// Names one contact: the two bodies (A before B) and the compound children involved (0 for a
 /// shape that is not a compound). Ordered, so contacts sort deterministically.
@@ -306,7 +193,7 @@ impl ContactCache {
             rolling_impulse: Vec3::ZERO,
             material: Material::NONE,
             patch_radius_ratio: 0.0,
-            frame: ManifoldFrame::new(&manifold, pose_a, pose_b),
+            frame: ManifoldFrame::new(&manifold, &Centre::of(pose_a), &Centre::of(pose_b)),
             part_cache,
             fresh: true,
         });
@@ -334,6 +221,8 @@ impl ContactCache {
     /// `pose_a` and `pose_b`) instead of running the narrow phase, if there were any and B has
     /// barely moved relative to A since they were computed ([`RECYCLE_MAX_TRANSLATION`], 1°).
     /// Returns whether it did.
+    ///
+    /// [`RECYCLE_MAX_TRANSLATION`]: super::manifold_frame::RECYCLE_MAX_TRANSLATION
     pub fn recycle(
         &mut self,
         body_a: BodyHandle,
@@ -346,20 +235,21 @@ impl ContactCache {
         if previous.is_empty() {
             return false;
         }
-        let relative_pose = pose_a.inverse().mul_pose(pose_b);
+        let (a, b) = (Centre::of(pose_a), Centre::of(pose_b));
+        let relative = a.relative(&b);
         if !previous
             .iter()
-            .all(|contact| contact.frame.still_fits(&relative_pose))
+            .all(|contact| contact.frame.still_fits(&relative))
         {
             return false;
         }
-        let (placed_a, placed_b) = (PlacedBody::new(pose_a), PlacedBody::new(pose_b));
+        let (placed_a, placed_b) = (PlacedBody::new(&a), PlacedBody::new(&b));
         let start = self.current.len();
         self.current.extend_from_slice(previous);
         for contact in &mut self.current[start..] {
-            contact.manifold = contact
+            contact
                 .frame
-                .rebuild(&contact.manifold, &placed_a, &placed_b);
+                .rebuild(&mut contact.manifold, &placed_a, &placed_b);
             carry_part_cache(contact, &self.previous_part_caches, &mut self.part_caches);
         }
         true
