@@ -5,7 +5,7 @@
 use std::ops::Range;
 
 use super::manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
-use super::manifold_frame::{Centre, ManifoldFrame, PlacedBody};
+use super::manifold_frame::{CenterPose, ManifoldFrame, PlacedBody};
 use super::narrow_phase::{PartCache, PartContacts};
 use crate::body::BodyHandle;
 #[cfg(feature = "serde")]
@@ -193,7 +193,7 @@ impl ContactCache {
             rolling_impulse: Vec3::ZERO,
             material: Material::NONE,
             patch_radius_ratio: 0.0,
-            frame: ManifoldFrame::new(&manifold, &Centre::of(pose_a), &Centre::of(pose_b)),
+            frame: ManifoldFrame::new(&manifold, &CenterPose::of(pose_a), &CenterPose::of(pose_b)),
             part_cache,
             fresh: true,
         });
@@ -235,7 +235,7 @@ impl ContactCache {
         if previous.is_empty() {
             return false;
         }
-        let (a, b) = (Centre::of(pose_a), Centre::of(pose_b));
+        let (a, b) = (CenterPose::of(pose_a), CenterPose::of(pose_b));
         let relative = a.relative(&b);
         if !previous
             .iter()

@@ -39,11 +39,11 @@ pub struct ManifoldFrame {
 impl ManifoldFrame {
     /// Records `manifold`, computed with the centres of mass at `a` and `b`. A point at `position`
     /// with separation `s` has its surface points at `position ∓ n s / 2`.
-    pub(super) fn new(manifold: &Manifold, a: &Centre, b: &Centre) -> Self {
+    pub(super) fn new(manifold: &Manifold, a: &CenterPose, b: &CenterPose) -> Self {
         let mut local_points = [[Vec3::ZERO; 2]; MAX_MANIFOLD_POINTS];
-        let normal = Centre::lanes(manifold.normal);
+        let normal = CenterPose::lanes(manifold.normal);
         for (point, local) in manifold.points().iter().zip(&mut local_points) {
-            let position = Centre::lanes(point.position);
+            let position = CenterPose::lanes(point.position);
             let half_gap = 0.5 * point.separation * normal;
             *local = [
                 a.local_point(position - half_gap).into(),
@@ -75,7 +75,7 @@ impl ManifoldFrame {
     }
 
     /// Whether B's pose relative to A is still within the recycling tolerances.
-    pub(super) fn still_fits(&self, relative: &Centre) -> bool {
+    pub(super) fn still_fits(&self, relative: &CenterPose) -> bool {
         let moved = relative.position.distance_squared(self.relative_position);
         let half_angle_cosine = relative.rotation.dot(self.relative_rotation).abs();
         moved <= RECYCLE_MAX_TRANSLATION * RECYCLE_MAX_TRANSLATION
@@ -104,10 +104,10 @@ pub(super) struct PlacedBody {
 }
 
 impl PlacedBody {
-    pub(super) fn new(centre: &Centre) -> Self {
+    pub(super) fn new(pose: &CenterPose) -> Self {
         Self {
-            position: centre.position,
-            rotation: Mat3A::from_quat(centre.rotation),
+            position: pose.position,
+            rotation: Mat3A::from_quat(pose.rotation),
         }
     }
 
@@ -123,12 +123,12 @@ impl PlacedBody {
 /// (a pointer's upper half) are denormal floats, and on Intel cores every multiply with one takes
 /// a microcode assist (`docs/design-notes/performance.md`).
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Centre {
+pub(super) struct CenterPose {
     position: Vec3A,
     rotation: Quat,
 }
 
-impl Centre {
+impl CenterPose {
     pub(super) fn of(pose: &Pose) -> Self {
         Self {
             position: Self::lanes(pose.position),
@@ -144,9 +144,9 @@ impl Centre {
 
     /// This pose's inverse times `other`: `other` seen from this one, rounded as
     /// `Pose::inverse` and `Pose::mul_pose` round it.
-    pub(super) fn relative(&self, other: &Centre) -> Centre {
+    pub(super) fn relative(&self, other: &CenterPose) -> CenterPose {
         let inverse = self.rotation.inverse();
-        Centre {
+        CenterPose {
             position: inverse * -self.position + inverse * other.position,
             rotation: inverse * other.rotation,
         }
