@@ -13,7 +13,7 @@
 //! lengths) of joints sharing moving bodies are solved together and exactly
 //! (`joint_groups.rs`); limits, motors, springs and friction one row at a time.
 
-use super::joint_groups::{Accumulator, GroupRow, GroupSystem, MAX_GROUP_ROWS};
+use super::joint_groups::{Accumulator, EliminationOrder, GroupRow, GroupSystem, MAX_GROUP_ROWS};
 use super::joint_parts::{
     AxisPart, JointBodies, PlanePart, PointPart, RotationPart, RowJacobian, RowSoftness, Velocities,
 };
@@ -71,6 +71,10 @@ pub(crate) struct JointConstraints {
     group_of_root: Vec<usize>,
     /// Scratch: how many holding rows each group has.
     rows_of_group: Vec<usize>,
+    /// Scratch: each joint's solver bodies if it is in a group.
+    grouped_bodies: Vec<Option<[usize; 2]>>,
+    /// The order in which the grouped joints' rows go into their groups.
+    order: EliminationOrder,
     /// Whether the rows were built at the bodies' current poses: poses move only between the
     /// biased passes and the relax pass, so the rows the relax pass builds serve the next
     /// substep's warm start and biased passes too; only the first substep builds its own.
@@ -523,8 +527,8 @@ impl JointConstraints {
     }
 
     /// Sorts the joints into groups linked by moving bodies (union–find over the solver
-    /// bodies, groups numbered in joint order) and keeps the groups small enough for the
-    /// direct solve.
+    /// bodies, groups numbered in joint order), keeps the groups small enough for the direct
+    /// solve and orders their joints for it ([`EliminationOrder`]).
     fn group(&mut self, body_count: usize) {
         self.parent.clear();
         self.parent.extend(0..body_count);
@@ -569,6 +573,13 @@ impl JointConstraints {
         for group in &mut self.groups[..self.group_count] {
             group.forget_structure();
         }
+        self.grouped_bodies.clear();
+        self.grouped_bodies.extend(
+            self.constraints
+                .iter()
+                .map(|constraint| constraint.group.map(|_| constraint.solver)),
+        );
+        self.order.find(&self.grouped_bodies, body_count);
     }
 
     /// Refreshes every joint's geometry for the current poses and builds and factors each
@@ -577,8 +588,11 @@ impl JointConstraints {
         for group in &mut self.groups[..self.group_count] {
             group.rows.clear();
         }
-        for (index, constraint) in self.constraints.iter_mut().enumerate() {
+        for constraint in &mut self.constraints {
             constraint.refresh(motions);
+        }
+        for &index in self.order.joints() {
+            let constraint = &self.constraints[index];
             if let Some(group) = constraint.group {
                 constraint.push_holding_rows(index, &mut self.groups[group].rows);
             }
