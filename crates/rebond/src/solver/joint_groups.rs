@@ -288,6 +288,9 @@ impl EliminationOrder {
     /// `None` leaves a joint out (not in a group).
     pub fn find(&mut self, bodies: &[Option<[usize; 2]>], body_count: usize) {
         self.order.clear();
+        if bodies.iter().all(Option::is_none) {
+            return;
+        }
         self.start.clear();
         self.start.resize(body_count + 1, 0);
         for pair in bodies.iter().flatten() {
@@ -313,7 +316,9 @@ impl EliminationOrder {
         }
         let degree = |body: usize| self.start[body + 1] - self.start[body];
         let mut roots = std::mem::take(&mut self.roots);
-        roots.sort_by_key(|&body| std::cmp::Reverse((degree(body), body)));
+        // Keys are distinct (the body is part of each), so the unstable sort is deterministic;
+        // unlike the stable one it needs no buffer.
+        roots.sort_unstable_by_key(|&body| std::cmp::Reverse((degree(body), body)));
         self.visited.clear();
         self.visited.resize(body_count, false);
         self.emitted.clear();
