@@ -12,7 +12,7 @@ pub mod feature_contact;
 pub mod gjk;
 pub mod halfspace;
 pub mod manifold;
-pub mod manifold_frame;
+mod manifold_frame;
 mod mesh_contact;
 pub mod narrow_phase;
 pub mod polyhedron;
