@@ -58,7 +58,7 @@ mod sorted;
 pub mod state;
 mod world;
 
-pub use body::{BodyDesc, BodyHandle, BodyType, RigidBody};
+pub use body::{BodyDesc, BodyHandle, BodyType, LockedAxes, RigidBody};
 pub use collision::contact_cache::Contact;
 pub use collision::{ContactPoint, MAX_MANIFOLD_POINTS};
 pub use error::{Error, ErrorKind, Result};
@@ -100,3 +100,8 @@ pub mod internals {
 #[cfg(doctest)]
 #[doc = include_str!("../../../README.md")]
 pub struct ReadmeDoctests;
+
+/// The examples of `docs/bodies.md`, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/bodies.md")]
+pub struct BodiesDoctests;

@@ -5,5 +5,6 @@
 
 pub use crate::{
     BodyDesc, BodyHandle, BodyType, CompoundChild, Error, InteractionGroups, JointDesc,
-    JointHandle, Motor, Pose, Quat, QueryFilter, Ray, RigidBody, Shape, Vec3, World, WorldSettings,
+    JointHandle, LockedAxes, Motor, Pose, Quat, QueryFilter, Ray, RigidBody, Shape, Vec3, World,
+    WorldSettings,
 };

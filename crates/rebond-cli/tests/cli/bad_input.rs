@@ -879,3 +879,37 @@ fn an_invalid_scene_is_reported_before_an_unwritable_record() {
     let line = assert_one_error_line(&outcome, 2, &scene_path);
     assert!(line.contains("bodies: invalid type"), "{line}");
 }
+
+#[test]
+fn bad_locked_axes_are_refused_at_their_path() {
+    assert_refused(
+        "locked_axes_number",
+        &scene_with(&format!(
+            r#"{{{BALL}, "locked_axes": {{"rotation": [true, 1, false]}}}}"#
+        )),
+        "bodies[1].locked_axes.rotation[1]",
+        "invalid type: integer `1`, expected a boolean",
+    );
+    assert_refused(
+        "locked_axes_short",
+        &scene_with(&format!(
+            r#"{{{BALL}, "locked_axes": {{"translation": [true, true]}}}}"#
+        )),
+        "bodies[1].locked_axes.translation",
+        "invalid length 2",
+    );
+    assert_refused(
+        "locked_axes_unknown",
+        &scene_with(&format!(
+            r#"{{{BALL}, "locked_axes": {{"spin": [true, true, true]}}}}"#
+        )),
+        "bodies[1].locked_axes.spin",
+        "unknown field `spin`",
+    );
+    assert_refused(
+        "locked_axes_not_object",
+        &scene_with(&format!(r#"{{{BALL}, "locked_axes": true}}"#)),
+        "bodies[1].locked_axes",
+        "expected a JSON object",
+    );
+}

@@ -1,6 +1,6 @@
 //! A body's description: everything needed to create one, with the builder calls that set it.
 
-use super::BodyType;
+use super::{BodyType, LockedAxes};
 use crate::filter::InteractionGroups;
 use crate::math::{Quat, Vec3};
 use crate::shape::Shape;
@@ -55,6 +55,9 @@ pub struct BodyDesc {
     pub angular_damping: f32,
     /// Whether the body may fall asleep, default true.
     pub can_sleep: bool,
+    /// World axes along which the body never moves and about which it never turns, default
+    /// none ([`LockedAxes`]); only dynamic bodies feel them.
+    pub locked_axes: LockedAxes,
     /// Whether the body is a sensor, default false: it never pushes anything and nothing pushes
     /// it (no contacts), but it reports the bodies that enter and leave its shape
     /// ([`crate::events::SensorEvent`]). A sensor sees dynamic and kinematic bodies, and static
@@ -93,6 +96,7 @@ impl BodyDesc {
             linear_damping: 0.0,
             angular_damping: 0.0,
             can_sleep: true,
+            locked_axes: LockedAxes::NONE,
             sensor: false,
             collision_groups: InteractionGroups::ALL,
             contact_force_threshold: f32::INFINITY,
@@ -189,6 +193,12 @@ impl BodyDesc {
     /// Sets the torque applied during every step.
     pub fn constant_torque(mut self, torque: Vec3) -> Self {
         self.constant_torque = torque;
+        self
+    }
+
+    /// Locks world axes of translation and rotation ([`LockedAxes`]).
+    pub fn locked_axes(mut self, locked_axes: LockedAxes) -> Self {
+        self.locked_axes = locked_axes;
         self
     }
 

@@ -19,8 +19,10 @@ use crate::math::{normalize_rotation, rotate_tensor, skew, Aabb, Mat3, Pose, Qua
 use crate::shape::Shape;
 
 mod desc;
+mod locked_axes;
 
 pub use desc::BodyDesc;
+pub use locked_axes::LockedAxes;
 
 /// How a body moves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -80,6 +82,7 @@ pub struct RigidBody {
     pub(crate) restitution: f32,
     pub(crate) rolling_resistance: f32,
     pub(crate) can_sleep: bool,
+    pub(crate) locked_axes: LockedAxes,
     pub(crate) sleeping: bool,
     /// How long the body has been still, seconds (see [`crate::island`]).
     pub(crate) sleep_time: f32,
@@ -160,6 +163,7 @@ impl RigidBody {
             restitution: desc.restitution,
             rolling_resistance: desc.rolling_resistance,
             can_sleep: desc.can_sleep,
+            locked_axes: desc.locked_axes,
             sleeping: false,
             sleep_time: 0.0,
             sleep_group: None,
@@ -185,6 +189,7 @@ impl RigidBody {
             .max((local_bounds.max - body.local_center_of_mass).abs())
             .length();
         body.set_origin_pose(Pose::new(desc.position, rotation));
+        body.hold_to_locked_axes();
         Ok(body)
     }
 
@@ -253,22 +258,45 @@ impl RigidBody {
         self.inverse_mass
     }
 
+    /// The inverse mass along each world axis, kg⁻¹: `1/m` on the free axes, zero on the
+    /// locked ones ([`LockedAxes`]) and for static and kinematic bodies. `Δv = M⁻¹ J` for an
+    /// impulse `J` at the centre of mass.
+    pub fn inverse_mass_diagonal(&self) -> Vec3 {
+        self.locked_axes.free_linear(Vec3::splat(self.inverse_mass))
+    }
+
+    /// The world axes the body does not move along or turn about.
+    pub fn locked_axes(&self) -> LockedAxes {
+        self.locked_axes
+    }
+
+    /// Locks world axes ([`LockedAxes`]); the velocities along and about the newly locked axes
+    /// become zero. Only dynamic bodies feel locks.
+    pub fn set_locked_axes(&mut self, locked_axes: LockedAxes) {
+        self.locked_axes = locked_axes;
+        self.update_world_inverse_inertia();
+        self.hold_to_locked_axes();
+        self.wake();
+    }
+
     /// Inertia tensor about the centre of mass in body axes, kg·m²; zero unless dynamic.
     pub fn local_inertia(&self) -> Mat3 {
         self.local_inertia
     }
 
-    /// Inverse inertia in world axes, `R · I⁻¹ · Rᵀ`; zero unless dynamic.
+    /// Inverse inertia in world axes, `R · I⁻¹ · Rᵀ`, restricted to the free rotation axes when
+    /// some are locked ([`LockedAxes`]); zero unless dynamic.
     pub fn world_inverse_inertia(&self) -> Mat3 {
         self.world_inverse_inertia
     }
 
     /// How the velocity of the material point at world `point` answers an impulse there, s/kg:
-    /// `Δv = K J` with `K = (1/m)·𝟙 − [r]ₓ I⁻¹ [r]ₓ`, `r = p − c` (zero unless dynamic). Its
-    /// inverse is the point's effective mass, what a mouse spring or a point constraint needs.
+    /// `Δv = K J` with `K = M⁻¹ − [r]ₓ I⁻¹ [r]ₓ`, `r = p − c`, `M⁻¹` and `I⁻¹` without their
+    /// locked axes (zero unless dynamic). Its inverse is the point's effective mass, what a
+    /// mouse spring or a point constraint needs.
     pub fn inverse_mass_at_point(&self, point: Vec3) -> Mat3 {
         let arm = skew(point - self.center_of_mass);
-        Mat3::from_diagonal(Vec3::splat(self.inverse_mass)) - arm * self.world_inverse_inertia * arm
+        Mat3::from_diagonal(self.inverse_mass_diagonal()) - arm * self.world_inverse_inertia * arm
     }
 
     /// Inertia in world axes, `R · I · Rᵀ`; zero unless dynamic.
@@ -412,21 +440,25 @@ impl RigidBody {
         Ok(())
     }
 
-    /// Sets the velocity of the centre of mass (ignored for static bodies).
+    /// Sets the velocity of the centre of mass (ignored for static bodies; without its parts
+    /// along locked axes).
     pub fn set_linear_velocity(&mut self, velocity: Vec3) -> Result<()> {
         check_length("linear_velocity", velocity, MAX_SPEED)?;
         if self.body_type != BodyType::Static {
             self.linear_velocity = velocity;
+            self.hold_to_locked_axes();
             self.wake();
         }
         Ok(())
     }
 
-    /// Sets the world angular velocity (ignored for static bodies).
+    /// Sets the world angular velocity (ignored for static bodies; without its parts about
+    /// locked axes).
     pub fn set_angular_velocity(&mut self, velocity: Vec3) -> Result<()> {
         check_length("angular_velocity", velocity, MAX_ANGULAR_SPEED)?;
         if self.body_type != BodyType::Static {
             self.angular_velocity = velocity;
+            self.hold_to_locked_axes();
             self.wake();
         }
         Ok(())
@@ -465,22 +497,23 @@ impl RigidBody {
         Ok(())
     }
 
-    /// Changes the velocity at once by an impulse at the centre of mass: `Δv = J/m`, N·s.
+    /// Changes the velocity at once by an impulse at the centre of mass: `Δv = M⁻¹ J`, N·s
+    /// (`J/m` on the axes that are not locked).
     pub fn apply_impulse(&mut self, impulse: Vec3) -> Result<()> {
         check_length("impulse", impulse, MAX_FORCE)?;
         if self.is_dynamic() {
-            self.linear_velocity += self.inverse_mass * impulse;
+            self.linear_velocity += self.inverse_mass_diagonal() * impulse;
             self.wake();
         }
         Ok(())
     }
 
-    /// An impulse at world `point`: `Δv = J/m`, `Δω = I⁻¹ (r × J)` with `r = point − c`.
+    /// An impulse at world `point`: `Δv = M⁻¹ J`, `Δω = I⁻¹ (r × J)` with `r = point − c`.
     pub fn apply_impulse_at_point(&mut self, impulse: Vec3, point: Vec3) -> Result<()> {
         check_length("impulse", impulse, MAX_FORCE)?;
         check_position("point", point)?;
         if self.is_dynamic() {
-            self.linear_velocity += self.inverse_mass * impulse;
+            self.linear_velocity += self.inverse_mass_diagonal() * impulse;
             self.angular_velocity +=
                 self.world_inverse_inertia * (point - self.center_of_mass).cross(impulse);
             self.wake();
@@ -632,9 +665,23 @@ impl RigidBody {
         self.update_world_inverse_inertia();
     }
 
-    /// `I_world⁻¹ = R · I⁻¹ · Rᵀ`.
+    /// `I_world⁻¹ = R · I⁻¹ · Rᵀ`, restricted to the free rotation axes of a dynamic body with
+    /// locked ones ([`LockedAxes::restrict_inverse_inertia`]).
     pub(crate) fn update_world_inverse_inertia(&mut self) {
-        self.world_inverse_inertia = rotate_tensor(self.rotation, self.local_inverse_inertia);
+        self.world_inverse_inertia = if self.is_dynamic() && self.locked_axes.locks_rotation() {
+            self.locked_axes
+                .restrict_inverse_inertia(self.world_inertia())
+        } else {
+            rotate_tensor(self.rotation, self.local_inverse_inertia)
+        };
+    }
+
+    /// Takes a dynamic body's velocities along and about its locked axes away.
+    fn hold_to_locked_axes(&mut self) {
+        if self.is_dynamic() {
+            self.linear_velocity = self.locked_axes.free_linear(self.linear_velocity);
+            self.angular_velocity = self.locked_axes.free_angular(self.angular_velocity);
+        }
     }
 }
 

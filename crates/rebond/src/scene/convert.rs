@@ -1,7 +1,7 @@
 //! From the file's model to the engine's descriptions: every number narrowed to `f32` and checked,
 //! every error placed at the path of the value the user wrote (`bodies[3].shape.radius`).
 
-use crate::body::{BodyDesc, BodyHandle};
+use crate::body::{BodyDesc, BodyHandle, LockedAxes};
 use crate::filter::InteractionGroups;
 use crate::joint::{JointDesc, Motor};
 use crate::limits::{MAX_TIMESTEP, MIN_TIMESTEP};
@@ -151,6 +151,12 @@ pub(super) fn body_desc(
     }
     if let Some(value) = entry.can_sleep {
         desc.can_sleep = value;
+    }
+    if let Some(locks) = &entry.locked_axes {
+        desc.locked_axes = LockedAxes {
+            translation: locks.translation.unwrap_or_default(),
+            rotation: locks.rotation.unwrap_or_default(),
+        };
     }
     if let Some(value) = entry.sensor {
         desc.sensor = value;

@@ -108,10 +108,19 @@ pub(super) struct BodyEntry {
     pub(super) linear_damping: Option<f64>,
     pub(super) angular_damping: Option<f64>,
     pub(super) can_sleep: Option<bool>,
+    pub(super) locked_axes: Option<JsonObject<LockedAxesEntry>>,
     /// Extension of the contract: a sensor reports overlaps and pushes nothing.
     pub(super) sensor: Option<bool>,
     /// Extension of the contract: the body's collision groups.
     pub(super) collision_groups: Option<JsonObject<GroupsEntry>>,
+}
+
+/// Locked axes, as written: world axes `[x, y, z]`, each list all `false` when left out.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct LockedAxesEntry {
+    pub(super) translation: Option<[bool; 3]>,
+    pub(super) rotation: Option<[bool; 3]>,
 }
 
 /// Collision groups, as written: two 32-bit masks, each all ones when left out.

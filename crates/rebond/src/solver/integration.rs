@@ -27,8 +27,9 @@ impl SpeedLimits {
 }
 
 /// Advances a dynamic body's velocities by one substep `h` (seconds):
-/// `v ← (v + h·(g + F/m)) / (1 + h·c_lin)` and `ω ← (ω + h·I⁻¹τ)` followed by the implicit
-/// gyroscopic step (skipped for isotropic inertia, where `ω × Iω = 0`) and
+/// `v ← (v + h·(𝟙 − L)(g + F/m)) / (1 + h·c_lin)`, `L` the locked translation axes, and
+/// `ω ← (ω + h·I⁻¹τ)` followed by the implicit gyroscopic step (skipped for isotropic inertia,
+/// where `ω × Iω = 0`, and for a body with a locked rotation axis) and
 /// `ω ← ω / (1 + h·c_ang)`, each then held to its speed limit. Static and kinematic bodies are
 /// left alone.
 pub(crate) fn integrate_velocities(
@@ -42,10 +43,12 @@ pub(crate) fn integrate_velocities(
         return;
     }
     let acceleration = Vec3A::from(gravity) + motion.inverse_mass * Vec3A::from(motion.force);
+    // Along a locked axis (`body/locked_axes.rs`) the body feels no acceleration: 0 · a there.
+    let acceleration = acceleration - acceleration * motion.translation_lock;
     let linear = state.linear_velocity + h * acceleration;
     let torque = Vec3A::from(motion.torque);
     let angular = state.angular_velocity + h * motion.world_inverse_inertia.mul_vec3a(torque);
-    let angular = if motion.has_isotropic_inertia {
+    let angular = if motion.skips_gyroscopic_step {
         angular
     } else {
         implicit_gyroscopic_step(motion, angular.into(), h).into()

@@ -51,7 +51,7 @@ impl GroupRow {
     pub fn new(
         (joint, accumulator): (usize, Accumulator),
         bodies: [usize; 2],
-        (inverse_mass, inverse_inertia): ([f32; 2], [Mat3; 2]),
+        (inverse_mass, inverse_inertia): ([Vec3; 2], [Mat3; 2]),
         jacobian: RowJacobian,
         error: f32,
     ) -> Self {

@@ -11,13 +11,27 @@
 use super::softness::Softness;
 use crate::math::{skew, Mat3, Vec3};
 
-/// The two bodies of a joint as its parts see them: inverse masses (kg⁻¹) and world inverse
-/// inertias at the start of the step.
+/// The two bodies of a joint as its parts see them: inverse masses along the world axes
+/// (kg⁻¹; `1/m` but zero along locked axes, `body/locked_axes.rs`) and world inverse inertias at
+/// the start of the step.
 #[derive(Debug, Clone, Copy)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct JointBodies {
-    pub inverse_mass: [f32; 2],
+    pub inverse_mass: [Vec3; 2],
     pub inverse_inertia: [Mat3; 2],
+}
+
+impl JointBodies {
+    /// `i · (M_A⁻¹ + M_B⁻¹) j`, the linear part of two rows' coupling: `(m_A⁻¹ + m_B⁻¹) i·j`
+    /// when the sum is the same along every axis (no locked translation), rounded as that.
+    pub fn linear_coupling(&self, i: Vec3, j: Vec3) -> f32 {
+        let sum = self.inverse_mass[0] + self.inverse_mass[1];
+        if sum.x == sum.y && sum.y == sum.z {
+            sum.x * i.dot(j)
+        } else {
+            i.dot(sum * j)
+        }
+    }
 }
 
 /// The two bodies' velocities while a joint is solved (`[A, B]`), m/s and rad/s.
@@ -145,7 +159,7 @@ impl PointPart {
         let (skew_a, skew_b) = (skew(arm_a), skew(arm_b));
         let [mass_a, mass_b] = bodies.inverse_mass;
         let [inertia_a, inertia_b] = bodies.inverse_inertia;
-        let k = Mat3::from_diagonal(Vec3::splat(mass_a + mass_b))
+        let k = Mat3::from_diagonal(mass_a + mass_b)
             + skew_a * inertia_a * skew_a.transpose()
             + skew_b * inertia_b * skew_b.transpose();
         Self {
@@ -289,9 +303,8 @@ impl AxisPart {
     fn new(bodies: &JointBodies, direction: Vec3, arm_a: Vec3, arm_b: Vec3) -> Self {
         let spin_a = bodies.inverse_inertia[0] * arm_a;
         let spin_b = bodies.inverse_inertia[1] * arm_b;
-        let k = (bodies.inverse_mass[0] + bodies.inverse_mass[1]) * direction.length_squared()
-            + arm_a.dot(spin_a)
-            + arm_b.dot(spin_b);
+        let k =
+            bodies.linear_coupling(direction, direction) + arm_a.dot(spin_a) + arm_b.dot(spin_b);
         let (k, mass) = if k > 0.0 && k.is_finite() {
             (k, 1.0 / k)
         } else {
@@ -321,8 +334,8 @@ impl AxisPart {
     }
 
     pub fn apply(&self, bodies: &JointBodies, v: &mut Velocities, impulse: f32) {
-        v.linear[0] -= (bodies.inverse_mass[0] * impulse) * self.direction;
-        v.linear[1] += (bodies.inverse_mass[1] * impulse) * self.direction;
+        v.linear[0] -= bodies.inverse_mass[0] * impulse * self.direction;
+        v.linear[1] += bodies.inverse_mass[1] * impulse * self.direction;
         v.angular[0] -= impulse * self.spin_a;
         v.angular[1] += impulse * self.spin_b;
     }
@@ -452,7 +465,7 @@ pub(super) struct PlanePart {
 impl PlanePart {
     pub fn new(bodies: &JointBodies, rows: [AxisPart; 2], axes: [Vec3; 2]) -> Self {
         let coupling = |i: &AxisPart, j: &AxisPart| {
-            (bodies.inverse_mass[0] + bodies.inverse_mass[1]) * i.direction.dot(j.direction)
+            bodies.linear_coupling(i.direction, j.direction)
                 + i.arm_a.dot(j.spin_a)
                 + i.arm_b.dot(j.spin_b)
         };

@@ -680,7 +680,7 @@ impl ConstraintKind for JointConstraints {
                 frames: joint.frames,
                 solver,
                 bodies: JointBodies {
-                    inverse_mass: motions.map(|motion| motion.inverse_mass),
+                    inverse_mass: motions.map(BodyMotion::inverse_mass_diagonal),
                     inverse_inertia: motions.map(|motion| motion.world_inverse_inertia),
                 },
                 start_poses: data.poses.map(|pose| (pose.center_of_mass, pose.rotation)),

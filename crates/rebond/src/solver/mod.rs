@@ -85,14 +85,18 @@ pub(crate) struct BodyMotion {
     /// `1/m`; zero for kinematic bodies and for solver body 0, which stands for every static or
     /// sleeping body.
     pub inverse_mass: f32,
+    /// 1 on the world axes a dynamic body may not move along, else 0 (`body/locked_axes.rs`):
+    /// its inverse mass is `m⁻¹ (𝟙 − L)`.
+    pub translation_lock: Vec3A,
     pub center_of_mass: Vec3,
     pub rotation: Quat,
     /// `R I⁻¹ Rᵀ` at the start of the step; the contact solver uses it for the whole step.
     pub world_inverse_inertia: Mat3,
     pub local_inertia: Mat3,
-    /// Whether `local_inertia` is `s·1` (spheres, cubes): then `ω × Iω = 0` and the gyroscopic
-    /// step changes nothing.
-    pub has_isotropic_inertia: bool,
+    /// Whether the gyroscopic step is skipped: where `local_inertia` is `s·1` (spheres, cubes),
+    /// `ω × Iω = 0` and it changes nothing; a body with a locked rotation axis turns without
+    /// it (`body/locked_axes.rs`).
+    pub skips_gyroscopic_step: bool,
     /// User forces plus the constant force, N; and torques, N·m.
     pub force: Vec3,
     pub torque: Vec3,
@@ -103,14 +107,21 @@ pub(crate) struct BodyMotion {
 }
 
 impl BodyMotion {
+    /// The inverse mass along each world axis, `m⁻¹ (𝟙 − L)`, kg⁻¹.
+    pub fn inverse_mass_diagonal(&self) -> Vec3 {
+        let inverse_mass = Vec3A::splat(self.inverse_mass);
+        (inverse_mass - inverse_mass * self.translation_lock).into()
+    }
+
     /// Solver body 0: stands for every static or sleeping body, which the step never moves.
     const FIXED: Self = Self {
         inverse_mass: 0.0,
+        translation_lock: Vec3A::ZERO,
         center_of_mass: Vec3::ZERO,
         rotation: Quat::IDENTITY,
         world_inverse_inertia: Mat3::ZERO,
         local_inertia: Mat3::ZERO,
-        has_isotropic_inertia: true,
+        skips_gyroscopic_step: true,
         force: Vec3::ZERO,
         torque: Vec3::ZERO,
         linear_damping: 0.0,
@@ -120,14 +131,17 @@ impl BodyMotion {
 
     fn from_body(body: &RigidBody) -> Self {
         let (force, torque) = body.applied_force_and_torque();
+        let locks = body.locked_axes;
         Self {
             inverse_mass: body.inverse_mass,
+            translation_lock: locks.translation_mask().into(),
             center_of_mass: body.center_of_mass,
             rotation: body.rotation,
             world_inverse_inertia: body.world_inverse_inertia,
             local_inertia: body.local_inertia,
-            has_isotropic_inertia: body.local_inertia
-                == Mat3::from_diagonal(Vec3::splat(body.local_inertia.x_axis.x)),
+            skips_gyroscopic_step: locks.locks_rotation()
+                || body.local_inertia
+                    == Mat3::from_diagonal(Vec3::splat(body.local_inertia.x_axis.x)),
             force,
             torque,
             linear_damping: body.linear_damping,

@@ -8,11 +8,10 @@
 //! applying it changes the velocities by `ΔV = M⁻¹ Jᵀ λ`.
 //!
 //! Here: the axis part ([`JacobianLanes`], a direction `d` at two anchors), used by every contact
-//! point's normal and by the manifold's two friction directions, and the body views the parts
-//! read and write ([`BodyLanes`], [`BodyFrame`]). Joints add their parts here: a point part
-//! (three axis parts at one anchor, the ball joint's `K` a 3×3 matrix) and an angle part (a
-//! rotation about an axis, `J = [0, −aᵀ, 0, aᵀ]`, the form the contact's twist friction takes
-//! inline in `contact_lanes.rs`).
+//! point's normal and by the manifold's two friction directions, the bodies' inverse masses
+//! ([`LinearMasses`]) and the body views the parts read and write ([`BodyLanes`],
+//! [`BodyFrame`]). Joints, few beside contacts, have scalar parts of their own
+//! (`joint_parts.rs`).
 
 use super::wide::{F32x4, Mat3x4, Vec3x4, LANES};
 use super::{BodyMotion, BodyState};
@@ -70,6 +69,80 @@ impl BodyFrame {
     }
 }
 
+/// The inverse masses of the bodies on the two sides of four constraints, per lane, kg⁻¹:
+/// `M⁻¹ = m⁻¹ (𝟙 − L)`, `L` the diagonal with 1 on the world axes a body's translation is locked
+/// along (`body/locked_axes.rs`). In lane sets without a locked body (`locked` false: all but
+/// those of a locked body) the terms of `L` are skipped, so `M⁻¹ = m⁻¹ 𝟙` rounds as it always
+/// has and costs nothing more.
+#[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(super) struct LinearMasses {
+    pub a: F32x4,
+    pub b: F32x4,
+    pub lock_a: Vec3x4,
+    pub lock_b: Vec3x4,
+    /// Whether some lane's body has a locked translation axis.
+    pub locked: bool,
+}
+
+impl LinearMasses {
+    pub(super) const ZERO: Self = Self {
+        a: F32x4::ZERO,
+        b: F32x4::ZERO,
+        lock_a: Vec3x4::ZERO,
+        lock_b: Vec3x4::ZERO,
+        locked: false,
+    };
+
+    /// Sets lane `lane` from the bodies' motions.
+    #[inline(always)]
+    pub(super) fn set_lane(&mut self, lane: usize, a: &BodyMotion, b: &BodyMotion) {
+        self.a.set_lane(lane, a.inverse_mass);
+        self.b.set_lane(lane, b.inverse_mass);
+        self.lock_a.set_lane(lane, a.translation_lock);
+        self.lock_b.set_lane(lane, b.translation_lock);
+        self.locked |= a.translation_lock != Vec3A::ZERO || b.translation_lock != Vec3A::ZERO;
+    }
+
+    /// `i · (M_A⁻¹ + M_B⁻¹) j` per lane: `(m_A⁻¹ + m_B⁻¹) i·j` less the locked axes' part.
+    #[inline(always)]
+    pub(super) fn coupling(&self, i: Vec3x4, j: Vec3x4) -> F32x4 {
+        let free = (self.a + self.b) * i.dot(j);
+        if self.locked {
+            free - self.a * i.dot(j.masked(self.lock_a)) - self.b * i.dot(j.masked(self.lock_b))
+        } else {
+            free
+        }
+    }
+
+    /// `d · (M_A⁻¹ + M_B⁻¹) d` for a unit direction `d`: `m_A⁻¹ + m_B⁻¹` less the locked part.
+    #[inline(always)]
+    pub(super) fn along(&self, direction: Vec3x4) -> F32x4 {
+        let free = self.a + self.b;
+        if self.locked {
+            free - self.a * direction.dot(direction.masked(self.lock_a))
+                - self.b * direction.dot(direction.masked(self.lock_b))
+        } else {
+            free
+        }
+    }
+
+    /// The velocity changes `(M_A⁻¹ P, M_B⁻¹ P)` a linear impulse `P` gives (A's to subtract);
+    /// `LOCKED` is [`Self::locked`], a constant so that the passes of lane sets without locks
+    /// carry no test of it.
+    #[inline(always)]
+    pub(super) fn responses<const LOCKED: bool>(&self, impulse: Vec3x4) -> (Vec3x4, Vec3x4) {
+        if LOCKED {
+            (
+                (impulse - impulse.masked(self.lock_a)).scale(self.a),
+                (impulse - impulse.masked(self.lock_b)).scale(self.b),
+            )
+        } else {
+            (impulse.scale(self.a), impulse.scale(self.b))
+        }
+    }
+}
+
 /// `1 / k` per lane, or zero where `k` is not above zero: the effective mass `K⁻¹` of a part,
 /// zero where nothing can move along it (both bodies fixed, or an empty lane).
 pub(super) fn inverse_or_zero(k: F32x4) -> F32x4 {
@@ -111,9 +184,10 @@ impl JacobianLanes {
 
     /// The Jacobian of direction `direction` at the anchors `r_A`, `r_B` per lane, with
     /// `mass = 1 / K`, or zero where nothing can move along `d`.
+    #[inline(always)]
     pub(super) fn new(
         (a, b): (&BodyFrame, &BodyFrame),
-        (inverse_mass_a, inverse_mass_b): (F32x4, F32x4),
+        masses: &LinearMasses,
         (anchor_a, anchor_b): (Vec3x4, Vec3x4),
         direction: Vec3x4,
     ) -> Self {
@@ -121,7 +195,7 @@ impl JacobianLanes {
         let arm_b = anchor_b.cross(direction);
         let spin_a = a.inverse_inertia.mul_vec3(arm_a);
         let spin_b = b.inverse_inertia.mul_vec3(arm_b);
-        let k = inverse_mass_a + inverse_mass_b + arm_a.dot(spin_a) + arm_b.dot(spin_b);
+        let k = masses.along(direction) + arm_a.dot(spin_a) + arm_b.dot(spin_b);
         Self {
             arm_a,
             arm_b,
@@ -153,16 +227,22 @@ impl JacobianLanes {
         *angular_b += self.spin_b.scale(impulse);
     }
 
-    /// `ΔV = M⁻¹ Jᵀ λ`: `Δv = ±λ d / m`, `Δω = ±λ I⁻¹ (r × d)` per lane (A gets the minus sign).
+    /// `ΔV = M⁻¹ Jᵀ λ`: `Δv = ±λ M⁻¹ d`, `Δω = ±λ I⁻¹ (r × d)` per lane (A gets the minus sign).
     pub(super) fn apply(
         &self,
         (a, b): (&mut BodyLanes, &mut BodyLanes),
-        (inverse_mass_a, inverse_mass_b): (F32x4, F32x4),
+        masses: &LinearMasses,
         direction: Vec3x4,
         impulse: F32x4,
     ) {
-        a.linear_velocity -= direction.scale(inverse_mass_a * impulse);
-        b.linear_velocity += direction.scale(inverse_mass_b * impulse);
+        if masses.locked {
+            let (response_a, response_b) = masses.responses::<true>(direction.scale(impulse));
+            a.linear_velocity -= response_a;
+            b.linear_velocity += response_b;
+        } else {
+            a.linear_velocity -= direction.scale(masses.a * impulse);
+            b.linear_velocity += direction.scale(masses.b * impulse);
+        }
         self.apply_spin(&mut a.angular_velocity, &mut b.angular_velocity, impulse);
     }
 }

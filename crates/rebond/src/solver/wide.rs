@@ -203,6 +203,16 @@ impl Vec3x4 {
         self.x * other.x + self.y * other.y + self.z * other.z
     }
 
+    /// The parts of each lane's vector along the axes where `mask` is 1 (`mask` 0 or 1 per
+    /// axis): `x·m_x, y·m_y, z·m_z`.
+    pub fn masked(self, mask: Self) -> Self {
+        Self {
+            x: self.x * mask.x,
+            y: self.y * mask.y,
+            z: self.z * mask.z,
+        }
+    }
+
     /// Each lane's vector times that lane's scalar.
     pub fn scale(self, factor: F32x4) -> Self {
         Self {

@@ -41,7 +41,7 @@ impl ContactLanes {
     ) -> bool {
         let mut a = BodyLanes::gather(states, &self.body_a);
         let mut b = BodyLanes::gather(states, &self.body_b);
-        let masses = self.inverse_masses();
+        let masses = *self.masses();
         let normal = self.normal;
         let slow = F32x4::splat(COLLISION_SPEED);
         let mut approach = [F32x4::ZERO; MAX_MANIFOLD_POINTS];
@@ -83,7 +83,7 @@ impl ContactLanes {
                 let total = approach
                     .greater_than(F32x4::ZERO)
                     .select(total, F32x4::ZERO);
-                jacobian.apply((&mut a, &mut b), masses, normal, total - *impulse);
+                jacobian.apply((&mut a, &mut b), &masses, normal, total - *impulse);
                 *impulse = total;
             }
         }
@@ -95,7 +95,7 @@ impl ContactLanes {
                     .select(self.restitution, F32x4::ZERO);
                 point
                     .normal
-                    .apply((&mut a, &mut b), masses, normal, bounce * *impulse);
+                    .apply((&mut a, &mut b), &masses, normal, bounce * *impulse);
             }
         }
         a.scatter(states, &self.body_a);

@@ -11,7 +11,7 @@
 //! friction directions are axis parts (`parts.rs`).
 
 use super::normal_block::NormalBlock;
-use super::parts::{inverse_or_zero, BodyFrame, BodyLanes, JacobianLanes};
+use super::parts::{inverse_or_zero, BodyFrame, BodyLanes, JacobianLanes, LinearMasses};
 use super::softness::Softness;
 use super::wide::{F32x4, Mask4, Vec3x4, LANES};
 use super::{BodyMotion, BodyState};
@@ -65,9 +65,14 @@ impl PassLanes {
     /// `Δv_B = +P / m_B` for the linear impulse `P` of the pass; body 0 (fixed, and the empty
     /// lanes) never changes.
     #[inline(always)]
-    fn finish(&self, states: &mut [BodyState], lanes: &ContactLanes, linear_impulse: Vec3x4) {
-        let linear_a = linear_impulse.scale(lanes.inverse_mass_a).lanes();
-        let linear_b = linear_impulse.scale(lanes.inverse_mass_b).lanes();
+    fn finish<const LOCKED: bool>(
+        &self,
+        states: &mut [BodyState],
+        lanes: &ContactLanes,
+        linear_impulse: Vec3x4,
+    ) {
+        let (linear_a, linear_b) = lanes.masses.responses::<LOCKED>(linear_impulse);
+        let (linear_a, linear_b) = (linear_a.lanes(), linear_b.lanes());
         let (angular_a, angular_b) = (self.angular_a.lanes(), self.angular_b.lanes());
         for lane in 0..LANES {
             let (body_a, body_b) = (lanes.body_a[lane], lanes.body_b[lane]);
@@ -220,8 +225,7 @@ pub(crate) struct ContactLanes {
     contacts: [usize; LANES],
     body_a: [usize; LANES],
     body_b: [usize; LANES],
-    inverse_mass_a: F32x4,
-    inverse_mass_b: F32x4,
+    masses: LinearMasses,
     normal: Vec3x4,
     tangents: [Vec3x4; 2],
     friction: F32x4,
@@ -253,6 +257,9 @@ pub(crate) struct ContactLanes {
     /// lane sets) skip the look.
     may_block: bool,
     tangent: [JacobianLanes; 2],
+    /// `t·(M_A⁻¹ + M_B⁻¹) n` per tangent: how the normal impulse moves the contact along the
+    /// tangent, zero but where a body's translation is locked ([`LinearMasses`]).
+    tangent_coupling: [F32x4; 2],
     tangent_impulse: [F32x4; 2],
     twist_spin_a: Vec3x4,
     twist_spin_b: Vec3x4,
@@ -268,8 +275,7 @@ impl ContactLanes {
         contacts: [usize::MAX; LANES],
         body_a: [0; LANES],
         body_b: [0; LANES],
-        inverse_mass_a: F32x4::ZERO,
-        inverse_mass_b: F32x4::ZERO,
+        masses: LinearMasses::ZERO,
         normal: Vec3x4::ZERO,
         tangents: [Vec3x4::ZERO; 2],
         friction: F32x4::ZERO,
@@ -284,6 +290,7 @@ impl ContactLanes {
         any_apart: false,
         may_block: false,
         tangent: [JacobianLanes::ZERO; 2],
+        tangent_coupling: [F32x4::ZERO; 2],
         tangent_impulse: [F32x4::ZERO; 2],
         twist_spin_a: Vec3x4::ZERO,
         twist_spin_b: Vec3x4::ZERO,
@@ -329,14 +336,14 @@ impl ContactLanes {
         let centers = Vec3x4::from_lanes(centers);
         let a = BodyFrame::gather(motions, &lanes.body_a);
         let b = BodyFrame::gather(motions, &lanes.body_b);
-        let masses = lanes.inverse_masses();
+        let masses = lanes.masses;
         let normal = lanes.normal;
         let mut center_a = Vec3x4::ZERO;
         for (index, point) in lanes.points[..lanes.point_count].iter_mut().enumerate() {
             let anchor_a = Vec3x4::from_lanes(arms[index]);
             let anchor_b = anchor_a + centers;
             let in_manifold = point_counts.greater_than(F32x4::splat(index as f32));
-            let jacobian = JacobianLanes::new((&a, &b), masses, (anchor_a, anchor_b), normal);
+            let jacobian = JacobianLanes::new((&a, &b), &masses, (anchor_a, anchor_b), normal);
             point.normal = JacobianLanes {
                 mass: in_manifold.select(jacobian.mass, F32x4::ZERO),
                 ..jacobian
@@ -363,9 +370,12 @@ impl ContactLanes {
         for axis in 0..2 {
             let direction = lanes.tangents[axis];
             lanes.tangent[axis] =
-                JacobianLanes::new((&a, &b), masses, (center_a, center_b), direction);
+                JacobianLanes::new((&a, &b), &masses, (center_a, center_b), direction);
+            if masses.locked {
+                lanes.tangent_coupling[axis] = masses.coupling(direction, normal);
+            }
         }
-        let linear_coupling = (masses.0 + masses.1) * normal.dot(normal);
+        let linear_coupling = masses.coupling(normal, normal);
         for j in 1..lanes.point_count {
             for i in 0..j {
                 let (earlier, later) = (&lanes.points[i].normal, &lanes.points[j].normal);
@@ -437,10 +447,8 @@ impl ContactLanes {
         self.contacts[lane] = index;
         self.body_a[lane] = body_a;
         self.body_b[lane] = body_b;
-        self.inverse_mass_a
-            .set_lane(lane, motions[body_a].inverse_mass);
-        self.inverse_mass_b
-            .set_lane(lane, motions[body_b].inverse_mass);
+        self.masses
+            .set_lane(lane, &motions[body_a], &motions[body_b]);
         let normal = Vec3A::from(contact.frame.solver.normal);
         let (tangent_1, tangent_2) = normal.any_orthonormal_pair();
         self.normal.set_lane(lane, normal);
@@ -513,8 +521,8 @@ impl ContactLanes {
         }
     }
 
-    fn inverse_masses(&self) -> (F32x4, F32x4) {
-        (self.inverse_mass_a, self.inverse_mass_b)
+    fn masses(&self) -> &LinearMasses {
+        &self.masses
     }
 
     /// Twist impulse about the normal: `Δω_A = −λ I_A⁻¹ n`, `Δω_B = +λ I_B⁻¹ n` per lane.
@@ -542,8 +550,12 @@ impl ContactLanes {
             spin_a += jacobian.spin_a.scale(impulse);
             spin_b += jacobian.spin_b.scale(impulse);
         }
-        let linear_a = linear.scale(self.inverse_mass_a).lanes();
-        let linear_b = linear.scale(self.inverse_mass_b).lanes();
+        let (linear_a, linear_b) = if self.masses.locked {
+            self.masses.responses::<true>(linear)
+        } else {
+            self.masses.responses::<false>(linear)
+        };
+        let (linear_a, linear_b) = (linear_a.lanes(), linear_b.lanes());
         let (spin_a, spin_b) = (spin_a.lanes(), spin_b.lanes());
         for lane in 0..LANES {
             let (body_a, body_b) = (self.body_a[lane], self.body_b[lane]);
@@ -670,17 +682,18 @@ impl ContactLanes {
     /// when applying bias" rule; BENCHMARKS.md measures both).
     #[inline(always)]
     pub fn solve<const USE_BIAS: bool>(&mut self, states: &mut [BodyState], inverse_h: f32) {
-        if self.any_apart {
-            self.solve_pass::<USE_BIAS, true>(states, inverse_h);
-        } else {
-            self.solve_pass::<USE_BIAS, false>(states, inverse_h);
+        match (self.any_apart, self.masses.locked) {
+            (false, false) => self.solve_pass::<USE_BIAS, false, false>(states, inverse_h),
+            (true, false) => self.solve_pass::<USE_BIAS, true, false>(states, inverse_h),
+            (false, true) => self.solve_pass::<USE_BIAS, false, true>(states, inverse_h),
+            (true, true) => self.solve_pass::<USE_BIAS, true, true>(states, inverse_h),
         }
     }
 
     /// [`Self::solve`], with `BLOCK` where some lane is [`Self::apart`]: two functions, so
     /// that the lane sets of resting contacts run without the block solve's code, which as a
     /// branch inside would slow them all.
-    fn solve_pass<const USE_BIAS: bool, const BLOCK: bool>(
+    fn solve_pass<const USE_BIAS: bool, const BLOCK: bool, const LOCKED: bool>(
         &mut self,
         states: &mut [BodyState],
         inverse_h: f32,
@@ -725,9 +738,10 @@ impl ContactLanes {
         // (n·t = 0), so the bodies get the linear impulse of the whole pass at its end.
         let mut linear_impulse = normal.scale(normal_impulse);
         if !USE_BIAS {
-            linear_impulse += self.solve_friction(&mut bodies, total_normal_impulse);
+            linear_impulse +=
+                self.solve_friction::<LOCKED>(&mut bodies, total_normal_impulse, normal_impulse);
         }
-        bodies.finish(states, self, linear_impulse);
+        bodies.finish::<LOCKED>(states, self, linear_impulse);
     }
 
     /// The normal impulses of a pass ([`Self::solve`]) where some lane is [`Self::apart`]: the
@@ -792,17 +806,26 @@ impl ContactLanes {
     /// The manifold's friction at the centre of its points, clamped to the cone
     /// `|λ_t| ≤ μ Σλ_n`, then its twist about the normal clamped to `μ Σλ_n ⟨r⟩` (`⟨r⟩` the
     /// patch's mean distance from its centre, `contact_model::patch_radius_ratio`), given
-    /// `Σλ_n`. Applies the spins to `bodies` and returns the linear impulse, for
-    /// [`PassLanes::finish`].
+    /// `Σλ_n`, and the pass's normal impulse `applied_normal`, which reaches the tangents' linear
+    /// velocities only through a locked body (`t·M⁻¹n ≠ 0`). Applies the spins to `bodies` and
+    /// returns the linear impulse, for [`PassLanes::finish`].
     #[inline(always)]
-    fn solve_friction(&mut self, bodies: &mut PassLanes, total_normal_impulse: F32x4) -> Vec3x4 {
+    fn solve_friction<const LOCKED: bool>(
+        &mut self,
+        bodies: &mut PassLanes,
+        total_normal_impulse: F32x4,
+        applied_normal: F32x4,
+    ) -> Vec3x4 {
         let limit = self.friction * total_normal_impulse;
         let old = self.tangent_impulse;
         let mut total = [F32x4::ZERO; 2];
         for axis in 0..2 {
             let jacobian = &self.tangent[axis];
-            let velocity = self.tangents[axis].dot(bodies.relative_velocity)
+            let mut velocity = self.tangents[axis].dot(bodies.relative_velocity)
                 + jacobian.spin_velocity(bodies.angular_a, bodies.angular_b);
+            if LOCKED {
+                velocity += self.tangent_coupling[axis] * applied_normal;
+            }
             total[axis] = old[axis] - jacobian.mass * velocity;
         }
         let length = (total[0] * total[0] + total[1] * total[1]).sqrt();
