@@ -34,13 +34,20 @@ struct BodyState<'a> {
     sleeping: bool,
 }
 
-/// What one joint did over the last step, in a record line.
+/// What one joint did over the last step, in a record line, and where it stands.
 #[derive(Debug, Serialize)]
 struct JointState<'a> {
     name: &'a str,
     force: [f32; 3],
     torque: [f32; 3],
     broken: bool,
+    /// Revolute, prismatic and distance joints (left out for the others): the angle counted
+    /// across turns, rad, or the slide or length, m, and its rate, rad/s or m/s; a broken joint
+    /// is measured the same way ([`rebond::World::joint_position`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    position: Option<f32>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    velocity: Option<f32>,
 }
 
 /// Writes record lines through a buffer to a hidden file beside the record's path, renamed to
@@ -84,13 +91,19 @@ impl Recorder {
                 sleeping: body.is_sleeping(),
             })
             .collect();
+        let world = scene.world();
         let joints = scene
-            .joints()
-            .map(|(name, joint)| JointState {
-                name,
-                force: joint.force().to_array(),
-                torque: joint.torque().to_array(),
-                broken: joint.is_broken(),
+            .joint_handles()
+            .filter_map(|(name, handle)| {
+                let joint = world.joint(handle).ok()?;
+                Some(JointState {
+                    name,
+                    force: joint.force().to_array(),
+                    torque: joint.torque().to_array(),
+                    broken: joint.is_broken(),
+                    position: world.joint_position(handle).ok(),
+                    velocity: world.joint_velocity(handle).ok(),
+                })
             })
             .collect();
         let line = RecordLine {

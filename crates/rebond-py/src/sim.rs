@@ -208,7 +208,8 @@ impl Sim {
         Ok(())
     }
 
-    /// Sets each motor's target (velocity or position, as the motor is), already checked finite.
+    /// Sets each motor's target (velocity, position or torque, as the motor is), already checked
+    /// finite.
     pub fn set_motor_targets(&mut self, targets: &[f32]) -> Result<(), rebond::Error> {
         let world = self.scene.world_mut();
         for (&handle, &target) in self.motors.iter().zip(targets) {
@@ -223,6 +224,7 @@ impl Sim {
                     max_force,
                     ..
                 } => Motor::position(target, stiffness, damping, max_force),
+                Motor::Torque { .. } => Motor::torque(target),
             };
             world.set_joint_motor(handle, Some(motor))?;
         }

@@ -31,7 +31,7 @@ use crate::error::{
 use crate::error::{check_non_negative_or_infinite, check_range, Result};
 use crate::limits::{MAX_COORDINATE, MAX_FORCE, MAX_SPEED};
 use crate::math::{Quat, Vec3};
-use std::f32::consts::PI;
+use std::f32::consts::{PI, TAU};
 
 /// Names one joint of a [`crate::World`]. A handle to a removed joint stays invalid forever, even
 /// after another joint takes its slot.
@@ -76,7 +76,12 @@ impl JointType {
     }
 }
 
-/// A motor on a revolute joint's angle or a prismatic joint's slide.
+/// A motor on a revolute joint's angle or a prismatic joint's slide (the joint's position
+/// [`crate::World::joint_position`]; a revolute angle counted across whole turns, so a target of
+/// 4π is two turns from where the joint was made).
+///
+/// Replacing it with [`crate::World::set_joint_motor`] changes only these parameters, so a
+/// controller may set it every step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Motor {
@@ -100,6 +105,14 @@ pub enum Motor {
         /// N·m or N, ≥ 0; infinity allowed.
         max_force: f32,
     },
+    /// An actuator: a torque about the revolute axis (N·m) or a force along the prismatic axis
+    /// (N), applied between the two bodies every substep, `+torque` on `body_b` and `−torque` on
+    /// `body_a` (right-handed about the axis, or along it), whatever the joint's speed. Alone on
+    /// a free joint it gives `θ̈ = torque / I` about the axis.
+    Torque {
+        /// N·m (revolute) or N (prismatic), either sign, at most [`MAX_FORCE`] in magnitude.
+        torque: f32,
+    },
 }
 
 impl Motor {
@@ -120,6 +133,12 @@ impl Motor {
             damping,
             max_force,
         }
+    }
+
+    /// A torque motor: `torque` (N·m about a revolute axis, N along a prismatic one) between the
+    /// two bodies every substep.
+    pub fn torque(torque: f32) -> Self {
+        Self::Torque { torque }
     }
 
     fn validate(&self) -> Result<()> {
@@ -147,8 +166,23 @@ impl Motor {
                 check_up_to("damping", damping, MAX_FORCE)?;
                 check_force_limit("max_force", max_force)?;
             }
+            Self::Torque { torque } => {
+                check_range("torque", torque, -MAX_FORCE, MAX_FORCE)?;
+            }
         }
         Ok(())
+    }
+
+    /// Checks a motor for a joint of `joint_type`: that the type takes one (revolute,
+    /// prismatic), then its values; an error names `motor` or the field within it.
+    pub(crate) fn check_for(&self, joint_type: JointType) -> Result<()> {
+        if !joint_type.takes_motor() {
+            return Err(Error::new(
+                "motor",
+                ErrorKind::NotForJointType(joint_type.name()),
+            ));
+        }
+        self.validate().map_err(|error| error.within("motor"))
     }
 }
 
@@ -182,8 +216,9 @@ pub struct JointDesc {
     /// Unit world direction (normalised when added): the hinge axis (revolute), the slide axis
     /// (prismatic), the twist axis (ball with a swing or twist limit).
     pub axis: Option<Vec3>,
-    /// `[min, max]`: radians about the axis (revolute, within ±π), metres along it (prismatic),
-    /// metres of length (distance; `[0, L]` is a rope).
+    /// `[min, max]`: radians about the axis (revolute: of the angle counted across whole turns,
+    /// so `[−2π, 2π]` allows two turns either way), metres along it (prismatic), metres of
+    /// length (distance; `[0, L]` is a rope); within ±[`MAX_COORDINATE`].
     pub limits: Option<[f32; 2]>,
     /// Ball joints: largest angle between the twist axis fixed in `body_a` and the one fixed in
     /// `body_b`, radians, 0 to π.
@@ -370,7 +405,6 @@ impl JointDesc {
         )?;
         only("swing_limit", self.swing_limit.is_some(), &[Ball])?;
         only("twist_limits", self.twist_limits.is_some(), &[Ball])?;
-        only("motor", self.motor.is_some(), &[Revolute, Prismatic])?;
         only("length", self.length.is_some(), &[Distance])?;
         only("spring", self.spring.is_some(), &[Distance])?;
         only(
@@ -399,7 +433,6 @@ impl JointDesc {
         };
         if let Some(limits) = self.limits {
             match kind {
-                Revolute => check_interval("limits", limits, Some((-PI, PI)))?,
                 Distance => {
                     check_non_negative("limits[0]", limits[0])?;
                     check_interval("limits", limits, Some((0.0, MAX_COORDINATE)))?;
@@ -414,7 +447,7 @@ impl JointDesc {
             check_interval("twist_limits", limits, Some((-PI, PI)))?;
         }
         if let Some(motor) = &self.motor {
-            motor.validate().map_err(|error| error.within("motor"))?;
+            motor.check_for(kind)?;
         }
         if let Some(length) = self.length {
             check_up_to("length", length, MAX_COORDINATE)?;
@@ -476,6 +509,10 @@ pub struct Joint {
     pub(crate) force: Vec3,
     pub(crate) torque: Vec3,
     pub(crate) broken: bool,
+    /// Revolute joints: the angle counted across whole turns where it was last measured (each
+    /// substep the joint is solved, and as each step starts), rad; the next measure is the wrapped
+    /// angle plus the whole turns that bring it nearest to this one.
+    pub(crate) angle: f32,
 }
 
 impl Joint {
@@ -529,6 +566,42 @@ impl Joint {
             axis_b: rotation_b * frames.local_axis_b,
         }
     }
+
+    /// The revolute angle counted across whole turns at the bodies' rotations (`None` for the
+    /// world), rad: the wrapped angle brought within half a turn of the last measure.
+    pub(crate) fn unwrapped_angle(&self, rotation_a: Option<Quat>, rotation_b: Quat) -> f32 {
+        let relative = relative_rotation(
+            &self.frames,
+            rotation_a.unwrap_or(Quat::IDENTITY),
+            rotation_b,
+        );
+        unwrap_angle(twist_angle(relative, self.frames.local_axis_a), self.angle)
+    }
+}
+
+/// `d = q_A⁻¹ q_B q₀⁻¹`, the rotation of B relative to A since the joint was made, in A's frame,
+/// taken with `w ≥ 0`.
+pub(crate) fn relative_rotation(frames: &JointFrames, rotation_a: Quat, rotation_b: Quat) -> Quat {
+    let relative = rotation_a.inverse() * rotation_b * frames.reference_rotation.inverse();
+    if relative.w < 0.0 {
+        -relative
+    } else {
+        relative
+    }
+}
+
+/// The angle of `relative` (`w ≥ 0`) about the unit `axis` of its frame,
+/// `2 atan2(d_xyz·a, d_w)`, in `(−π, π]`, rad.
+pub(crate) fn twist_angle(relative: Quat, axis: Vec3) -> f32 {
+    2.0 * Vec3::new(relative.x, relative.y, relative.z)
+        .dot(axis)
+        .atan2(relative.w)
+}
+
+/// `angle + 2πk`, the whole number of turns `k` that brings it nearest to `previous`, rad: the
+/// angle counted across turns, exact while it changes by less than half a turn between measures.
+pub(crate) fn unwrap_angle(angle: f32, previous: f32) -> f32 {
+    angle + TAU * ((previous - angle) / TAU).round()
 }
 
 /// Where a joint stands now, world frame: what [`crate::World::joint_placement`] returns.

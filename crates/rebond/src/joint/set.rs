@@ -169,6 +169,7 @@ impl JointSet {
             force: Vec3::ZERO,
             torque: Vec3::ZERO,
             broken: false,
+            angle: 0.0,
         };
         JointHandle(self.joints.insert((joint, data)))
     }
@@ -228,9 +229,18 @@ impl JointSet {
     }
 
     /// Reads the pose of each side of every joint that still acts, for the sides the solver
-    /// does not move.
+    /// does not move, and measures every revolute angle across turns (broken joints too, and
+    /// joints the solver leaves out: bodies moved by hand, asleep, or kinematic against the
+    /// world), so that it is counted on from where the bodies now stand.
     pub fn refresh_poses(&mut self, bodies: &Arena<RigidBody>) {
         for (_, (joint, data)) in self.joints.iter_mut() {
+            if joint.desc.joint_type == JointType::Revolute {
+                let rotation = |handle: BodyHandle| bodies.get(handle.0).map(RigidBody::rotation);
+                if let Some(rotation_b) = rotation(joint.desc.body_b) {
+                    let rotation_a = joint.desc.body_a.and_then(rotation);
+                    joint.angle = joint.unwrapped_angle(rotation_a, rotation_b);
+                }
+            }
             if joint.broken {
                 continue;
             }
@@ -280,6 +290,7 @@ impl JointSet {
                 .all(|vector| vector.is_finite())
                 && frames.reference_rotation.is_finite()
                 && frames.length.is_finite()
+                && joint.angle.is_finite()
                 && data
                     .poses
                     .iter()
@@ -306,9 +317,11 @@ impl JointSet {
         Ok(())
     }
 
-    /// The solver data of the joint in slot `slot`.
-    pub fn solver_data_mut(&mut self, slot: usize) -> Option<&mut JointSolverData> {
-        self.joints.at_slot_mut(slot).map(|(_, data)| data)
+    /// The joint in slot `slot` and its solver data.
+    pub fn at_slot_mut(&mut self, slot: usize) -> Option<(&mut Joint, &mut JointSolverData)> {
+        self.joints
+            .at_slot_mut(slot)
+            .map(|(joint, data)| (joint, data))
     }
 
     /// After the solve: each acting joint's mean force and torque over the step `dt`, and the
@@ -364,6 +377,11 @@ impl JointType {
     /// Whether the joint holds its anchor point together (three linear rows).
     pub(crate) fn holds_point(self) -> bool {
         matches!(self, Self::Fixed | Self::Ball | Self::Revolute)
+    }
+
+    /// Whether the joint takes a motor (revolute, prismatic).
+    pub(crate) fn takes_motor(self) -> bool {
+        matches!(self, Self::Revolute | Self::Prismatic)
     }
 
     /// Whether the joint locks the relative rotation (three angular rows).

@@ -360,8 +360,9 @@ pub(super) fn joint_desc(
 }
 
 /// The engine motor of a motor entry; errors are placed under `place` (`joints[i].motor`). The
-/// target present says the kind: `target_velocity` a velocity motor, `target_position` a position
-/// motor. A missing `max_force` is unlimited, a missing position motor `damping` is 0.
+/// field present says the kind: `target_velocity` a velocity motor, `target_position` a position
+/// motor, `torque` a torque motor. A missing `max_force` is unlimited, a missing position motor
+/// `damping` is 0.
 fn motor(entry: &MotorEntry, place: &str) -> Result<Motor, SceneError> {
     let field = |name: &str| join(place, name);
     let max_force = || match entry.max_force {
@@ -396,11 +397,17 @@ fn motor(entry: &MotorEntry, place: &str) -> Result<Motor, SceneError> {
                 max_force()?,
             ))
         }
-        (None, None) => Err(SceneError::new(
-            place,
-            "required field is missing: `target_velocity` (a velocity motor) or \
-             `target_position` (a position motor)",
-        )),
+        (None, None) => match entry.torque {
+            Some(torque) => {
+                motor_fields(entry, place, "torque", &["torque"])?;
+                Ok(Motor::torque(scalar(&field("torque"), torque)?))
+            }
+            None => Err(SceneError::new(
+                place,
+                "required field is missing: `target_velocity` (a velocity motor), \
+                 `target_position` (a position motor) or `torque` (a torque motor)",
+            )),
+        },
     }
 }
 

@@ -279,8 +279,9 @@ pub(super) struct JointEntry {
     pub(super) break_torque: Option<f64>,
 }
 
-/// A motor, as written: the fields of both kinds, the kind told by which target is present and
-/// the other kind's fields refused later, as for shapes.
+/// A motor, as written: the fields of every kind, the kind told by which of `target_velocity`,
+/// `target_position` and `torque` is present and the other kinds' fields refused later, as for
+/// shapes.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct MotorEntry {
@@ -289,6 +290,7 @@ pub(super) struct MotorEntry {
     pub(super) stiffness: Option<f64>,
     pub(super) damping: Option<f64>,
     pub(super) max_force: Option<f64>,
+    pub(super) torque: Option<f64>,
 }
 
 impl MotorEntry {
@@ -300,6 +302,7 @@ impl MotorEntry {
             ("stiffness", self.stiffness.is_some()),
             ("damping", self.damping.is_some()),
             ("max_force", self.max_force.is_some()),
+            ("torque", self.torque.is_some()),
         ]
         .into_iter()
         .filter_map(|(field, present)| present.then_some(field))

@@ -20,7 +20,10 @@ use super::joint_parts::{
 use super::softness::Softness;
 use super::stages::{ConstraintKind, StepContext};
 use super::{BodyMotion, BodyState, SolverBodies};
-use crate::joint::{JointFrames, JointImpulses, JointSet, JointType, Motor, Spring};
+use crate::joint::{
+    relative_rotation, twist_angle, unwrap_angle, JointFrames, JointImpulses, JointSet, JointType,
+    Motor, Spring,
+};
 use crate::limits::MAX_SOLVER_IMPULSE;
 use crate::math::{Quat, Vec3};
 
@@ -129,6 +132,8 @@ struct JointConstraint {
     impulses: JointImpulses,
     /// The group whose direct solve holds this joint together, if any.
     group: Option<usize>,
+    /// Revolute joints: the angle counted across turns at the last refresh, rad.
+    angle: f32,
     /// Impulses on B summed over the substeps, N·s and N·m·s.
     step_linear: Vec3,
     step_angular: Vec3,
@@ -193,16 +198,8 @@ impl JointConstraint {
         let arm_b = rotation_b * frames.local_anchor_b;
         let separation = center_b + arm_b - (center_a + arm_a);
         let axis = rotation_a * frames.local_axis_a;
-        let relative = rotation_a.inverse() * rotation_b * frames.reference_rotation.inverse();
-        let relative = if relative.w < 0.0 {
-            -relative
-        } else {
-            relative
-        };
-        let twist = 2.0
-            * Vec3::new(relative.x, relative.y, relative.z)
-                .dot(frames.local_axis_a)
-                .atan2(relative.w);
+        let relative = relative_rotation(frames, rotation_a, rotation_b);
+        let twist = twist_angle(relative, frames.local_axis_a);
         let mut geometry = Geometry {
             separation,
             rotation_error: rotation_a * rotation_vector(relative),
@@ -252,6 +249,10 @@ impl JointConstraint {
                 geometry.plane = Some(PlanePart::new(bodies, rows, [first, second]));
                 geometry.plane_errors = [misalignment.dot(first), misalignment.dot(second)];
                 geometry.axis_part = Some(AxisPart::angular(bodies, axis));
+                // Limits and position targets are on the angle counted across turns: measured
+                // every substep, it changes by far less than the half turn its count needs.
+                geometry.position = unwrap_angle(twist, self.angle);
+                self.angle = geometry.position;
             }
             JointType::Prismatic => {
                 let arms = (arm_a + separation, arm_b);
@@ -449,7 +450,7 @@ impl JointConstraint {
                     max_force * h,
                     &mut impulses.motor,
                 ),
-                None => {}
+                Some(Motor::Torque { .. }) | None => {}
             }
             if options.friction > 0.0 && options.joint_type != JointType::Ball {
                 let most = options.friction * h;
@@ -666,6 +667,13 @@ impl ConstraintKind for JointConstraints {
             }
             let motions = solver.map(|index| &solver_bodies.motions[index]);
             let desc = &joint.desc;
+            let mut impulses = data.impulses;
+            if let Some(Motor::Torque { torque }) = desc.motor {
+                // A torque motor's impulse is its torque over a substep, set anew each step
+                // (the torque may have changed) and applied by every substep's warm start; the
+                // passes leave it alone.
+                impulses.motor = torque * context.h;
+            }
             self.constraints.push(JointConstraint {
                 slot,
                 options: JointOptions {
@@ -684,8 +692,9 @@ impl ConstraintKind for JointConstraints {
                     inverse_inertia: motions.map(|motion| motion.world_inverse_inertia),
                 },
                 start_poses: data.poses.map(|pose| (pose.center_of_mass, pose.rotation)),
-                impulses: data.impulses,
+                impulses,
                 group: None,
+                angle: joint.angle,
                 step_linear: Vec3::ZERO,
                 step_angular: Vec3::ZERO,
                 geometry: Geometry::default(),
@@ -735,7 +744,8 @@ impl ConstraintKind for JointConstraints {
 
     fn store_impulses(&self, joints: &mut JointSet) {
         for constraint in &self.constraints {
-            if let Some(data) = joints.solver_data_mut(constraint.slot) {
+            if let Some((joint, data)) = joints.at_slot_mut(constraint.slot) {
+                joint.angle = constraint.angle;
                 // Impulses past what bodies within the limits can exchange (a motor of unlimited
                 // force that cannot reach its target within the speed limits, a joint dragging a
                 // body round a fast kinematic one) would grow from step to step until they

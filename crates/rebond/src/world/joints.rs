@@ -4,9 +4,12 @@
 use super::{stale, stale_joint, World};
 use crate::arena::Arena;
 use crate::body::{BodyHandle, RigidBody};
-use crate::error::Result;
+use crate::error::{Error, ErrorKind, Result};
 use crate::filter::ordered;
-use crate::joint::{Joint, JointBreakEvent, JointDesc, JointHandle, JointPlacement, Motor};
+use crate::joint::{
+    Joint, JointBreakEvent, JointDesc, JointHandle, JointPlacement, JointType, Motor,
+};
+use crate::math::Vec3;
 
 impl World {
     /// Checks `desc` and adds the joint, fixing its anchors and axes to the bodies as they stand
@@ -56,16 +59,71 @@ impl World {
     /// Where the joint's anchors and axes stand now, world frame: for drawing it and for
     /// measuring how far it has come apart.
     pub fn joint_placement(&self, handle: JointHandle) -> Result<JointPlacement> {
-        let joint = self.joints.get(handle).ok_or_else(stale_joint)?;
-        let pose = |handle: BodyHandle| {
-            self.bodies
-                .get(handle.0)
-                .map(|body| (body.center_of_mass(), body.rotation()))
-                .ok_or_else(stale)
+        self.joint_sides(handle).map(|(_, placement, _, _)| placement)
+    }
+
+    /// The joint's position, its coordinate along the motion it leaves free, at the bodies'
+    /// current poses: a revolute joint's angle (rad, counted across whole turns: three turns
+    /// read 6π, not 0), a prismatic joint's slide (m), a distance joint's length (m). Angles and
+    /// slides are measured from the pose when the joint was added (`docs/joints.md`):
+    /// `θ = 2 atan2(d_xyz·a, d_w)` of `d = q_A⁻¹ q_B q₀⁻¹` about the axis `a` plus the turns
+    /// counted, `s = (p_B − p_A)·a`, `L = |p_B − p_A|`. A broken joint is measured the same way.
+    ///
+    /// The turns are counted each substep the joint is solved and as each step starts: a
+    /// revolute angle read between steps is right while the bodies turn by less than half a turn
+    /// relative to each other in a substep (and in a step, when moved by hand or asleep).
+    /// Fixed and ball joints have no such coordinate: an error naming `position`.
+    pub fn joint_position(&self, handle: JointHandle) -> Result<f32> {
+        let (joint, placement, body_a, body_b) = self.joint_sides(handle)?;
+        let separation = placement.anchor_b - placement.anchor_a;
+        match joint.joint_type() {
+            JointType::Revolute => {
+                Ok(joint.unwrapped_angle(body_a.map(RigidBody::rotation), body_b.rotation()))
+            }
+            JointType::Prismatic => Ok(separation.dot(placement.axis_a)),
+            JointType::Distance => Ok(separation.length()),
+            other => Err(Error::new("position", ErrorKind::NotForJointType(other.name()))),
+        }
+    }
+
+    /// The rate of [`World::joint_position`] at the bodies' current velocities: rad/s
+    /// (`θ̇ = (ω_B − ω_A)·a`) or m/s (`ṡ = (ṗ_B − ṗ_A)·a + (p_B − p_A)·(ω_A × a)`,
+    /// `L̇ = u·(ṗ_B − ṗ_A)`, `ṗ` each anchor's velocity, `u` the unit direction A → B; 0 while the
+    /// anchors coincide). Fixed and ball joints: an error naming `velocity`.
+    pub fn joint_velocity(&self, handle: JointHandle) -> Result<f32> {
+        let (joint, placement, body_a, body_b) = self.joint_sides(handle)?;
+        let spin = |body: Option<&RigidBody>| body.map_or(Vec3::ZERO, RigidBody::angular_velocity);
+        let anchor_velocity = |body: Option<&RigidBody>, anchor: Vec3| {
+            body.map_or(Vec3::ZERO, |body| {
+                body.linear_velocity() + body.angular_velocity().cross(anchor - body.center_of_mass())
+            })
         };
+        let separation = placement.anchor_b - placement.anchor_a;
+        let closing = anchor_velocity(Some(body_b), placement.anchor_b)
+            - anchor_velocity(body_a, placement.anchor_a);
+        let axis = placement.axis_a;
+        match joint.joint_type() {
+            JointType::Revolute => Ok((spin(Some(body_b)) - spin(body_a)).dot(axis)),
+            JointType::Prismatic => Ok(closing.dot(axis) + separation.dot(spin(body_a).cross(axis))),
+            JointType::Distance => Ok(closing.dot(separation.normalize_or_zero())),
+            other => Err(Error::new("velocity", ErrorKind::NotForJointType(other.name()))),
+        }
+    }
+
+    /// The joint behind `handle`, where it stands now, and its bodies (`body_a` `None` for the
+    /// world).
+    fn joint_sides(
+        &self,
+        handle: JointHandle,
+    ) -> Result<(&Joint, JointPlacement, Option<&RigidBody>, &RigidBody)> {
+        let joint = self.joints.get(handle).ok_or_else(stale_joint)?;
+        let body = |handle: BodyHandle| self.bodies.get(handle.0).ok_or_else(stale);
         let (body_a, body_b) = joint.bodies();
-        let pose_a = body_a.map(pose).transpose()?;
-        Ok(joint.world_frames(pose_a, pose(body_b)?))
+        let body_a = body_a.map(body).transpose()?;
+        let body_b = body(body_b)?;
+        let pose = |body: &RigidBody| (body.center_of_mass(), body.rotation());
+        let placement = joint.world_frames(body_a.map(pose), pose(body_b));
+        Ok((joint, placement, body_a, body_b))
     }
 
     /// Number of joints, broken ones included.
@@ -73,13 +131,18 @@ impl World {
         self.joints.len()
     }
 
-    /// Replaces a revolute or prismatic joint's motor (`None` removes it) and wakes its bodies.
+    /// Replaces a revolute or prismatic joint's motor (`None` removes it) and wakes its bodies;
+    /// an error names the field (`motor.torque`) and leaves the joint as it was.
+    ///
+    /// Only the motor's parameters change: the joint's frames, its angle counted across turns and
+    /// the impulses that warm-start it are kept, so a controller may set a new torque or target
+    /// every step (a motor of another kind starts from the last one's impulse).
     pub fn set_joint_motor(&mut self, handle: JointHandle, motor: Option<Motor>) -> Result<()> {
         let joint = self.joints.get_mut(handle).ok_or_else(stale_joint)?;
-        let mut desc = joint.desc.clone();
-        desc.motor = motor;
-        desc.validate()?;
-        joint.desc = desc;
+        if let Some(motor) = &motor {
+            motor.check_for(joint.joint_type())?;
+        }
+        joint.desc.motor = motor;
         let (body_a, body_b) = joint.bodies();
         for body in body_a.into_iter().chain([body_b]) {
             self.wake_slot(body.slot());
