@@ -381,3 +381,90 @@ fn joint_values_past_the_limits_are_refused() {
     let unlimited = slide().motor(rebond::Motor::velocity(1.0, f32::INFINITY));
     assert!(world.add_joint(unlimited).is_ok());
 }
+
+#[test]
+fn bad_torque_motors_and_joint_coordinates_are_refused() {
+    let mut world = World::new(WorldSettings::default()).unwrap();
+    let a = world.add_body(BodyDesc::dynamic(unit_box())).unwrap();
+    let b = world
+        .add_body(BodyDesc::dynamic(unit_box()).position(Vec3::X * 2.0))
+        .unwrap();
+    let hinge = || rebond::JointDesc::revolute(a, b, Vec3::X, Vec3::Y);
+    let torque = |value| Some(rebond::Motor::torque(value));
+    let cases = [
+        (f32::NAN, ErrorKind::NotFinite),
+        (f32::INFINITY, ErrorKind::NotFinite),
+        (
+            -2e12,
+            ErrorKind::OutOfRange {
+                value: -2e12,
+                min: -limits::MAX_FORCE,
+                max: limits::MAX_FORCE,
+            },
+        ),
+    ];
+    for (value, kind) in cases {
+        let mut desc = hinge();
+        desc.motor = torque(value);
+        let expected = ("motor.torque".to_owned(), kind);
+        assert_eq!(field_of(world.add_joint(desc)), expected);
+    }
+    let mut ball = rebond::JointDesc::ball(a, b, Vec3::X);
+    ball.motor = torque(1.0);
+    assert_eq!(
+        field_of(world.add_joint(ball)),
+        ("motor".to_owned(), ErrorKind::NotForJointType("ball"))
+    );
+    // Revolute limits are on the angle counted across turns: two turns either way are
+    // accepted, past the coordinate limit is not.
+    let two_turns = 4.0 * std::f32::consts::PI;
+    assert!(world
+        .add_joint(hinge().limits(-two_turns, two_turns))
+        .is_ok());
+    assert_eq!(
+        field_of(world.add_joint(hinge().limits(-2e4, 0.0))).0,
+        "limits[0]"
+    );
+
+    // At run time a bad motor is refused naming its field, and the joint keeps its motor.
+    let joint = world
+        .add_joint(hinge().motor(rebond::Motor::torque(2.0)))
+        .unwrap();
+    assert_eq!(
+        field_of(world.set_joint_motor(joint, torque(f32::NAN))).0,
+        "motor.torque"
+    );
+    assert_eq!(
+        world.joint(joint).unwrap().desc().motor,
+        Some(rebond::Motor::torque(2.0))
+    );
+    let socket = world
+        .add_joint(rebond::JointDesc::ball(a, b, Vec3::X))
+        .unwrap();
+    assert_eq!(
+        field_of(world.set_joint_motor(socket, torque(1.0))),
+        ("motor".to_owned(), ErrorKind::NotForJointType("ball"))
+    );
+    assert_eq!(world.joint(socket).unwrap().desc().motor, None);
+
+    // Fixed and ball joints have no coordinate to read.
+    assert_eq!(
+        field_of(world.joint_position(socket)),
+        ("position".to_owned(), ErrorKind::NotForJointType("ball"))
+    );
+    assert_eq!(
+        field_of(world.joint_velocity(socket)),
+        ("velocity".to_owned(), ErrorKind::NotForJointType("ball"))
+    );
+    world.remove_joint(socket).unwrap();
+    assert_eq!(
+        field_of(world.joint_position(socket)).1,
+        ErrorKind::StaleJointHandle
+    );
+    for _ in 0..10 {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    for (_, body) in world.bodies() {
+        assert!(body.position().is_finite() && body.rotation().is_finite());
+    }
+}

@@ -59,7 +59,8 @@ impl World {
     /// Where the joint's anchors and axes stand now, world frame: for drawing it and for
     /// measuring how far it has come apart.
     pub fn joint_placement(&self, handle: JointHandle) -> Result<JointPlacement> {
-        self.joint_sides(handle).map(|(_, placement, _, _)| placement)
+        self.joint_sides(handle)
+            .map(|(_, placement, _, _)| placement)
     }
 
     /// The joint's position, its coordinate along the motion it leaves free, at the bodies'
@@ -82,7 +83,10 @@ impl World {
             }
             JointType::Prismatic => Ok(separation.dot(placement.axis_a)),
             JointType::Distance => Ok(separation.length()),
-            other => Err(Error::new("position", ErrorKind::NotForJointType(other.name()))),
+            other => Err(Error::new(
+                "position",
+                ErrorKind::NotForJointType(other.name()),
+            )),
         }
     }
 
@@ -95,7 +99,10 @@ impl World {
         let spin = |body: Option<&RigidBody>| body.map_or(Vec3::ZERO, RigidBody::angular_velocity);
         let anchor_velocity = |body: Option<&RigidBody>, anchor: Vec3| {
             body.map_or(Vec3::ZERO, |body| {
-                body.linear_velocity() + body.angular_velocity().cross(anchor - body.center_of_mass())
+                body.linear_velocity()
+                    + body
+                        .angular_velocity()
+                        .cross(anchor - body.center_of_mass())
             })
         };
         let separation = placement.anchor_b - placement.anchor_a;
@@ -104,9 +111,14 @@ impl World {
         let axis = placement.axis_a;
         match joint.joint_type() {
             JointType::Revolute => Ok((spin(Some(body_b)) - spin(body_a)).dot(axis)),
-            JointType::Prismatic => Ok(closing.dot(axis) + separation.dot(spin(body_a).cross(axis))),
+            JointType::Prismatic => {
+                Ok(closing.dot(axis) + separation.dot(spin(body_a).cross(axis)))
+            }
             JointType::Distance => Ok(closing.dot(separation.normalize_or_zero())),
-            other => Err(Error::new("velocity", ErrorKind::NotForJointType(other.name()))),
+            other => Err(Error::new(
+                "velocity",
+                ErrorKind::NotForJointType(other.name()),
+            )),
         }
     }
 

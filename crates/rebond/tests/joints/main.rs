@@ -4,6 +4,7 @@
 mod chains;
 #[path = "../common/mod.rs"]
 mod common;
+mod coordinates;
 mod drives;
 mod friction;
 mod pendulums;
