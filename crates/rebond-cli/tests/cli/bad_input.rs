@@ -824,6 +824,69 @@ fn duplicate_unknown_and_non_finite_joint_values_are_refused() {
 }
 
 #[test]
+fn bad_torque_motors_and_revolute_limits_are_refused() {
+    let motor = |joint_type: &str, motor: &str| {
+        scene_with_joint(&format!(
+            r#"{{"type": "{joint_type}", "body_a": "door", "body_b": "ball",
+                "axis": [0, 1, 0], "motor": {motor}}}"#
+        ))
+    };
+    let cases = [
+        (
+            "torque_string",
+            motor("revolute", r#"{"torque": "strong"}"#),
+            "joints[2].motor.torque",
+            "invalid type: string \"strong\"",
+        ),
+        (
+            "torque_beyond_f32",
+            motor("prismatic", r#"{"torque": -1e39}"#),
+            "joints[2].motor.torque",
+            "must be finite",
+        ),
+        (
+            "torque_beyond_the_force_limit",
+            motor("revolute", r#"{"torque": 2e12}"#),
+            "joints[2].motor.torque",
+            "must lie between -1000000000000 and 1000000000000, got 2000000000000",
+        ),
+        (
+            "torque_with_max_force",
+            motor("revolute", r#"{"torque": 1, "max_force": 5}"#),
+            "joints[2].motor.max_force",
+            "unknown field `max_force` for a torque motor, expected `torque`",
+        ),
+        (
+            "torque_on_ball",
+            motor("ball", r#"{"torque": 1}"#),
+            "joints[2].motor",
+            "does not apply to a ball joint",
+        ),
+        (
+            "revolute_limits_beyond_the_coordinate_limit",
+            scene_with_joint(
+                r#"{"type": "revolute", "body_a": "door", "body_b": "ball", "axis": [0, 1, 0],
+                    "limits": [-6.3, 20000]}"#,
+            ),
+            "joints[2].limits[1]",
+            "must lie between",
+        ),
+    ];
+    for (test_name, scene, place, message) in cases {
+        assert_refused(test_name, &scene, place, message);
+    }
+    let distance = scene_with_joint(
+        r#"{"type": "distance", "body_a": "door", "body_b": "ball", "motor": {"torque": 1}}"#,
+    );
+    assert_refused(
+        "torque_on_distance",
+        &distance,
+        "joints[2].motor",
+        "does not apply to a distance joint",
+    );
+}
+
+#[test]
 fn a_missing_scene_file_is_an_error_with_status_1() {
     let dir = TestDir::new("missing_scene");
     let scene_path = dir.path("no-such-scene.json");

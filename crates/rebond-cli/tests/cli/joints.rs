@@ -1,5 +1,6 @@
 //! Joints in records: every line of a scene with joints carries `"joints"` in scene order, with
-//! the force and torque each joint applied to its `body_b` over the step, and zeros once broken.
+//! the force and torque each joint applied to its `body_b` over the step, and zeros once broken,
+//! and for revolute, prismatic and distance joints their position and velocity.
 
 use std::fs;
 
@@ -72,9 +73,16 @@ fn every_line_carries_the_joints_in_scene_order() {
         for joint in joints {
             let object = joint.as_object().expect("a joint is an object");
             let keys: Vec<&str> = object.keys().map(String::as_str).collect();
-            assert_eq!(keys.len(), 4, "{joint}");
+            // Revolute, prismatic and distance joints carry their coordinate and its rate.
+            let coordinates = ["hinge", "rope"].contains(&joint["name"].as_str().unwrap());
+            assert_eq!(keys.len(), if coordinates { 6 } else { 4 }, "{joint}");
             for key in ["name", "force", "torque", "broken"] {
                 assert!(object.contains_key(key), "{joint} lacks `{key}`");
+            }
+            if coordinates {
+                for key in ["position", "velocity"] {
+                    assert!(joint[key].as_f64().is_some_and(f64::is_finite), "{joint}");
+                }
             }
             for field in ["force", "torque"] {
                 for index in 0..3 {
@@ -188,4 +196,66 @@ fn a_builtin_joint_scene_records_its_joints() {
             assert!(component(joint, "force", index).is_finite(), "{joint}");
         }
     }
+}
+
+#[test]
+fn joint_positions_count_turns_and_torque_motors_drive_them() {
+    // A wheel (2 kg disc of radius 0.5 m: I = m r² / 2 = 0.25 kg·m²) on a hinge through its
+    // centre driven by a torque of 0.75 N·m, a 3 kg box on a slide pushed by 4.5 N, both against
+    // the world, and a ball on a rope that breaks at once under its weight. After 2 s at 8
+    // substeps of h = 1/480 s (n = 960), semi-implicit Euler gives ω = τ t / I = 6 rad/s and
+    // θ = τ h² n (n + 1) / (2 I) = 6.00625 rad (past π: not wrapped), v = F t / m = 3 m/s and
+    // s = 3.003125 m; rounding is under 1e-5 of each, 1e-4 allows for it.
+    let dir = TestDir::new("joints_coordinates");
+    let scene = r#"{
+      "bodies": [
+        {"name": "wheel", "shape": {"type": "cylinder", "radius": 0.5, "half_height": 0.1},
+         "mass": 2, "position": [0, 2, 0], "can_sleep": false},
+        {"name": "box", "shape": {"type": "box", "half_extents": [0.3, 0.1, 0.2]}, "mass": 3,
+         "position": [0, 5, 0], "can_sleep": false},
+        {"name": "bob", "shape": {"type": "sphere", "radius": 0.2}, "position": [3, 2, 0]}
+      ],
+      "joints": [
+        {"name": "axle", "type": "revolute", "body_b": "wheel", "anchor": [0, 2, 0],
+         "axis": [0, 1, 0], "motor": {"torque": 0.75}},
+        {"name": "slide", "type": "prismatic", "body_b": "box", "anchor": [0, 5, 0],
+         "axis": [1, 0, 0], "motor": {"torque": 4.5}},
+        {"name": "rope", "type": "distance", "body_b": "bob", "anchor": [3, 3, 0],
+         "anchor_b": [3, 2, 0],
+         "break_force": 1}
+      ]
+    }"#;
+    let lines = record(&dir, scene, "120");
+    let first = &lines[0]["joints"];
+    for index in 0..3 {
+        assert_eq!(first[index]["velocity"], 0.0, "{}", first[index]);
+    }
+    assert_eq!(first[2]["position"], 1.0, "the rope starts 1 m long");
+    let joints = &lines[120]["joints"];
+    let close = |joint: &Value, field: &str, expected: f64| {
+        let value = joint[field].as_f64().expect("a number");
+        assert!(
+            (value / expected - 1.0).abs() < 1e-4,
+            "{field} {value}, expected {expected}: {joint}"
+        );
+    };
+    close(&joints[0], "position", 6.00625);
+    close(&joints[0], "velocity", 6.0);
+    close(&joints[1], "position", 3.003125);
+    close(&joints[1], "velocity", 3.0);
+    // The torque motor's torque is what the joint applies to the wheel, about its axis.
+    let torque = component(&joints[0], "torque", 1);
+    assert!((torque - 0.75).abs() < 1e-5, "{}", joints[0]);
+    // The broken rope is still measured between its anchors: the bob has fallen for about 2 s
+    // (some 20 m, at some 20 m/s), and the rope reads its length and rate.
+    let rope = &joints[2];
+    assert_eq!(rope["broken"], true);
+    assert!(
+        rope["position"].as_f64().expect("a number") > 10.0,
+        "{rope}"
+    );
+    assert!(
+        rope["velocity"].as_f64().expect("a number") > 10.0,
+        "{rope}"
+    );
 }
