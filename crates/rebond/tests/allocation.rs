@@ -281,8 +281,10 @@ fn a_steady_step_on_meshes_and_heightfields_allocates_nothing() {
     });
 }
 
-/// A chain of boxes on ball joints hanging from the world, and a swinging rod on a hinge with a
-/// motor and limits: the joints' grouping, direct solve and limit rows reuse their buffers.
+/// A chain of boxes on ball joints hanging from the world, a swinging rod on a hinge with a
+/// motor and limits, and an arm on a torque motor that a controller reads and sets every step:
+/// the joints' grouping, direct solve and limit rows reuse their buffers, and reading a joint's
+/// coordinate or replacing its motor allocates nothing.
 #[test]
 fn a_steady_step_with_joints_allocates_nothing() {
     let mut world = world(Vec3::new(0.0, -G, 0.0));
@@ -315,14 +317,38 @@ fn a_steady_step_with_joints_allocates_nothing() {
                 .motor(Motor::velocity(2.0, 5.0)),
         )
         .unwrap();
+    let arm = world
+        .add_body(
+            BodyDesc::dynamic(Shape::cuboid(Vec3::new(0.5, 0.05, 0.05)).unwrap())
+                .position(Vec3::new(0.5, 12.0, 0.0))
+                .can_sleep(false),
+        )
+        .unwrap();
+    let shoulder = world
+        .add_joint(
+            JointDesc::revolute(None, arm, Vec3::new(0.0, 12.0, 0.0), Vec3::Z)
+                .limits(-1.0, 1.0)
+                .motor(Motor::torque(0.0)),
+        )
+        .unwrap();
+    // A proportional–derivative controller on the arm's angle, reading it every step.
+    let control = |world: &mut World| {
+        let angle = world.joint_position(shoulder).unwrap();
+        let rate = world.joint_velocity(shoulder).unwrap();
+        let torque = -40.0 * angle - 4.0 * rate;
+        world
+            .set_joint_motor(shoulder, Some(Motor::torque(torque)))
+            .unwrap();
+        world.step(DT).unwrap();
+    };
     // The hanging links knock together now and then, so the buffers reach their largest only
     // after about 680 steps.
     for _ in 0..720 {
-        world.step(DT).unwrap();
+        control(&mut world);
     }
     allocations_of(|| {
         for _ in 0..240 {
-            world.step(DT).unwrap();
+            control(&mut world);
         }
     });
 }
