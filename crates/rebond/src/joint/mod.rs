@@ -3,8 +3,9 @@
 //! A joint is described by a [`JointDesc`] with anchors and axes in world coordinates as the
 //! bodies stand when it is added; [`crate::World::add_joint`] fixes them to each body then.
 //! Angles and slides are measured from that pose: an angle is `body_b`'s rotation relative to
-//! `body_a` about the axis, right-handed; a slide is `body_b`'s displacement relative to
-//! `body_a` along the axis.
+//! `body_a` about the axis, right-handed, counted on across whole turns; a slide is `body_b`'s
+//! displacement relative to `body_a` along the axis. [`crate::World::joint_position`] and
+//! [`crate::World::joint_velocity`] read them.
 //!
 //! | type | holds | leaves free |
 //! |---|---|---|
@@ -630,3 +631,8 @@ pub struct JointBreakEvent {
     /// Mean torque on `body_b` about its anchor over that step, N·m.
     pub torque: Vec3,
 }
+
+/// `docs/joints.md`'s examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../../docs/joints.md")]
+pub struct JointsDocDoctests;
