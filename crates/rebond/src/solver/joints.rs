@@ -668,11 +668,15 @@ impl ConstraintKind for JointConstraints {
             let motions = solver.map(|index| &solver_bodies.motions[index]);
             let desc = &joint.desc;
             let mut impulses = data.impulses;
-            if let Some(Motor::Torque { torque }) = desc.motor {
+            match desc.motor {
                 // A torque motor's impulse is its torque over a substep, set anew each step
                 // (the torque may have changed) and applied by every substep's warm start; the
                 // passes leave it alone.
-                impulses.motor = torque * context.h;
+                Some(Motor::Torque { torque }) => impulses.motor = torque * context.h,
+                // No pass touches the motor's impulse once the motor is gone: left, the warm
+                // start would go on applying it.
+                None => impulses.motor = 0.0,
+                Some(Motor::Velocity { .. } | Motor::Position { .. }) => {}
             }
             self.constraints.push(JointConstraint {
                 slot,

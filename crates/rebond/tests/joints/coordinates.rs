@@ -192,6 +192,28 @@ fn a_torque_set_every_step_is_applied_in_that_step() {
 }
 
 #[test]
+fn a_removed_torque_motor_stops_driving() {
+    // Spun up by 0.5 N·m for 0.5 s (ω = τ t / I = 1 rad/s), the free wheel keeps its spin once
+    // the motor is removed: nothing of the motor's impulse is applied after. Rounding only.
+    let (mut world, _, hinge) = wheel(0.0, |hinge| hinge.motor(Motor::torque(0.5)));
+    for _ in 0..30 {
+        world.step(DT).unwrap();
+    }
+    world.set_joint_motor(hinge, None).unwrap();
+    let spun_up = world.joint_velocity(hinge).unwrap();
+    assert!((spun_up - 1.0).abs() < 1e-4, "spin {spun_up} rad/s");
+    for _ in 0..60 {
+        world.step(DT).unwrap();
+    }
+    let spin = world.joint_velocity(hinge).unwrap();
+    assert!(
+        (spin - spun_up).abs() < 1e-5,
+        "spin {spin} rad/s, {spun_up} before"
+    );
+    assert!(world.joint(hinge).unwrap().torque().length() < 1e-5);
+}
+
+#[test]
 fn a_prismatic_force_motor_gives_v_equal_to_force_times_time_over_mass() {
     // A 3 kg box on a slide along X through its centre, no gravity, pushed by F = 4.5 N:
     // v = F t / m and s = F h² n (n + 1) / (2 m), semi-implicit Euler, rounding only.
