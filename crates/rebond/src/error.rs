@@ -54,6 +54,10 @@ pub enum ErrorKind {
     /// A vector's length, or a scalar's magnitude, past the engine's limit (see
     /// [`limits`](crate::limits)); for positions, the largest coordinate.
     TooLarge { value: f32, max: f32 },
+    /// A pose target or path given to a body that is not kinematic.
+    NotKinematic,
+    /// A value of a sequence (a path's times) not greater than the one before it.
+    NotIncreasing { value: f32, previous: f32 },
 }
 
 /// An invalid input, with the place it was found.
@@ -142,6 +146,13 @@ impl fmt::Display for ErrorKind {
                 write!(
                     f,
                     "must not exceed {max:e} (the engine's limit), got {value:e}"
+                )
+            }
+            Self::NotKinematic => write!(f, "only a kinematic body follows a pose target or path"),
+            Self::NotIncreasing { value, previous } => {
+                write!(
+                    f,
+                    "must be greater than the one before, {previous}, got {value}"
                 )
             }
         }

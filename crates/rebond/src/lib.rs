@@ -58,7 +58,7 @@ mod sorted;
 pub mod state;
 mod world;
 
-pub use body::{BodyDesc, BodyHandle, BodyType, LockedAxes, RigidBody};
+pub use body::{BodyDesc, BodyHandle, BodyType, KinematicPath, LockedAxes, PathPoint, RigidBody};
 pub use collision::contact_cache::Contact;
 pub use collision::{ContactPoint, MAX_MANIFOLD_POINTS};
 pub use error::{Error, ErrorKind, Result};

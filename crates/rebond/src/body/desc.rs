@@ -1,6 +1,6 @@
 //! A body's description: everything needed to create one, with the builder calls that set it.
 
-use super::{BodyType, LockedAxes};
+use super::{BodyType, KinematicPath, LockedAxes};
 use crate::filter::InteractionGroups;
 use crate::math::{Quat, Vec3};
 use crate::shape::Shape;
@@ -73,6 +73,10 @@ pub struct BodyDesc {
     /// Whatever the user wants to keep with the body (an entity id, an index), default 0; the
     /// engine never reads it.
     pub user_data: u128,
+    /// Keyframes the body follows, kinematic bodies only, default `None`: the body is placed at
+    /// the first point's pose (`position` and `rotation` give way to it) and each step carries
+    /// it to the path's pose at the step's end ([`KinematicPath`]).
+    pub path: Option<KinematicPath>,
 }
 
 impl BodyDesc {
@@ -101,6 +105,7 @@ impl BodyDesc {
             collision_groups: InteractionGroups::ALL,
             contact_force_threshold: f32::INFINITY,
             user_data: 0,
+            path: None,
         }
     }
 
@@ -115,8 +120,8 @@ impl BodyDesc {
         Self::new(BodyType::Static, shape)
     }
 
-    /// A kinematic body: moves at the velocity it is given, pushes dynamic bodies, is pushed by
-    /// nothing.
+    /// A kinematic body: moves at the velocity it is given, or to the pose targets or along the
+    /// path it is given, pushes dynamic bodies, is pushed by nothing.
     pub fn kinematic(shape: Shape) -> Self {
         Self::new(BodyType::Kinematic, shape)
     }
@@ -236,6 +241,12 @@ impl BodyDesc {
     /// Sets the user data.
     pub fn user_data(mut self, data: u128) -> Self {
         self.user_data = data;
+        self
+    }
+
+    /// Sets the keyframes a kinematic body follows.
+    pub fn path(mut self, path: KinematicPath) -> Self {
+        self.path = Some(path);
         self
     }
 }

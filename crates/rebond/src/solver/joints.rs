@@ -169,7 +169,7 @@ struct Geometry {
 }
 
 /// The rotation vector (axis times angle, rad) of a unit quaternion with `w ≥ 0`.
-fn rotation_vector(rotation: Quat) -> Vec3 {
+pub(crate) fn rotation_vector(rotation: Quat) -> Vec3 {
     let vector = Vec3::new(rotation.x, rotation.y, rotation.z);
     let sine = vector.length();
     if sine < 1.0e-6 {

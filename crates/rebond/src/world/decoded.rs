@@ -55,6 +55,7 @@ impl World {
 /// range.
 fn check_body(body: &RigidBody) -> Result<(), String> {
     body.shape.check_decoded()?;
+    body.check_kinematic_decoded()?;
     let vectors = [
         body.center_of_mass,
         body.local_center_of_mass,

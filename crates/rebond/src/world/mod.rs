@@ -568,9 +568,13 @@ impl World {
 
     /// Advances the world by `dt` seconds ([`MIN_TIMESTEP`] to [`MAX_TIMESTEP`]) in
     /// `settings.substeps` substeps. Forces and torques applied since the last step act during
-    /// the whole step, then are cleared.
+    /// the whole step, then are cleared. Kinematic bodies with a pose target or a path move to
+    /// it at the velocity that carries them there and end the step exactly on it
+    /// ([`RigidBody::set_kinematic_target`]).
     pub fn step(&mut self, dt: f32) -> Result<()> {
         check_range("dt", dt, MIN_TIMESTEP, MAX_TIMESTEP)?;
+        // Before the contacts are made: they and the broad phase's sweep read the velocities.
+        self.for_each_kinematic(|body| body.begin_kinematic_step(dt));
         self.wake_groups(false);
         self.update_contacts(dt);
         self.wake_groups(true);
@@ -601,6 +605,8 @@ impl World {
                 },
             },
         );
+        // Before anything reads the poses the step ended with.
+        self.for_each_kinematic(|body| body.finish_kinematic_step(dt));
         self.stop_fast_bodies();
         self.joints.finish_step(dt);
         self.refilter_broken_joints();
@@ -626,6 +632,19 @@ impl World {
             self.park_sleeping();
         }
         Ok(())
+    }
+}
+
+impl World {
+    /// Runs `visit` on every kinematic body: they are all among the bodies the step moves.
+    fn for_each_kinematic(&mut self, mut visit: impl FnMut(&mut RigidBody)) {
+        for &slot in self.islands.awake() {
+            if let Some(body) = self.bodies.at_slot_mut(slot) {
+                if body.body_type == BodyType::Kinematic {
+                    visit(body);
+                }
+            }
+        }
     }
 }
 
