@@ -468,3 +468,122 @@ fn bad_torque_motors_and_joint_coordinates_are_refused() {
         assert!(body.position().is_finite() && body.rotation().is_finite());
     }
 }
+
+#[test]
+fn bad_pose_targets_and_paths_are_refused_naming_the_field() {
+    use rebond::{KinematicPath, PathPoint};
+    let mut world = World::new(WorldSettings::default()).unwrap();
+    let at = |time: f32| PathPoint::new(time, Vec3::ZERO, Quat::IDENTITY);
+    let path = |points: Vec<PathPoint>| KinematicPath::new(points);
+    let zero = Quat::from_xyzw(0.0, 0.0, 0.0, 0.0);
+    let far = Vec3::new(0.0, 2.0 * limits::MAX_COORDINATE, 0.0);
+    let cases: Vec<(KinematicPath, &str, ErrorKind)> = vec![
+        (path(vec![]), "path.points", ErrorKind::Missing),
+        (
+            path(vec![at(0.5)]),
+            "path.points[0].time",
+            ErrorKind::OutOfRange {
+                value: 0.5,
+                min: 0.0,
+                max: 0.0,
+            },
+        ),
+        (
+            path(vec![at(0.0), at(f32::NAN)]),
+            "path.points[1].time",
+            ErrorKind::NotFinite,
+        ),
+        (
+            path(vec![at(0.0), at(1.0), at(1.0)]),
+            "path.points[2].time",
+            ErrorKind::NotIncreasing {
+                value: 1.0,
+                previous: 1.0,
+            },
+        ),
+        (
+            path(vec![at(0.0), at(1.0), at(0.5)]),
+            "path.points[2].time",
+            ErrorKind::NotIncreasing {
+                value: 0.5,
+                previous: 1.0,
+            },
+        ),
+        (
+            path(vec![at(0.0), PathPoint::new(1.0, far, Quat::IDENTITY)]),
+            "path.points[1].position",
+            ErrorKind::TooLarge {
+                value: far.y,
+                max: limits::MAX_COORDINATE,
+            },
+        ),
+        (
+            path(vec![PathPoint::new(0.0, Vec3::NAN, Quat::IDENTITY)]),
+            "path.points[0].position",
+            ErrorKind::NotFinite,
+        ),
+        (
+            path(vec![at(0.0), PathPoint::new(1.0, Vec3::ZERO, zero)]),
+            "path.points[1].rotation",
+            ErrorKind::ZeroQuaternion,
+        ),
+    ];
+    for (bad, field, kind) in cases {
+        let desc = BodyDesc::kinematic(unit_box()).path(bad.clone());
+        let error = world.add_body(desc).expect_err(field);
+        assert_eq!((error.field.as_str(), &error.kind), (field, &kind));
+        assert_eq!(world.body_count(), 0);
+        let handle = world.add_body(BodyDesc::kinematic(unit_box())).unwrap();
+        let body = world.body_mut(handle).unwrap();
+        assert_eq!(field_of(body.set_path(Some(bad))), (field.to_owned(), kind));
+        assert!(body.path().is_none());
+        world.remove_body(handle).unwrap();
+    }
+
+    // Only kinematic bodies follow a path or a pose target.
+    let good = path(vec![at(0.0), at(1.0)]);
+    for body_type in [BodyType::Dynamic, BodyType::Static] {
+        let desc = BodyDesc::new(body_type, unit_box()).path(good.clone());
+        let error = world.add_body(desc).unwrap_err();
+        assert_eq!(
+            (error.field.as_str(), error.kind),
+            ("path", ErrorKind::NotKinematic)
+        );
+        let handle = world
+            .add_body(BodyDesc::new(body_type, unit_box()))
+            .unwrap();
+        let body = world.body_mut(handle).unwrap();
+        assert_eq!(
+            field_of(body.set_path(Some(good.clone()))),
+            ("path".to_owned(), ErrorKind::NotKinematic)
+        );
+        assert_eq!(
+            field_of(body.set_kinematic_target(Pose::IDENTITY)),
+            ("target".to_owned(), ErrorKind::NotKinematic)
+        );
+        assert_eq!(body.kinematic_target(), None);
+    }
+
+    let handle = world.add_body(BodyDesc::kinematic(unit_box())).unwrap();
+    let body = world.body_mut(handle).unwrap();
+    let bad_targets = [
+        (Pose::new(Vec3::NAN, Quat::IDENTITY), "target.position"),
+        (Pose::new(far, Quat::IDENTITY), "target.position"),
+        (Pose::new(Vec3::ZERO, zero), "target.rotation"),
+        (
+            Pose::new(Vec3::ZERO, Quat::from_xyzw(f32::INFINITY, 0.0, 0.0, 1.0)),
+            "target.rotation",
+        ),
+    ];
+    for (pose, field) in bad_targets {
+        assert_eq!(field_of(body.set_kinematic_target(pose)).0, field);
+        assert_eq!(body.kinematic_target(), None);
+    }
+    // A target far beyond the speed limits is still reached; the velocity stays at the limit.
+    let distant = Pose::from_position(Vec3::splat(limits::MAX_COORDINATE));
+    body.set_kinematic_target(distant).unwrap();
+    world.step(limits::MIN_TIMESTEP).unwrap();
+    let body = world.body(handle).unwrap();
+    assert_eq!(body.position(), distant.position);
+    assert!(body.linear_velocity().length() <= limits::MAX_SPEED * (1.0 + 1.0e-6));
+}
