@@ -976,3 +976,117 @@ fn bad_locked_axes_are_refused_at_their_path() {
         "expected a JSON object",
     );
 }
+
+#[test]
+fn bad_paths_are_refused_at_their_place() {
+    let platform = |path: &str| {
+        scene_with(&format!(
+            r#"{{"type": "kinematic", {BALL}, "path": {path}}}"#
+        ))
+    };
+    let cases = [
+        (
+            "path_on_dynamic",
+            scene_with(&format!(
+                r#"{{{BALL}, "path": {{"points": [{{"time": 0}}]}}}}"#
+            )),
+            "bodies[1].path",
+            "only a kinematic body",
+        ),
+        (
+            "path_on_static",
+            scene_with(&format!(
+                r#"{{"type": "static", {BALL}, "path": {{"points": [{{"time": 0}}]}}}}"#
+            )),
+            "bodies[1].path",
+            "only a kinematic body",
+        ),
+        (
+            "path_without_points",
+            platform(r#"{"points": []}"#),
+            "bodies[1].path.points",
+            "required",
+        ),
+        (
+            "path_points_missing",
+            platform(r#"{"loop": true}"#),
+            "bodies[1].path.points",
+            "required field is missing",
+        ),
+        (
+            "path_first_time_not_zero",
+            platform(r#"{"points": [{"time": 0.5}]}"#),
+            "bodies[1].path.points[0].time",
+            "must lie between 0 and 0, got 0.5",
+        ),
+        (
+            "path_time_missing",
+            platform(r#"{"points": [{"time": 0}, {"position": [1, 0, 0]}]}"#),
+            "bodies[1].path.points[1].time",
+            "required field is missing",
+        ),
+        (
+            "path_times_not_increasing",
+            platform(r#"{"points": [{"time": 0}, {"time": 2}, {"time": 1}]}"#),
+            "bodies[1].path.points[2].time",
+            "must be greater than the one before, 2, got 1",
+        ),
+        (
+            "path_times_equal",
+            platform(r#"{"points": [{"time": 0}, {"time": 0}]}"#),
+            "bodies[1].path.points[1].time",
+            "must be greater than the one before",
+        ),
+        (
+            "path_time_beyond_f32",
+            platform(r#"{"points": [{"time": 0}, {"time": 1e300}]}"#),
+            "bodies[1].path.points[1].time",
+            "must be finite",
+        ),
+        (
+            "path_position_too_far",
+            platform(r#"{"points": [{"time": 0}, {"time": 1, "position": [0, 1e9, 0]}]}"#),
+            "bodies[1].path.points[1].position",
+            "must not exceed",
+        ),
+        (
+            "path_position_beyond_f32",
+            platform(r#"{"points": [{"time": 0, "position": [0, 0, 1e300]}]}"#),
+            "bodies[1].path.points[0].position[2]",
+            "must be finite",
+        ),
+        (
+            "path_zero_rotation",
+            platform(r#"{"points": [{"time": 0}, {"time": 1, "rotation": [0, 0, 0, 0]}]}"#),
+            "bodies[1].path.points[1].rotation",
+            "zero length",
+        ),
+        (
+            "path_unknown_field",
+            platform(r#"{"points": [{"time": 0}], "speed": 2}"#),
+            "bodies[1].path.speed",
+            "unknown field `speed`, expected `points` or `loop`",
+        ),
+        (
+            "path_point_unknown_field",
+            platform(r#"{"points": [{"time": 0, "velocity": [1, 0, 0]}]}"#),
+            "bodies[1].path.points[0].velocity",
+            "unknown field `velocity`",
+        ),
+        (
+            "path_loop_not_a_bool",
+            platform(r#"{"points": [{"time": 0}], "loop": 1}"#),
+            "bodies[1].path.loop",
+            "invalid type",
+        ),
+        (
+            "path_points_not_a_list",
+            platform(r#"{"points": {"time": 0}}"#),
+            "bodies[1].path.points",
+            "invalid type",
+        ),
+    ];
+    for (name, scene, place, message) in cases {
+        assert_refused(name, &scene, place, message);
+    }
+}

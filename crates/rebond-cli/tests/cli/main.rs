@@ -6,6 +6,7 @@ mod commands;
 mod common;
 mod filtering;
 mod joints;
+mod kinematic;
 mod limits;
 mod meshes;
 mod records;

@@ -1,14 +1,16 @@
 //! From the file's model to the engine's descriptions: every number narrowed to `f32` and checked,
 //! every error placed at the path of the value the user wrote (`bodies[3].shape.radius`).
 
-use crate::body::{BodyDesc, BodyHandle, LockedAxes};
+use crate::body::{BodyDesc, BodyHandle, KinematicPath, LockedAxes, PathPoint};
 use crate::filter::InteractionGroups;
 use crate::joint::{JointDesc, Motor};
 use crate::limits::{MAX_TIMESTEP, MIN_TIMESTEP};
 use crate::math::{Pose, Quat, Vec3};
 use crate::shape::{CompoundChild, Shape};
 
-use super::format::{BodyEntry, ChildEntry, JointEntry, MotorEntry, ShapeEntry, ShapeKind};
+use super::format::{
+    BodyEntry, ChildEntry, JointEntry, MotorEntry, PathEntry, ShapeEntry, ShapeKind,
+};
 use super::meshes::{heightfield, trimesh, MeshFiles};
 use super::{join, LoadError, SceneError, Timestep, DEFAULT_TIMESTEP};
 
@@ -167,7 +169,36 @@ pub(super) fn body_desc(
             groups.filter.unwrap_or(u32::MAX),
         );
     }
+    if let Some(entry) = &entry.path {
+        desc.path = Some(path(entry, &field("path"), desc.position, desc.rotation)?);
+    }
     Ok(desc)
+}
+
+/// The engine path of a path entry; errors are placed under `place` (`bodies[i].path`). A point
+/// without a position or rotation takes the body's, `body_position` and `body_rotation`. Times
+/// are narrowed here; that they start at 0 and increase is checked when the body is added.
+fn path(
+    entry: &PathEntry,
+    place: &str,
+    body_position: Vec3,
+    body_rotation: Quat,
+) -> Result<KinematicPath, SceneError> {
+    let mut points = Vec::with_capacity(entry.points.len());
+    for (index, point) in entry.points.iter().enumerate() {
+        let field = |name: &str| format!("{place}.points[{index}].{name}");
+        let time = scalar(&field("time"), point.time)?;
+        let position = match point.position {
+            Some(value) => vector(&field("position"), value)?,
+            None => body_position,
+        };
+        let rotation = match point.rotation {
+            Some(value) => rotation(&field("rotation"), value)?,
+            None => body_rotation,
+        };
+        points.push(PathPoint::new(time, position, rotation));
+    }
+    Ok(KinematicPath::new(points).looping(entry.looping.unwrap_or(false)))
 }
 
 /// The engine shape of a shape entry; errors are placed under `place` (`bodies[i].shape`).

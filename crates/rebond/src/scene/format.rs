@@ -113,6 +113,27 @@ pub(super) struct BodyEntry {
     pub(super) sensor: Option<bool>,
     /// Extension of the contract: the body's collision groups.
     pub(super) collision_groups: Option<JsonObject<GroupsEntry>>,
+    /// Keyframes a kinematic body follows.
+    pub(super) path: Option<JsonObject<PathEntry>>,
+}
+
+/// A kinematic body's keyframes, as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct PathEntry {
+    pub(super) points: Vec<JsonObject<PathPointEntry>>,
+    #[serde(rename = "loop")]
+    pub(super) looping: Option<bool>,
+}
+
+/// One keyframe, as written. Extension of the contract: a point without `position` or
+/// `rotation` takes the body's.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct PathPointEntry {
+    pub(super) time: f64,
+    pub(super) position: Option<[f64; 3]>,
+    pub(super) rotation: Option<[f64; 4]>,
 }
 
 /// Locked axes, as written: world axes `[x, y, z]`, each list all `false` when left out.
