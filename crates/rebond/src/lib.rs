@@ -105,3 +105,8 @@ pub struct ReadmeDoctests;
 #[cfg(doctest)]
 #[doc = include_str!("../../../docs/bodies.md")]
 pub struct BodiesDoctests;
+
+/// The examples of `docs/kinematic.md`, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/kinematic.md")]
+pub struct KinematicDoctests;

@@ -350,7 +350,7 @@ mod tests {
     use serde::{forward_to_deserialize_any, Deserialize, Deserializer};
 
     use super::{BodyEntry, BodyKind, ChildEntry, GroupsEntry, SceneFile, ShapeEntry, ShapeKind};
-    use super::{JointEntry, JointKind, MotorEntry, SpringEntry};
+    use super::{JointEntry, JointKind, MotorEntry, PathEntry, PathPointEntry, SpringEntry};
 
     const REFERENCE: &str = include_str!("../../../../docs/scene-format.md");
 
@@ -413,6 +413,8 @@ mod tests {
             names_of::<JointKind>(),
             names_of::<MotorEntry>(),
             names_of::<SpringEntry>(),
+            names_of::<PathEntry>(),
+            names_of::<PathPointEntry>(),
         ]
         .concat();
         assert!(names.len() > 30, "recorded only {names:?}");
