@@ -352,3 +352,43 @@ fn a_steady_step_with_joints_allocates_nothing() {
         }
     });
 }
+
+#[test]
+fn a_steady_step_with_kinematic_paths_and_targets_allocates_nothing() {
+    use rebond::{KinematicPath, PathPoint};
+    // A looping platform path (there and back, with a turn) carrying a box, and a second
+    // platform driven by a pose target every step: the path's evaluation and the targets'
+    // velocities and end poses run each step.
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    let turned = Quat::from_rotation_y(0.3);
+    let path = KinematicPath::new(vec![
+        PathPoint::new(0.0, Vec3::ZERO, Quat::IDENTITY),
+        PathPoint::new(1.0, Vec3::new(1.0, 0.0, 0.0), turned),
+        PathPoint::new(2.0, Vec3::ZERO, Quat::IDENTITY),
+    ])
+    .looping(true);
+    let platform = || BodyDesc::kinematic(Shape::cuboid(Vec3::new(2.0, 0.1, 2.0)).unwrap());
+    world.add_body(platform().path(path)).unwrap();
+    let driven = world
+        .add_body(platform().position(Vec3::new(0.0, 0.0, 6.0)))
+        .unwrap();
+    for z in [0.0, 6.0] {
+        world
+            .add_body(unit_box(Vec3::new(0.0, 0.6, z)).can_sleep(false))
+            .unwrap();
+    }
+    let run = |world: &mut World, steps: usize| {
+        for step in 0..steps {
+            let x = (step as f32 * DT).sin();
+            let target = Pose::new(Vec3::new(x, 0.0, 6.0), Quat::from_rotation_y(0.2 * x));
+            world
+                .body_mut(driven)
+                .unwrap()
+                .set_kinematic_target(target)
+                .unwrap();
+            world.step(DT).unwrap();
+        }
+    };
+    run(&mut world, 240);
+    allocations_of(|| run(&mut world, 240));
+}
