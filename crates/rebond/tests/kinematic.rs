@@ -329,3 +329,35 @@ fn a_world_saved_while_a_path_is_followed_resumes_bit_for_bit() {
         assert_eq!(a.path_time().to_bits(), b.path_time().to_bits());
     }
 }
+
+#[test]
+fn a_box_asleep_on_a_waiting_platform_wakes_when_the_path_sets_off() {
+    // The platform waits 2 s, long enough for the box to fall asleep on it, then moves 1 m in
+    // 1 s.
+    let mut world = world();
+    let path = KinematicPath::new(vec![point(0.0, 0.0), point(2.0, 0.0), point(3.0, 1.0)]);
+    let platform = world.add_body(kinematic_box().path(path)).unwrap();
+    let cube = world
+        .add_body(
+            BodyDesc::dynamic(Shape::cuboid(Vec3::splat(0.5)).unwrap())
+                .position(Vec3::new(0.0, 0.6, 0.0)),
+        )
+        .unwrap();
+    stepped(&mut world, 128);
+    assert!(
+        world.body(cube).unwrap().is_sleeping(),
+        "asleep on the waiting platform"
+    );
+    stepped(&mut world, 64);
+    assert_eq!(world.body(platform).unwrap().position(), Vec3::X);
+    // Carried along, less the slip of a sudden start, v²/(2μg) − vh/2 = 0.101 m at 1 m/s; the
+    // tolerance is the one of the platform test above.
+    let cube = world.body(cube).unwrap();
+    assert!(!cube.is_sleeping());
+    let slip = 1.0 / (2.0 * 0.5 * G) - DT / 16.0;
+    assert!(
+        (cube.position().x - (1.0 - slip)).abs() < 1.0e-4,
+        "{}",
+        cube.position().x
+    );
+}

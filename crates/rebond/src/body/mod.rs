@@ -677,8 +677,8 @@ impl RigidBody {
     /// Checks a decoded body's pose target, path and path clock.
     #[cfg(feature = "serde")]
     pub(crate) fn check_kinematic_decoded(&self) -> std::result::Result<(), String> {
-        let has_target = self.kinematic_target.is_some() || self.path.is_some();
-        if has_target && self.body_type != BodyType::Kinematic {
+        let controlled = self.kinematic_target.is_some() || self.path.is_some();
+        if controlled && self.body_type != BodyType::Kinematic {
             return Err("a body that is not kinematic has a pose target or path".to_owned());
         }
         if let Some(target) = self.kinematic_target {

@@ -75,13 +75,10 @@ impl KinematicPath {
         self
     }
 
-    /// Seconds from the first point to the last.
-    pub fn duration(&self) -> f32 {
-        self.points.last().map_or(0.0, |point| point.time)
-    }
-
     /// The pose of the body origin at `time` seconds from the start of the path; before the
-    /// first point (a negative time) the first point's pose. Exact at each point's time.
+    /// first point (a negative time) the first point's pose. Exact at each point's time. For a
+    /// path as the world checks it ([`crate::BodyDesc::path`]); an empty one gives the
+    /// identity.
     pub fn pose_at(&self, time: f64) -> Pose {
         let Some(last) = self.points.last() else {
             return Pose::IDENTITY;
