@@ -1,12 +1,70 @@
-//! A generational arena: items in one contiguous vector, named by (index, generation) handles so a
-//! handle to a removed item never reaches the item that later takes its slot.
+//! A generational arena: items in one contiguous vector, named by (index, generation, world)
+//! handles so a handle to a removed item never reaches the item that later takes its slot, and a
+//! handle of another world's arena never reaches this one's items.
+//!
+//! A world's identity is a number from a process-wide counter, given by [`new_world`] when the
+//! world is made; its arenas stamp it on every handle they give out and refuse handles that carry
+//! another. A clone of a world is the same world at another time and keeps the identity, and so
+//! does a world restored from a state: the state holds the identity, and the handles it holds
+//! take it as they are read ([`reading_state`]), whatever the bytes say.
 
-/// A slot index plus the generation the slot had when the item was inserted.
+#[cfg(feature = "serde")]
+use std::cell::Cell;
+use std::sync::atomic::{AtomicU32, Ordering};
+
+/// The identity the next world made takes. Identity 0 is given to no world: it is the arenas'
+/// own outside a world (`Arena::default`).
+static NEXT_WORLD: AtomicU32 = AtomicU32::new(1);
+
+#[cfg(feature = "serde")]
+thread_local! {
+    /// While a state is read: `Some(None)` until the first identity is read, then `Some(that
+    /// identity)`, which every later handle and arena of the state takes.
+    static READING_WORLD: Cell<Option<Option<u32>>> = const { Cell::new(None) };
+}
+
+/// A new world identity, unique among the worlds this process made or restored, until 2³² worlds
+/// have been made and the counter wraps.
+pub(crate) fn new_world() -> u32 {
+    NEXT_WORLD.fetch_add(1, Ordering::Relaxed)
+}
+
+/// Runs `read`, the reading of a state, with every handle and arena it reads taking the first
+/// world identity read, so that a state made to disagree with itself still decodes one
+/// consistent world. The identity read is never given to a world made later.
+#[cfg(feature = "serde")]
+pub(crate) fn reading_state<R>(read: impl FnOnce() -> R) -> R {
+    let outer = READING_WORLD.replace(Some(None));
+    let result = read();
+    if let Some(Some(world)) = READING_WORLD.replace(outer) {
+        NEXT_WORLD.fetch_max(world.saturating_add(1), Ordering::Relaxed);
+    }
+    result
+}
+
+/// Reads a world identity: the state's within [`reading_state`], the one written elsewhere.
+#[cfg(feature = "serde")]
+fn deserialize_world<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<u32, D::Error> {
+    let written = <u32 as serde::Deserialize>::deserialize(deserializer)?;
+    Ok(READING_WORLD.with(|reading| match reading.get() {
+        None => written,
+        Some(Some(first)) => first,
+        Some(None) => {
+            reading.set(Some(Some(written)));
+            written
+        }
+    }))
+}
+
+/// A slot index, the generation the slot had when the item was inserted, and the identity of the
+/// world whose arena holds it. Handles of one world order by slot, then generation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ArenaIndex {
     index: u32,
     generation: u32,
+    #[cfg_attr(feature = "serde", serde(deserialize_with = "deserialize_world"))]
+    world: u32,
 }
 
 impl ArenaIndex {
@@ -27,6 +85,9 @@ struct Slot<T> {
 #[derive(Debug, Clone)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Arena<T> {
+    /// Identity of the world the arena belongs to, stamped on its handles.
+    #[cfg_attr(feature = "serde", serde(deserialize_with = "deserialize_world"))]
+    world: u32,
     slots: Vec<Slot<T>>,
     free_slots: Vec<u32>,
     len: usize,
@@ -34,40 +95,60 @@ pub struct Arena<T> {
 
 impl<T> Default for Arena<T> {
     fn default() -> Self {
+        Self::new(0)
+    }
+}
+
+impl<T> Arena<T> {
+    /// An empty arena of the world with identity `world` (from [`new_world`]).
+    pub fn new(world: u32) -> Self {
         Self {
+            world,
             slots: Vec::new(),
             free_slots: Vec::new(),
             len: 0,
         }
     }
-}
 
-impl<T> Arena<T> {
+    /// Whether `handle` was given out by an arena of this world, live or not.
+    pub fn owns(&self, handle: ArenaIndex) -> bool {
+        handle.world == self.world
+    }
+
+    /// The slot `handle` names, if it is of this world.
+    fn slot_of(&self, handle: ArenaIndex) -> Option<usize> {
+        self.owns(handle).then_some(handle.slot())
+    }
+
+    /// The handle of the item in `index` as it is now.
+    fn index(&self, index: usize, generation: u32) -> ArenaIndex {
+        ArenaIndex {
+            index: u32::try_from(index).unwrap_or(u32::MAX),
+            generation,
+            world: self.world,
+        }
+    }
     /// Stores `item` in the most recently freed slot, or a new one, and returns its handle.
     pub fn insert(&mut self, item: T) -> ArenaIndex {
         self.len += 1;
         if let Some(index) = self.free_slots.pop() {
             let slot = &mut self.slots[index as usize];
             slot.item = Some(item);
-            return ArenaIndex {
-                index,
-                generation: slot.generation,
-            };
+            let generation = slot.generation;
+            return self.index(index as usize, generation);
         }
-        let index = u32::try_from(self.slots.len()).unwrap_or(u32::MAX);
+        let index = self.slots.len();
         self.slots.push(Slot {
             generation: 0,
             item: Some(item),
         });
-        ArenaIndex {
-            index,
-            generation: 0,
-        }
+        self.index(index, 0)
     }
 
-    /// Removes and returns the item, or `None` if the handle is stale.
+    /// Removes and returns the item, or `None` if the handle is stale or of another world.
     pub fn remove(&mut self, handle: ArenaIndex) -> Option<T> {
-        let slot = self.slots.get_mut(handle.slot())?;
+        let index = self.slot_of(handle)?;
+        let slot = self.slots.get_mut(index)?;
         if slot.generation != handle.generation {
             return None;
         }
@@ -78,18 +159,20 @@ impl<T> Arena<T> {
         Some(item)
     }
 
-    /// The item behind `handle`, unless it was removed.
+    /// The item behind `handle`, unless it was removed or the handle is of another world.
     pub fn get(&self, handle: ArenaIndex) -> Option<&T> {
         self.slots
-            .get(handle.slot())
+            .get(self.slot_of(handle)?)
             .filter(|slot| slot.generation == handle.generation)
             .and_then(|slot| slot.item.as_ref())
     }
 
-    /// The item behind `handle`, mutably, unless it was removed.
+    /// The item behind `handle`, mutably, unless it was removed or the handle is of another
+    /// world.
     pub fn get_mut(&mut self, handle: ArenaIndex) -> Option<&mut T> {
+        let slot = self.slot_of(handle)?;
         self.slots
-            .get_mut(handle.slot())
+            .get_mut(slot)
             .filter(|slot| slot.generation == handle.generation)
             .and_then(|slot| slot.item.as_mut())
     }
@@ -98,11 +181,7 @@ impl<T> Arena<T> {
     pub fn at_slot(&self, slot: usize) -> Option<(ArenaIndex, &T)> {
         let entry = self.slots.get(slot)?;
         let item = entry.item.as_ref()?;
-        let index = ArenaIndex {
-            index: slot as u32,
-            generation: entry.generation,
-        };
-        Some((index, item))
+        Some((self.index(slot, entry.generation), item))
     }
 
     /// The live item in storage slot `slot`, mutably.
@@ -123,15 +202,8 @@ impl<T> Arena<T> {
     /// Live items with their handles, in slot order.
     pub fn iter(&self) -> impl Iterator<Item = (ArenaIndex, &T)> {
         self.slots.iter().enumerate().filter_map(|(index, slot)| {
-            slot.item.as_ref().map(|item| {
-                (
-                    ArenaIndex {
-                        index: index as u32,
-                        generation: slot.generation,
-                    },
-                    item,
-                )
-            })
+            let item = slot.item.as_ref()?;
+            Some((self.index(index, slot.generation), item))
         })
     }
 
@@ -163,20 +235,18 @@ impl<T> Arena<T> {
 
     /// Live items with their handles, mutably, in slot order.
     pub fn iter_mut(&mut self) -> impl Iterator<Item = (ArenaIndex, &mut T)> {
+        let world = self.world;
         self.slots
             .iter_mut()
             .enumerate()
-            .filter_map(|(index, slot)| {
-                let generation = slot.generation;
-                slot.item.as_mut().map(|item| {
-                    (
-                        ArenaIndex {
-                            index: index as u32,
-                            generation,
-                        },
-                        item,
-                    )
-                })
+            .filter_map(move |(index, slot)| {
+                let item = slot.item.as_mut()?;
+                let index = ArenaIndex {
+                    index: index as u32,
+                    generation: slot.generation,
+                    world,
+                };
+                Some((index, item))
             })
     }
 }
@@ -196,6 +266,24 @@ mod tests {
         assert_eq!(arena.remove(first), None);
         assert_eq!(arena.get(second), Some(&"second"));
         assert_eq!(arena.len(), 1);
+    }
+
+    #[test]
+    fn a_handle_of_another_world_never_reaches_an_item() {
+        let (mut ours, mut theirs) = (Arena::new(new_world()), Arena::new(new_world()));
+        let mine = ours.insert("mine");
+        let other = theirs.insert("other");
+        assert_eq!(mine.slot(), other.slot());
+        assert!(!ours.owns(other) && ours.owns(mine));
+        assert_eq!(ours.get(other), None);
+        assert_eq!(ours.get_mut(other), None);
+        assert_eq!(ours.remove(other), None);
+        assert_eq!(ours.get(mine), Some(&"mine"));
+        assert_eq!(theirs.get(other), Some(&"other"));
+        assert!(
+            ours.clone().get(mine).is_some(),
+            "a clone is the same world"
+        );
     }
 
     #[test]

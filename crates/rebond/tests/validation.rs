@@ -3,7 +3,8 @@
 
 use rebond::shape::{Capsule, Compound, CompoundChild, Cuboid, Cylinder, Halfspace, Sphere};
 use rebond::{
-    limits, BodyDesc, BodyType, ErrorKind, Pose, Quat, Result, Shape, Vec3, World, WorldSettings,
+    limits, Aabb, BodyDesc, BodyType, ErrorKind, InteractionGroups, JointDesc, Motor, Pose, Quat,
+    QueryFilter, Ray, Result, Shape, Vec3, World, WorldSettings,
 };
 
 fn field_of<T: std::fmt::Debug>(result: Result<T>) -> (String, ErrorKind) {
@@ -243,6 +244,77 @@ fn stale_handles_are_errors() {
         field_of(world.remove_body(handle)).1,
         ErrorKind::StaleHandle
     );
+}
+
+#[test]
+fn a_handle_of_another_world_is_an_error_and_changes_neither_world() {
+    // Two worlds built alike, so that every handle of one names a slot and generation the other
+    // has: before worlds had identities, such a handle reached the other world's body.
+    let build = || {
+        let mut world = World::new(WorldSettings::default()).unwrap();
+        let a = world.add_body(BodyDesc::dynamic(unit_box())).unwrap();
+        let b = (world.add_body(BodyDesc::dynamic(unit_box()).position(Vec3::X * 2.0))).unwrap();
+        let hinge = JointDesc::revolute(a, b, Vec3::X, Vec3::Z);
+        let joint = world.add_joint(hinge).unwrap();
+        world.step(1.0 / 60.0).unwrap();
+        (world, [a, b], joint)
+    };
+    let (mut ours, [a, b], joint) = build();
+    let (theirs, [their_a, their_b], their_joint) = build();
+    assert_eq!(
+        (a.slot(), joint.slot()),
+        (their_a.slot(), their_joint.slot())
+    );
+    assert_ne!(a, their_a);
+    let (ours_before, theirs_before) = (ours.save_state(), theirs.save_state());
+
+    let stale = ErrorKind::StaleHandle;
+    assert_eq!(field_of(ours.body(their_a)).1, stale);
+    assert_eq!(field_of(ours.body_mut(their_a)).1, stale);
+    assert_eq!(field_of(ours.remove_body(their_a)).1, stale);
+    let groups = InteractionGroups::NONE;
+    assert_eq!(
+        field_of(ours.set_collision_groups(their_b, groups)).1,
+        stale
+    );
+    assert_eq!(field_of(ours.set_pair_ignored(a, their_b, true)).1, stale);
+    assert_eq!(field_of(ours.set_pair_ignored(their_a, b, true)).1, stale);
+    assert!(!ours.is_pair_ignored(their_a, their_b));
+    let ball = |body_a, body_b| JointDesc::ball(body_a, body_b, Vec3::X);
+    let body_a = field_of(ours.add_joint(ball(Some(their_a), b)));
+    assert_eq!(body_a, ("body_a".to_owned(), stale.clone()));
+    let body_b = field_of(ours.add_joint(ball(None, their_b)));
+    assert_eq!(body_b, ("body_b".to_owned(), stale.clone()));
+    let stale_joint = ErrorKind::StaleJointHandle;
+    assert_eq!(field_of(ours.joint(their_joint)).1, stale_joint);
+    assert_eq!(field_of(ours.joint_placement(their_joint)).1, stale_joint);
+    let motor = Some(Motor::velocity(1.0, 10.0));
+    assert_eq!(
+        field_of(ours.set_joint_motor(their_joint, motor)).1,
+        stale_joint
+    );
+    assert_eq!(field_of(ours.remove_joint(their_joint)).1, stale_joint);
+    let excluded = [a, their_b];
+    let filter = QueryFilter::new().exclude_bodies(&excluded);
+    let ray = Ray::new(Vec3::new(0.0, 5.0, 0.0), Vec3::NEG_Y);
+    let place = ("excluded_bodies[1]".to_owned(), stale.clone());
+    assert_eq!(field_of(ours.cast_ray(&ray, &filter)), place);
+    let mut found = vec![a];
+    let everywhere = Aabb::new(Vec3::splat(-10.0), Vec3::splat(10.0));
+    let overlaps = ours.bodies_overlapping_aabb(&everywhere, &filter, &mut found);
+    assert_eq!((field_of(overlaps), found), (place, Vec::new()));
+
+    assert!(
+        ours.save_state() == ours_before,
+        "a foreign handle changed this world"
+    );
+    assert!(
+        theirs.save_state() == theirs_before,
+        "a foreign handle changed its world"
+    );
+    // Their own handles still work on each.
+    assert!(ours.body(a).is_ok() && theirs.body(their_a).is_ok());
+    assert!(ours.remove_joint(joint).is_ok() && ours.remove_body(a).is_ok());
 }
 
 #[test]

@@ -42,7 +42,10 @@ pub enum BodyType {
 }
 
 /// Names one body of a [`crate::World`]. A handle to a removed body stays invalid forever, even
-/// after another body takes its slot.
+/// after another body takes its slot, and a handle of another world is refused
+/// ([`crate::ErrorKind::StaleHandle`]), never taken for a body of this one. A world's clones and
+/// the worlds restored from its states ([`crate::World::load_state`]) are the same world at
+/// other times: its handles name the same bodies in each. Handles of one world order by slot.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BodyHandle(pub(crate) ArenaIndex);

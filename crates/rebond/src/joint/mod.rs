@@ -35,7 +35,8 @@ use crate::math::{Quat, Vec3};
 use std::f32::consts::{PI, TAU};
 
 /// Names one joint of a [`crate::World`]. A handle to a removed joint stays invalid forever, even
-/// after another joint takes its slot.
+/// after another joint takes its slot, and a handle of another world is refused
+/// ([`crate::ErrorKind::StaleJointHandle`]), as [`BodyHandle`]s are.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct JointHandle(pub(crate) ArenaIndex);

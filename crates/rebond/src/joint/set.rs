@@ -120,6 +120,14 @@ pub(crate) struct JointSet {
 }
 
 impl JointSet {
+    /// No joints, in the world with identity `world`.
+    pub fn new(world: u32) -> Self {
+        Self {
+            joints: Arena::new(world),
+            ..Self::default()
+        }
+    }
+
     /// Adds a checked joint whose bodies stand at `pose_a` (`None` for the world) and `pose_b`
     /// (origin position, rotation, centre of mass); `axis` is the unit axis.
     pub fn insert(

@@ -26,7 +26,9 @@
 //! - Equally near hits are broken by body handle (the smaller wins), lists come sorted, so
 //!   answers do not depend on the history of the broad phase's trees.
 //! - Inputs are checked: a non-finite value, a zero direction or a negative maximum distance is
-//!   an [`Error`] naming the field; no query panics. None allocates beyond the output vector the
+//!   an [`Error`] naming the field, and so is a filter excluding a body of another world (field
+//!   `excluded_bodies[i]`, [`ErrorKind::StaleHandle`](crate::ErrorKind::StaleHandle)); no query
+//!   panics. None allocates beyond the output vector the
 //!   caller passes in, except a shape cast that starts overlapping a body (EPA's scratch space).
 //! - Ray casts are closed forms, exact to f32 rounding. Shape casts stop within GJK's precision,
 //!   about 1e-5 of the size of the two shapes (0.4 mm against a 100 m floor box), always on the
@@ -157,7 +159,8 @@ pub type BodyPredicate<'a> = &'a dyn Fn(BodyHandle, &RigidBody) -> bool;
 /// ```
 #[derive(Clone, Copy)]
 pub struct QueryFilter<'a> {
-    /// Bodies never reported, such as the body that casts the ray.
+    /// Bodies never reported, such as the body that casts the ray. A removed body excludes
+    /// nothing; a body of another world makes the query an error naming it.
     pub excluded_bodies: &'a [BodyHandle],
     /// Whether dynamic bodies are seen (default true).
     pub include_dynamic: bool,

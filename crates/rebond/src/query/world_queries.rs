@@ -33,7 +33,8 @@ impl World {
     ///
     /// # Errors
     /// A non-finite `origin` or `direction`, a zero `direction`, a NaN or negative
-    /// `max_distance`; the error names the field.
+    /// `max_distance`, a body of another world in `filter.excluded_bodies`; the error names the
+    /// field.
     pub fn cast_ray(&self, ray: &Ray, filter: &QueryFilter) -> Result<Option<RayHit>> {
         let ray = ray.validated()?;
         let mut nearest: Option<RayHit> = None;
@@ -47,7 +48,7 @@ impl World {
                 nearest = Some(ray_hit(&ray, handle, hit.distance, hit.normal));
             }
             ControlFlow::Continue(nearest.map_or(f32::INFINITY, |best| best.distance))
-        });
+        })?;
         Ok(nearest)
     }
 
@@ -69,7 +70,7 @@ impl World {
                 hits.push(ray_hit(&ray, handle, hit.distance, hit.normal));
             }
             ControlFlow::Continue(f32::INFINITY)
-        });
+        })?;
         hits.sort_unstable_by(|a, b| a.distance.total_cmp(&b.distance).then(a.body.cmp(&b.body)));
         Ok(())
     }
@@ -89,7 +90,7 @@ impl World {
             } else {
                 ControlFlow::Continue(f32::INFINITY)
             }
-        });
+        })?;
         Ok(found)
     }
 
@@ -115,7 +116,8 @@ impl World {
     ///
     /// # Errors
     /// A non-finite `pose.position` or `pose.rotation`, a zero `pose.rotation`, a non-finite or
-    /// zero `direction`, a NaN or negative `max_distance`; the error names the field.
+    /// zero `direction`, a NaN or negative `max_distance`, a body of another world in
+    /// `filter.excluded_bodies`; the error names the field.
     pub fn cast_shape(
         &self,
         shape: &Shape,
@@ -157,7 +159,7 @@ impl World {
                 }
                 ControlFlow::Continue(nearest.map_or(reach, |best| best.distance))
             },
-        );
+        )?;
         Ok(nearest)
     }
 
@@ -165,7 +167,8 @@ impl World {
     /// first), sorted by handle.
     ///
     /// # Errors
-    /// A non-finite `point`; `bodies` is then left empty.
+    /// A non-finite `point`, a body of another world in `filter.excluded_bodies`; `bodies` is
+    /// then left empty.
     pub fn bodies_containing_point(
         &self,
         point: Vec3,
@@ -178,8 +181,7 @@ impl World {
         }
         self.collect_overlaps(&Aabb::new(point, point), filter, bodies, |body| {
             shape_contains_point(&body.shape, &body.pose(), point)
-        });
-        Ok(())
+        })
     }
 
     /// The bodies whose bounding box overlaps `aabb` (touching counts), into `bodies` (cleared
@@ -188,7 +190,8 @@ impl World {
     ///
     /// # Errors
     /// A non-finite corner, field `aabb.min[i]` or `aabb.max[i]`, or a `min` above `max` on an
-    /// axis (field `aabb.min[i]`, [`ErrorKind::OutOfRange`]); `bodies` is then left empty.
+    /// axis (field `aabb.min[i]`, [`ErrorKind::OutOfRange`]), a body of another world in
+    /// `filter.excluded_bodies`; `bodies` is then left empty.
     pub fn bodies_overlapping_aabb(
         &self,
         aabb: &Aabb,
@@ -219,16 +222,15 @@ impl World {
                 return Err(Error::new(format!("aabb.min[{axis}]"), kind));
             }
         }
-        self.collect_overlaps(aabb, filter, bodies, |body| body.aabb().overlaps(aabb));
-        Ok(())
+        self.collect_overlaps(aabb, filter, bodies, |body| body.aabb().overlaps(aabb))
     }
 
     /// The bodies whose shape overlaps `shape` placed at `pose` (touching counts), into `bodies`
     /// (cleared first), sorted by handle.
     ///
     /// # Errors
-    /// A non-finite `pose.position` or `pose.rotation`, or a zero `pose.rotation`; `bodies` is
-    /// then left empty.
+    /// A non-finite `pose.position` or `pose.rotation`, a zero `pose.rotation`, a body of
+    /// another world in `filter.excluded_bodies`; `bodies` is then left empty.
     pub fn bodies_overlapping_shape(
         &self,
         shape: &Shape,
@@ -241,29 +243,41 @@ impl World {
         let bounds = shape.aabb(&pose);
         self.collect_overlaps(&bounds, filter, bodies, |body| {
             body.aabb().overlaps(&bounds) && shapes_overlap(shape, &pose, &body.shape, &body.pose())
-        });
-        Ok(())
+        })
     }
 }
 
 /// The walks shared by the queries.
 impl World {
+    /// Refuses a filter that excludes a body of another world, naming it
+    /// (`excluded_bodies[i]`); a removed body of this world excludes nothing and is let be.
+    fn check_filter(&self, filter: &QueryFilter) -> Result<()> {
+        let bodies = self.bodies_arena();
+        match (filter.excluded_bodies.iter()).position(|handle| !bodies.owns(handle.0)) {
+            Some(index) => Err(Error::new(
+                format!("excluded_bodies[{index}]"),
+                ErrorKind::StaleHandle,
+            )),
+            None => Ok(()),
+        }
+    }
+
     /// Calls `visit` with every body passing `filter` whose broad-phase box the ray meets within
     /// the current bound, nearer boxes first, static tree then moving tree. `visit` returns the
     /// new bound (the distance of its nearest hit, or infinity to keep the bound) or stops the
-    /// walk.
+    /// walk. A filter [`check_filter`](Self::check_filter) refuses is an error, before any visit.
     fn visit_ray(
         &self,
         ray: &Ray,
         filter: &QueryFilter,
         visit: impl FnMut(BodyHandle, &RigidBody) -> ControlFlow<(), f32>,
-    ) {
+    ) -> Result<()> {
         self.visit_candidates(
             filter,
             |tree, bound, tree_visit| tree.ray_cast(ray.origin, ray.direction, bound, tree_visit),
             ray.max_distance,
             visit,
-        );
+        )
     }
 
     /// The walk of [`visit_ray`](Self::visit_ray) for any cast: `cast(tree, bound, callback)`
@@ -274,10 +288,12 @@ impl World {
         mut cast: C,
         max_distance: f32,
         mut visit: V,
-    ) where
+    ) -> Result<()>
+    where
         C: FnMut(&DynamicTree, f32, &mut dyn FnMut(ProxyId, f32) -> ControlFlow<(), f32>),
         V: FnMut(BodyHandle, &RigidBody) -> ControlFlow<(), f32>,
     {
+        self.check_filter(filter)?;
         let bodies = self.bodies_arena();
         let broad_phase = self.broad_phase();
         let mut bound = max_distance;
@@ -299,20 +315,23 @@ impl World {
                 flow
             });
             if stopped {
-                return;
+                break;
             }
         }
+        Ok(())
     }
 
     /// Pushes into `bodies` every body passing `filter` whose broad-phase box overlaps `aabb`
-    /// and for which `test` holds, then sorts them by handle.
+    /// and for which `test` holds, then sorts them by handle; as [`visit_ray`](Self::visit_ray)
+    /// for a filter refused.
     fn collect_overlaps(
         &self,
         aabb: &Aabb,
         filter: &QueryFilter,
         bodies: &mut Vec<BodyHandle>,
         test: impl Fn(&RigidBody) -> bool,
-    ) {
+    ) -> Result<()> {
+        self.check_filter(filter)?;
         let arena = self.bodies_arena();
         let broad_phase = self.broad_phase();
         for tree in [broad_phase.static_tree(), broad_phase.moving_tree()] {
@@ -327,6 +346,7 @@ impl World {
             });
         }
         bodies.sort_unstable();
+        Ok(())
     }
 }
 

@@ -168,7 +168,7 @@ pub(crate) fn decode<T: DeserializeOwned>(magic: &[u8; 8], bytes: &[u8]) -> Resu
     if crc32fast::hash(payload) != word(28..32) as u32 {
         return Err(StateError::Damaged);
     }
-    shared::reading(|| postcard::from_bytes(payload))
+    crate::arena::reading_state(|| shared::reading(|| postcard::from_bytes(payload)))
         .map_err(|error| StateError::Undecodable(error.to_string()))
 }
 
@@ -181,6 +181,13 @@ impl World {
 
     /// A world saved by [`World::save_state`]; bytes that are not a state of this format
     /// version, or are cut short or damaged, are an error saying which.
+    ///
+    /// The world restored is the saved one at the time of saving, with its identity: the saved
+    /// world's handles name its bodies and joints (rolling a world back keeps its handles), and
+    /// those of other worlds are refused. The state holds the identity, a number the process
+    /// gave the world when it was made, so the states of two worlds built alike in one process
+    /// differ in those bytes; a program that makes its worlds in the same order makes the same
+    /// bytes each run.
     pub fn load_state(bytes: &[u8]) -> Result<World, StateError> {
         let world: World = decode(WORLD_MAGIC, bytes)?;
         world.check_decoded().map_err(StateError::Inconsistent)?;

@@ -7,7 +7,7 @@ mod continuous;
 mod decoded;
 mod joints;
 
-use crate::arena::Arena;
+use crate::arena::{new_world, Arena};
 use crate::body::{BodyDesc, BodyHandle, BodyType, RigidBody};
 use crate::collision::broad_phase::BroadPhase;
 use crate::collision::contact_cache::{Contact, ContactCache};
@@ -211,13 +211,15 @@ fn set_proxies_asleep(
 }
 
 impl World {
-    /// An empty world; settings must be finite and in range.
+    /// An empty world; settings must be finite and in range. The world has an identity of its
+    /// own, which its handles carry (see [`BodyHandle`]).
     pub fn new(settings: WorldSettings) -> Result<Self> {
         settings.validate()?;
+        let world = new_world();
         Ok(Self {
             settings,
-            bodies: Arena::default(),
-            joints: JointSet::default(),
+            bodies: Arena::new(world),
+            joints: JointSet::new(world),
             broad_phase: BroadPhase::new(),
             contacts: ContactCache::default(),
             narrow_phase: NarrowPhase::default(),
