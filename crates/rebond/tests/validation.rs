@@ -234,6 +234,75 @@ fn world_settings_and_time_step_are_checked() {
     }
 }
 
+/// Every `f32` world setting, by name, with a way to set it.
+type Setter = fn(&mut WorldSettings, f32);
+
+/// Each `f32` world setting with values out of its range (NaN and infinity refused for all).
+fn f32_settings_and_bad_values() -> [(&'static str, Setter, &'static [f32]); 11] {
+    [
+        (
+            "max_linear_speed",
+            |s, v| s.max_linear_speed = v,
+            &[0.0, -1.0, 2.0 * limits::MAX_SPEED],
+        ),
+        ("contact_hertz", |s, v| s.contact_hertz = v, &[0.0, -60.0]),
+        (
+            "contact_damping_ratio",
+            |s, v| s.contact_damping_ratio = v,
+            &[-0.5],
+        ),
+        (
+            "contact_push_speed",
+            |s, v| s.contact_push_speed = v,
+            &[0.0, -3.0],
+        ),
+        (
+            "restitution_threshold",
+            |s, v| s.restitution_threshold = v,
+            &[-1.0],
+        ),
+        (
+            "speculative_distance",
+            |s, v| s.speculative_distance = v,
+            &[-0.01],
+        ),
+        ("sleep_speed", |s, v| s.sleep_speed = v, &[-0.05]),
+        ("sleep_time", |s, v| s.sleep_time = v, &[-0.5]),
+        ("joint_hertz", |s, v| s.joint_hertz = v, &[0.0, -60.0]),
+        (
+            "joint_damping_ratio",
+            |s, v| s.joint_damping_ratio = v,
+            &[-2.0],
+        ),
+        (
+            "gravity",
+            |s, v| s.gravity.y = v,
+            &[-2.0 * limits::MAX_GRAVITY],
+        ),
+    ]
+}
+
+#[test]
+fn every_world_setting_out_of_range_is_refused_naming_it() {
+    let mut world = World::new(WorldSettings::default()).unwrap();
+    for (field, set, bad_values) in f32_settings_and_bad_values() {
+        for &value in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY]
+            .iter()
+            .chain(bad_values)
+        {
+            let mut settings = WorldSettings::default();
+            set(&mut settings, value);
+            assert_eq!(field_of(World::new(settings)).0, field, "{field} = {value}");
+            assert_eq!(
+                field_of(world.set_settings(settings)).0,
+                field,
+                "{field} = {value}"
+            );
+            assert_eq!(world.settings(), &WorldSettings::default());
+        }
+    }
+}
+
 #[test]
 fn stale_handles_are_errors() {
     let mut world = World::new(WorldSettings::default()).unwrap();

@@ -4,7 +4,9 @@ mod common;
 
 use common::{add_ground, run, scene_path, unit_box, world, G};
 use rebond::scene::{LoadError, Scene};
-use rebond::{BodyDesc, JointType, Motor, QueryFilter, Ray, Shape, Vec3, World, WorldSettings};
+use rebond::{
+    BodyDesc, CombineRule, JointType, Motor, QueryFilter, Ray, Shape, Vec3, World, WorldSettings,
+};
 
 #[test]
 fn user_data_rides_along_with_the_body() {
@@ -86,6 +88,101 @@ fn a_missing_scene_file_is_a_read_error_and_a_bad_one_names_the_place() {
         .unwrap_err();
     assert_eq!(error.place, "bodies[0].shape.radius");
     assert_eq!(error.message, "must be positive, got -1");
+}
+
+#[test]
+fn every_world_setting_is_read_from_a_scene_file_under_its_name() {
+    let json = br#"{
+        "gravity": [1, -2, 3], "substeps": 5, "max_linear_speed": 50, "contact_hertz": 30,
+        "contact_damping_ratio": 0.7, "contact_push_speed": 1.5, "restitution_threshold": 0.25,
+        "speculative_distance": 0.01, "sleep_speed": 0.1, "sleep_time": 2, "joint_hertz": 20,
+        "joint_damping_ratio": 1.5, "friction_combine": "min", "restitution_combine": "multiply",
+        "bodies": []
+    }"#;
+    let expected = WorldSettings {
+        gravity: Vec3::new(1.0, -2.0, 3.0),
+        substeps: 5,
+        max_linear_speed: 50.0,
+        contact_hertz: 30.0,
+        contact_damping_ratio: 0.7,
+        contact_push_speed: 1.5,
+        restitution_threshold: 0.25,
+        speculative_distance: 0.01,
+        sleep_speed: 0.1,
+        sleep_time: 2.0,
+        joint_hertz: 20.0,
+        joint_damping_ratio: 1.5,
+        friction_combine: CombineRule::Min,
+        restitution_combine: CombineRule::Multiply,
+    };
+    assert_eq!(
+        Scene::from_json(json).unwrap().world().settings(),
+        &expected
+    );
+    let empty = Scene::from_json(br#"{"bodies": []}"#).unwrap();
+    assert_eq!(empty.world().settings(), &WorldSettings::default());
+    let rules = [
+        ("geometric_mean", CombineRule::GeometricMean),
+        ("average", CombineRule::Average),
+        ("min", CombineRule::Min),
+        ("max", CombineRule::Max),
+        ("multiply", CombineRule::Multiply),
+    ];
+    for (name, rule) in rules {
+        let json = format!(
+            r#"{{"friction_combine": "{name}", "restitution_combine": "{name}", "bodies": []}}"#
+        );
+        let scene = Scene::from_json(json.as_bytes()).unwrap();
+        let settings = scene.world().settings();
+        assert_eq!(
+            (settings.friction_combine, settings.restitution_combine),
+            (rule, rule)
+        );
+    }
+}
+
+#[test]
+fn bad_world_settings_in_a_scene_file_are_refused_at_their_field() {
+    let refused = |field: &str, value: &str| {
+        let json = format!(r#"{{"{field}": {value}, "bodies": []}}"#);
+        let error = Scene::from_json(json.as_bytes()).expect_err(&json);
+        assert_eq!(error.place, field, "{json}: {error}");
+        error.message
+    };
+    let out_of_range = [
+        ("max_linear_speed", "0", "must be positive"),
+        ("max_linear_speed", "1e5", "must lie between 0 and 10000"),
+        ("contact_hertz", "0", "must be positive"),
+        ("contact_damping_ratio", "-0.5", "must not be negative"),
+        ("contact_push_speed", "-3", "must be positive"),
+        ("restitution_threshold", "-1", "must not be negative"),
+        ("speculative_distance", "-0.01", "must not be negative"),
+        ("sleep_speed", "-0.05", "must not be negative"),
+        ("sleep_time", "-1", "must not be negative"),
+        ("joint_hertz", "0", "must be positive"),
+        ("joint_damping_ratio", "-2", "must not be negative"),
+    ];
+    for (field, value, message) in out_of_range {
+        let said = refused(field, value);
+        assert!(said.starts_with(message), "{field} = {value}: {said}");
+        // Beyond f32, and of the wrong JSON type.
+        assert!(
+            refused(field, "1e39").starts_with("must be finite"),
+            "{field}"
+        );
+        assert!(
+            refused(field, r#""fast""#).contains("invalid type"),
+            "{field}"
+        );
+    }
+    for field in ["friction_combine", "restitution_combine"] {
+        assert!(
+            refused(field, r#""median""#).contains("unknown variant"),
+            "{field}"
+        );
+        assert!(refused(field, r#""GeometricMean""#).contains("unknown variant"));
+        assert!(refused(field, "1").contains("invalid type"), "{field}");
+    }
 }
 
 /// A post, a door and a ball, with `joints` (the inside of the JSON list).

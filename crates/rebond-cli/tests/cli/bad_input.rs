@@ -540,6 +540,66 @@ fn bad_world_settings_are_refused() {
 }
 
 #[test]
+fn every_other_world_setting_is_refused_at_its_field() {
+    // Every world setting the top level takes, out of its range, beyond f32 and of the wrong
+    // JSON type.
+    let out_of_range = [
+        ("max_linear_speed", "0", "must be positive, got 0"),
+        (
+            "max_linear_speed",
+            "20000",
+            "must lie between 0 and 10000, got 20000",
+        ),
+        ("contact_hertz", "-60", "must be positive, got -60"),
+        (
+            "contact_damping_ratio",
+            "-0.5",
+            "must not be negative, got -0.5",
+        ),
+        ("contact_push_speed", "0", "must be positive, got 0"),
+        (
+            "restitution_threshold",
+            "-0.5",
+            "must not be negative, got -0.5",
+        ),
+        (
+            "speculative_distance",
+            "-0.01",
+            "must not be negative, got -0.01",
+        ),
+        ("sleep_speed", "-0.05", "must not be negative, got -0.05"),
+        ("sleep_time", "-1", "must not be negative, got -1"),
+        ("joint_hertz", "0", "must be positive, got 0"),
+        ("joint_damping_ratio", "-2", "must not be negative, got -2"),
+    ];
+    for (field, value, message) in out_of_range {
+        let scene = |value: &str| format!(r#"{{"{field}": {value}, "bodies": []}}"#);
+        assert_refused(&format!("{field}_{value}"), &scene(value), field, message);
+        assert_refused(
+            &format!("{field}_huge"),
+            &scene("1e39"),
+            field,
+            "must be finite",
+        );
+        let string = scene(r#""fast""#);
+        let wrong_type = "invalid type: string \"fast\"";
+        assert_refused(&format!("{field}_string"), &string, field, wrong_type);
+    }
+    for field in ["friction_combine", "restitution_combine"] {
+        let scene = |value: &str| format!(r#"{{"{field}": {value}, "bodies": []}}"#);
+        let unknown = "unknown variant `median`, expected one of `geometric_mean`";
+        assert_refused(
+            &format!("{field}_unknown"),
+            &scene(r#""median""#),
+            field,
+            unknown,
+        );
+        let number = "invalid type: integer `1`, expected a string";
+        assert_refused(&format!("{field}_number"), &scene("1"), field, number);
+    }
+}
+
+#[test]
 fn the_first_bad_body_is_reported() {
     assert_refused(
         "first_bad_body",

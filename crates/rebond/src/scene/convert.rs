@@ -7,9 +7,10 @@ use crate::joint::{JointDesc, Motor};
 use crate::limits::{MAX_TIMESTEP, MIN_TIMESTEP};
 use crate::math::{Pose, Quat, Vec3};
 use crate::shape::{CompoundChild, Shape};
+use crate::world::WorldSettings;
 
 use super::format::{
-    BodyEntry, ChildEntry, JointEntry, MotorEntry, PathEntry, ShapeEntry, ShapeKind,
+    BodyEntry, ChildEntry, JointEntry, MotorEntry, PathEntry, SceneFile, ShapeEntry, ShapeKind,
 };
 use super::meshes::{heightfield, trimesh, MeshFiles};
 use super::{join, LoadError, SceneError, Timestep, DEFAULT_TIMESTEP};
@@ -28,6 +29,64 @@ pub(super) fn scalar(place: &str, value: f64) -> Result<f32, SceneError> {
             ),
         ))
     }
+}
+
+/// The world settings a scene file gives, each under its `WorldSettings` name, the engine's
+/// default where it gives none; values are narrowed here and checked by [`crate::World::new`],
+/// whose errors name the same fields.
+pub(super) fn world_settings(file: &SceneFile) -> Result<WorldSettings, SceneError> {
+    let defaults = WorldSettings::default();
+    let setting = |place: &str, value: Option<f64>, default: f32| match value {
+        Some(value) => scalar(place, value),
+        None => Ok(default),
+    };
+    Ok(WorldSettings {
+        gravity: match file.gravity {
+            Some(gravity) => vector("gravity", gravity)?,
+            None => defaults.gravity,
+        },
+        substeps: file.substeps.unwrap_or(defaults.substeps),
+        max_linear_speed: setting(
+            "max_linear_speed",
+            file.max_linear_speed,
+            defaults.max_linear_speed,
+        )?,
+        contact_hertz: setting("contact_hertz", file.contact_hertz, defaults.contact_hertz)?,
+        contact_damping_ratio: setting(
+            "contact_damping_ratio",
+            file.contact_damping_ratio,
+            defaults.contact_damping_ratio,
+        )?,
+        contact_push_speed: setting(
+            "contact_push_speed",
+            file.contact_push_speed,
+            defaults.contact_push_speed,
+        )?,
+        restitution_threshold: setting(
+            "restitution_threshold",
+            file.restitution_threshold,
+            defaults.restitution_threshold,
+        )?,
+        speculative_distance: setting(
+            "speculative_distance",
+            file.speculative_distance,
+            defaults.speculative_distance,
+        )?,
+        sleep_speed: setting("sleep_speed", file.sleep_speed, defaults.sleep_speed)?,
+        sleep_time: setting("sleep_time", file.sleep_time, defaults.sleep_time)?,
+        joint_hertz: setting("joint_hertz", file.joint_hertz, defaults.joint_hertz)?,
+        joint_damping_ratio: setting(
+            "joint_damping_ratio",
+            file.joint_damping_ratio,
+            defaults.joint_damping_ratio,
+        )?,
+        friction_combine: file
+            .friction_combine
+            .map_or(defaults.friction_combine, |entry| entry.0),
+        restitution_combine: file
+            .restitution_combine
+            .map_or(defaults.restitution_combine, |entry| entry.0),
+    })
 }
 
 /// Narrows a file vector to a [`Vec3`], naming the bad component.

@@ -17,6 +17,7 @@ use serde::Deserialize;
 
 use crate::body::BodyType;
 use crate::joint::JointType;
+use crate::material::CombineRule;
 
 /// A value that must be written as a JSON object. Derived structs alone would also take a JSON
 /// array of their fields in order, which the format does not allow.
@@ -52,16 +53,50 @@ impl<'de, T: Deserialize<'de>> Visitor<'de> for ObjectVisitor<T> {
     }
 }
 
-/// The top level of a scene file, as written.
+/// The top level of a scene file, as written: the timestep, every world setting under its
+/// `WorldSettings` name, the bodies and the joints.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct SceneFile {
     pub(super) gravity: Option<[f64; 3]>,
     pub(super) timestep: Option<f64>,
     pub(super) substeps: Option<u32>,
+    pub(super) max_linear_speed: Option<f64>,
+    pub(super) contact_hertz: Option<f64>,
+    pub(super) contact_damping_ratio: Option<f64>,
+    pub(super) contact_push_speed: Option<f64>,
     pub(super) restitution_threshold: Option<f64>,
+    pub(super) speculative_distance: Option<f64>,
+    pub(super) sleep_speed: Option<f64>,
+    pub(super) sleep_time: Option<f64>,
+    pub(super) joint_hertz: Option<f64>,
+    pub(super) joint_damping_ratio: Option<f64>,
+    pub(super) friction_combine: Option<CombineEntry>,
+    pub(super) restitution_combine: Option<CombineEntry>,
     pub(super) bodies: Vec<JsonObject<BodyEntry>>,
     pub(super) joints: Option<Vec<JsonObject<JointEntry>>>,
+}
+
+/// How two surfaces' values combine, as written: one of [`CombineRule`]'s variants in snake case,
+/// a JSON string (read as a string first, so that another JSON type is an error at the field
+/// rather than serde_json's "expected value" at a line and column).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct CombineEntry(pub(super) CombineRule);
+
+impl<'de> Deserialize<'de> for CombineEntry {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        const NAMES: &[&str] = &["geometric_mean", "average", "min", "max", "multiply"];
+        let name = String::deserialize(deserializer)?;
+        let rule = match name.as_str() {
+            "geometric_mean" => CombineRule::GeometricMean,
+            "average" => CombineRule::Average,
+            "min" => CombineRule::Min,
+            "max" => CombineRule::Max,
+            "multiply" => CombineRule::Multiply,
+            _ => return Err(serde::de::Error::unknown_variant(&name, NAMES)),
+        };
+        Ok(Self(rule))
+    }
 }
 
 /// How a body moves, as written.

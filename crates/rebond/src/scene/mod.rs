@@ -39,8 +39,8 @@ use serde::de::DeserializeOwned;
 use crate::body::{BodyHandle, RigidBody};
 use crate::error::ErrorKind;
 use crate::joint::{Joint, JointHandle, JointType};
-use crate::world::{World, WorldSettings};
-use convert::{body_desc, joint_desc, scalar, timestep, vector};
+use crate::world::World;
+use convert::{body_desc, joint_desc, timestep, world_settings};
 use format::{BodyEntry, JointEntry, JsonObject, SceneFile};
 use meshes::MeshFiles;
 
@@ -262,18 +262,7 @@ impl Scene {
     fn load(bytes: &[u8], files: MeshFiles) -> Result<Self, LoadError> {
         let JsonObject::<SceneFile>(file) = parse(bytes)?;
         let timestep = timestep(file.timestep)?;
-        let gravity = match file.gravity {
-            Some(gravity) => vector("gravity", gravity)?,
-            None => crate::DEFAULT_GRAVITY,
-        };
-        let mut settings = WorldSettings {
-            gravity,
-            substeps: file.substeps.unwrap_or(crate::DEFAULT_SUBSTEPS),
-            ..WorldSettings::default()
-        };
-        if let Some(value) = file.restitution_threshold {
-            settings.restitution_threshold = scalar("restitution_threshold", value)?;
-        }
+        let settings = world_settings(&file)?;
         let mut scene = Self {
             world: World::new(settings).map_err(SceneError::from)?,
             bodies: Vec::with_capacity(file.bodies.len()),

@@ -39,7 +39,8 @@ pub const MAX_SUBSTEPS: u32 = 64;
 pub const DEFAULT_MAX_LINEAR_SPEED: f32 = 1000.0;
 
 /// World-wide settings: what the step does, with units and defaults. Every value is checked
-/// when the world is made or the settings replaced; an error names the field.
+/// when the world is made or the settings replaced; an error names the field. A scene file sets
+/// each at its top level under the field's name (`docs/scene-format.md`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct WorldSettings {
