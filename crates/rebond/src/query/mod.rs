@@ -27,9 +27,9 @@
 //!   answers do not depend on the history of the broad phase's trees.
 //! - Inputs are checked: a non-finite value, a zero direction or a negative maximum distance is
 //!   an [`Error`] naming the field, and so is a filter excluding a body of another world (field
-//!   `excluded_bodies[i]`, [`ErrorKind::StaleHandle`](crate::ErrorKind::StaleHandle)); no query
-//!   panics. None allocates beyond the output vector the
-//!   caller passes in, except a shape cast that starts overlapping a body (EPA's scratch space).
+//!   `excluded_bodies[i]`, [`ErrorKind::StaleHandle`]); no query panics. None allocates beyond
+//!   the output vector the caller passes in, except a shape cast that starts overlapping a body
+//!   (EPA's scratch space).
 //! - Ray casts are closed forms, exact to f32 rounding. Shape casts stop within GJK's precision,
 //!   about 1e-5 of the size of the two shapes (0.4 mm against a 100 m floor box), always on the
 //!   near side of the contact; against a halfspace they are exact.
