@@ -128,6 +128,7 @@ impl<T> Arena<T> {
             world: self.world,
         }
     }
+
     /// Stores `item` in the most recently freed slot, or a new one, and returns its handle.
     pub fn insert(&mut self, item: T) -> ArenaIndex {
         self.len += 1;
