@@ -452,7 +452,8 @@ impl World {
         Ok(())
     }
 
-    /// Whether bodies `a` and `b` were told to ignore each other.
+    /// Whether bodies `a` and `b` were told to ignore each other; never for a handle of another
+    /// world.
     pub fn is_pair_ignored(&self, a: BodyHandle, b: BodyHandle) -> bool {
         self.ignored_pairs.contains(a, b)
     }
