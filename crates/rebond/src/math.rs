@@ -161,3 +161,14 @@ pub fn rotate_tensor(rotation: Quat, tensor: Mat3) -> Mat3 {
     let r = Mat3::from_quat(rotation);
     r * tensor * r.transpose()
 }
+
+/// The rotation vector (axis times angle, rad) of a unit quaternion with `w ≥ 0`.
+pub fn rotation_vector(rotation: Quat) -> Vec3 {
+    let vector = Vec3::new(rotation.x, rotation.y, rotation.z);
+    let sine = vector.length();
+    if sine < 1.0e-6 {
+        2.0 * vector
+    } else {
+        vector * (2.0 * sine.atan2(rotation.w) / sine)
+    }
+}

@@ -15,9 +15,10 @@ use crate::limits::{
 };
 use crate::mass::MassProperties;
 use crate::material::Material;
-use crate::math::{normalize_rotation, rotate_tensor, skew, Aabb, Mat3, Pose, Quat, Vec3};
+use crate::math::{
+    normalize_rotation, rotate_tensor, rotation_vector, skew, Aabb, Mat3, Pose, Quat, Vec3,
+};
 use crate::shape::Shape;
-use crate::solver::rotation_vector;
 
 mod desc;
 mod locked_axes;

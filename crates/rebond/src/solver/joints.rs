@@ -25,7 +25,7 @@ use crate::joint::{
     Motor, Spring,
 };
 use crate::limits::MAX_SOLVER_IMPULSE;
-use crate::math::{Quat, Vec3};
+use crate::math::{rotation_vector, Quat, Vec3};
 
 /// Largest joint frequency as a fraction of the substep rate (as for contacts,
 /// `CONTACT_HERTZ_PER_SUBSTEP_RATE`): a stiffer spring is unstable in the soft step.
@@ -166,17 +166,6 @@ struct Geometry {
     swing: Option<AxisPart>,
     /// Ball joints with friction: the relative rotation's effective mass.
     friction: Option<RotationPart>,
-}
-
-/// The rotation vector (axis times angle, rad) of a unit quaternion with `w ≥ 0`.
-pub(crate) fn rotation_vector(rotation: Quat) -> Vec3 {
-    let vector = Vec3::new(rotation.x, rotation.y, rotation.z);
-    let sine = vector.length();
-    if sine < 1.0e-6 {
-        2.0 * vector
-    } else {
-        vector * (2.0 * sine.atan2(rotation.w) / sine)
-    }
 }
 
 impl JointConstraint {

@@ -58,7 +58,6 @@ use crate::math::{Mat3, Quat, Vec3, Vec3A};
 pub(crate) use contact_model::ContactSettings;
 use contacts::ContactConstraints;
 use integration::{integrate_pose, integrate_velocities, SpeedLimits};
-pub(crate) use joints::rotation_vector;
 use joints::JointConstraints;
 pub(crate) use joints::JointSettings;
 use stages::StepContext;
