@@ -2,8 +2,8 @@
 //!
 //! A [`World`] holds rigid bodies, each with one [`Shape`], and advances them in time with
 //! [`World::step`]: gravity and forces, collision detection, contacts with friction and
-//! restitution solved by sequential impulses, sleeping. Units are SI (metres, kilograms,
-//! seconds), +Y is up by default, rotations are unit quaternions.
+//! restitution and joints solved by a soft step of substeps (docs/physics.md), sleeping. Units
+//! are SI (metres, kilograms, seconds), +Y is up by default, rotations are unit quaternions.
 //!
 //! ```
 //! use rebond::prelude::*;
@@ -31,7 +31,8 @@
 //! nothing a user passes in makes the engine panic or puts NaN or infinity into a body.
 //!
 //! The modules, in pipeline order: [`shape`] (geometry and mass), bodies ([`BodyDesc`],
-//! [`RigidBody`]), collision detection and the solver (private), [`World`] (owns everything and
+//! [`RigidBody`]), [`joint`]s between them, collision detection and the solver (private),
+//! [`World`] (owns everything and
 //! steps it), with [`query`] (rays, shape casts, overlaps), [`events`] (contacts, forces,
 //! sensors), [`scene`] (scene files) and [`state`] (saving and restoring whole worlds, exactly).
 

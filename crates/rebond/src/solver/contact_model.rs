@@ -50,7 +50,6 @@ pub const CONTACT_HERTZ_PER_SUBSTEP_RATE: f32 = 0.25;
 
 /// What the world's settings say about contacts, for one step.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct ContactSettings {
     /// The contact spring's frequency, Hz, before the cap.
     pub hertz: f32,

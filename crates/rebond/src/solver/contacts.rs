@@ -17,7 +17,6 @@ const COLLISION_SWEEPS: usize = 32;
 
 /// This step's contact constraints, in buffers reused from step to step.
 #[derive(Debug, Clone, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct ContactConstraints {
     /// The solver bodies of each contact to solve, for the colouring, and its index in the
     /// contact cache.

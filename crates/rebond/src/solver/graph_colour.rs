@@ -20,7 +20,6 @@ pub const OPEN_COLOURS: usize = 8;
 
 /// The lane sets of one step's constraints, in buffers reused from step to step.
 #[derive(Debug, Clone, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct GraphColouring {
     /// Per solver body, bit `c` set while the open colour `c` holds a constraint on it.
     body_colours: Vec<u32>,

@@ -9,7 +9,6 @@ pub(crate) const MAX_ROTATION_PER_SUBSTEP: f32 = 0.25 * std::f32::consts::PI;
 
 /// Speed limits that keep every pose finite whatever a user throws at the world.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct SpeedLimits {
     /// m/s.
     pub linear: f32,

@@ -20,7 +20,6 @@ pub(super) const MAX_GROUP_ROWS: usize = 256;
 
 /// Where a row's accumulated impulse lives in its joint's `JointImpulses`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) enum Accumulator {
     /// `linear · axis`.
     Linear(Vec3),
@@ -32,7 +31,6 @@ pub(super) enum Accumulator {
 
 /// One equality row of a group.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct GroupRow {
     /// The joint (index among this step's joint constraints) and where its impulse goes.
     pub joint: usize,
@@ -99,7 +97,6 @@ impl GroupRow {
 
 /// A group's rows and the Cholesky factor of its `A`, in buffers the caller reuses.
 #[derive(Debug, Clone, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct GroupSystem {
     pub rows: Vec<GroupRow>,
     /// `L` row-major, `n × n`, lower triangle used.
@@ -263,7 +260,6 @@ impl GroupSystem {
 /// bodies, and these now lie just before it: in the order joints are usually made (a ragdoll's
 /// hips after its arms) a hip's rows would reach back to the spine's, across every arm row.
 #[derive(Debug, Clone, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct EliminationOrder {
     /// The joints, in the order their rows go into their groups.
     order: Vec<usize>,

@@ -15,7 +15,6 @@ use crate::math::{skew, Mat3, Vec3};
 /// (kg⁻¹; `1/m` but zero along locked axes, `body/locked_axes.rs`) and world inverse inertias at
 /// the start of the step.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct JointBodies {
     pub inverse_mass: [Vec3; 2],
     pub inverse_inertia: [Mat3; 2],
@@ -36,7 +35,6 @@ impl JointBodies {
 
 /// The two bodies' velocities while a joint is solved (`[A, B]`), m/s and rad/s.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct Velocities {
     pub linear: [Vec3; 2],
     pub angular: [Vec3; 2],
@@ -51,7 +49,6 @@ const MAX_CORRECTION_SPEED: f32 = 100.0;
 /// How hard one solve of a part pushes towards `C = 0`: the soft spring's coefficients, or
 /// rigid and without position correction (the relax pass).
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct RowSoftness {
     pub bias_rate: f32,
     pub mass_scale: f32,
@@ -103,7 +100,6 @@ impl RowSoftness {
 /// One row of a joint's Jacobian, `Ċ = l_A·v_A + a_A·ω_A + l_B·v_B + a_B·ω_B` (signs included),
 /// as the direct solve of `joint_groups.rs` takes it.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct RowJacobian {
     pub linear: [Vec3; 2],
     pub angular: [Vec3; 2],
@@ -147,7 +143,6 @@ fn block_impulse(
 /// - Impulse `λ` (a vector, N·s, at the anchor): `Δv_B = λ / m_B`, `Δω_B = I_B⁻¹ (r_B × λ)`, and
 ///   the opposite on A.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct PointPart {
     arm_a: Vec3,
     arm_b: Vec3,
@@ -209,7 +204,6 @@ impl PointPart {
 /// - Effective mass: `K = I_A⁻¹ + I_B⁻¹`, kept inverted.
 /// - Impulse `λ` (a couple, N·m·s): `Δω_B = I_B⁻¹ λ`, `Δω_A = −I_A⁻¹ λ`.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct RotationPart {
     mass: Mat3,
 }
@@ -274,7 +268,6 @@ impl RotationPart {
 /// - Effective mass: `K = (m_A⁻¹ + m_B⁻¹) |d|² + a_A·I_A⁻¹ a_A + a_B·I_B⁻¹ a_B`, kept as `K⁻¹`.
 /// - Impulse `λ`: `Δv_B = λ d / m_B`, `Δω_B = λ I_B⁻¹ a_B`, the opposite on A.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct AxisPart {
     direction: Vec3,
     arm_a: Vec3,
@@ -453,7 +446,6 @@ const SYMPLECTIC_SPRING_LIMIT: f32 = 0.25;
 /// (its rows' unit directions or axes), so it survives the rows turning from one substep to
 /// the next.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct PlanePart {
     rows: [AxisPart; 2],
     /// The rows' unit directions (linear rows) or axes (angular rows).

@@ -1,6 +1,5 @@
-//! The joints as a constraint kind: every acting joint with a moving body, solved one after
-//! another in slot order from the parts of `joint_parts.rs`. `docs/joints.md` gives each joint
-//! type's rows.
+//! The joints as a constraint kind: every acting joint with a moving body, from the parts of
+//! `joint_parts.rs`. `docs/joints.md` gives each joint type's rows.
 //!
 //! A joint's geometry (anchors, axes, angles and the parts built on them) follows the bodies:
 //! it is rebuilt from the poses at the first substep's warm start and for every relax pass,
@@ -41,7 +40,6 @@ const TWIST_RATE_FLOOR: f32 = 0.1;
 
 /// What the world's settings say about joints, for one step.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct JointSettings {
     /// The position correction's frequency, Hz, before the cap.
     pub hertz: f32,
@@ -61,7 +59,6 @@ impl JointSettings {
 
 /// This step's joint constraints, in a buffer reused from step to step.
 #[derive(Debug, Clone, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct JointConstraints {
     constraints: Vec<JointConstraint>,
     softness: Softness,
@@ -86,7 +83,6 @@ pub(crate) struct JointConstraints {
 
 /// What of a joint's description the solve reads.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct JointOptions {
     joint_type: JointType,
     limits: Option<[f32; 2]>,
@@ -117,7 +113,6 @@ impl JointOptions {
 
 /// One joint for this step.
 #[derive(Debug, Clone)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct JointConstraint {
     /// The joint's slot in the [`JointSet`].
     slot: usize,
@@ -142,7 +137,6 @@ struct JointConstraint {
 
 /// A joint at the poses of the current substep.
 #[derive(Debug, Clone, Copy, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Geometry {
     /// `p_B − p_A`, m.
     separation: Vec3,

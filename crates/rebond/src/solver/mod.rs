@@ -30,7 +30,9 @@
 //! four at a time: `graph_colour.rs` groups them into lane sets of up to four that share no
 //! moving body, and `contact_lanes.rs` solves a lane set in SIMD lanes (`wide.rs`) from the
 //! constraint parts of `parts.rs`. What is left over goes into lane sets of one.
-//! Joints are solved one at a time, in slot order, from the scalar parts of `joint_parts.rs`.
+//! Joints are built from the scalar parts of `joint_parts.rs`: the rows holding jointed bodies
+//! together are solved exactly per group of joints sharing moving bodies (`joint_groups.rs`),
+//! their limits, motors, springs and friction one row at a time.
 //! `contact_frame.rs` says why a recycled contact keeps its normal and lever arms.
 //! `contact_model.rs` holds the contact model's constants, `softness.rs` the soft constraint,
 //! `integration.rs` the time integration of the bodies.
@@ -65,7 +67,6 @@ use stages::StepContext;
 /// What the contact solver reads and writes of one awake body, kept small and contiguous, in
 /// SIMD vectors (`Vec3A`, 16 bytes) so each vector operation of the solver is one instruction.
 #[derive(Debug, Clone, Copy, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct BodyState {
     /// m/s.
     pub linear_velocity: Vec3A,
@@ -80,7 +81,6 @@ pub(crate) struct BodyState {
 
 /// The rest of a body the step needs: pose, inertia and forces for integration.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct BodyMotion {
     /// `1/m`; zero for kinematic bodies and for solver body 0, which stands for every static or
     /// sleeping body.
@@ -153,7 +153,6 @@ impl BodyMotion {
 
 /// Settings of one step.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct StepSettings {
     pub dt: f32,
     pub substeps: u32,
@@ -166,7 +165,6 @@ pub(crate) struct StepSettings {
 /// The awake dynamic and kinematic bodies of a step, in solver order, in buffers reused from step
 /// to step. Solver body 0 stands for every static or sleeping body.
 #[derive(Debug, Clone, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct SolverBodies {
     states: Vec<BodyState>,
     motions: Vec<BodyMotion>,
@@ -322,13 +320,11 @@ impl FastMotion {
 /// Buffers reused from step to step, so a steady scene allocates nothing: the bodies, and the
 /// constraints of each kind. [`Solver::step`] (`stages.rs`) runs the stages over them.
 #[derive(Debug, Clone, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Solver {
     bodies: SolverBodies,
     joints: JointConstraints,
     contacts: ContactConstraints,
     /// The fast bodies of the last step, by ascending slot.
-    #[cfg_attr(feature = "serde", serde(skip))]
     fast: Vec<FastMotion>,
 }
 

@@ -26,7 +26,6 @@ const fn lower_index(i: usize, j: usize) -> usize {
 /// `K = L D Lᵀ` of four manifolds at once, one per lane: `L` unit lower triangular, `D`
 /// diagonal, kept as `1 / D`.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct NormalBlock {
     lower: [F32x4; LOWER],
     inverse_pivot: [F32x4; MAX_MANIFOLD_POINTS],

@@ -75,7 +75,6 @@ impl BodyFrame {
 /// those of a locked body) the terms of `L` are skipped, so `M⁻¹ = m⁻¹ 𝟙` rounds as it always
 /// has and costs nothing more.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct LinearMasses {
     pub a: F32x4,
     pub b: F32x4,
@@ -161,7 +160,6 @@ pub(super) fn inverse_or_zero(k: F32x4) -> F32x4 {
 /// - Impulse `λ`: `ΔV = M⁻¹ Jᵀ λ`, i.e. `Δv_A = −λ d / m_A`, `Δω_A = −λ I_A⁻¹(r_A × d)`,
 ///   `Δv_B = +λ d / m_B`, `Δω_B = +λ I_B⁻¹(r_B × d)`.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct JacobianLanes {
     /// `r_A × d` and `r_B × d`: how each body's spin moves the anchors along `d`.
     pub arm_a: Vec3x4,

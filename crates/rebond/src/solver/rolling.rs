@@ -27,7 +27,6 @@ use crate::math::{Mat3, Vec3, Vec3A};
 
 /// The rolling resistance of one contact.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct RollingConstraint {
     /// The contact's index in the contact cache.
     contact: usize,
@@ -52,7 +51,6 @@ struct RollingConstraint {
 
 /// This step's rolling resistance constraints, in a buffer reused from step to step.
 #[derive(Debug, Clone, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct RollingConstraints {
     constraints: Vec<RollingConstraint>,
 }

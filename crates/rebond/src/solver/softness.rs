@@ -10,7 +10,6 @@ use std::f32::consts::TAU;
 /// `bias_rate = ω / a₁`, `mass_scale = a₂·a₃`, `impulse_scale = a₃`.
 /// The impulse is then `−m_eff · mass_scale · (v + bias_rate · C) − impulse_scale · λ_total`.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Softness {
     /// Fraction of the position error fed back as velocity, 1/s.
     pub bias_rate: f32,

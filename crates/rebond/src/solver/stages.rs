@@ -22,7 +22,6 @@ const BIASED_ITERATIONS: usize = 2;
 
 /// What the stages of one step share.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct StepContext {
     pub substeps: u32,
     /// The substep `h = dt / n`, s, and `1 / h`, 1/s.
@@ -96,7 +95,6 @@ pub(crate) trait ConstraintKind {
 
 /// A stage that runs over the constraints of every kind: the [`ConstraintKind`] method of each.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 enum ConstraintStage {
     WarmStart,
     PrepareBiasedPasses,

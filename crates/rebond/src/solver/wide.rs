@@ -16,12 +16,10 @@ pub const LANES: usize = 4;
 
 /// Four f32 lanes.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct F32x4(Vec4);
 
 /// Four lane masks: set where a comparison held.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Mask4(BVec4A);
 
 impl F32x4 {
@@ -144,7 +142,6 @@ impl SubAssign for F32x4 {
 
 /// Four 3-vectors, one per lane, stored as a structure of arrays.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Vec3x4 {
     pub x: F32x4,
     pub y: F32x4,
@@ -225,7 +222,6 @@ impl Vec3x4 {
 
 /// Four 3×3 matrices, one per lane, by columns.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Mat3x4 {
     x_axis: Vec3x4,
     y_axis: Vec3x4,

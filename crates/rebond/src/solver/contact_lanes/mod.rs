@@ -128,7 +128,6 @@ const fn coupling_index(i: usize, j: usize) -> usize {
 /// substep, from its separation at the substep's poses: `Δλ = mass (v_n + bias) − impulse_scale λ`
 /// solved point by point, `K Δλ = −(v_n + bias)` in a block (`normal_block.rs`).
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct PointTarget {
     /// m/s.
     bias: F32x4,
@@ -139,7 +138,6 @@ struct PointTarget {
 
 /// The normal part of one point of four constraints.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct PointLanes {
     normal: JacobianLanes,
     base_separation: F32x4,
@@ -219,7 +217,6 @@ impl PointLanes {
 /// Four constraints of one colour, structure of arrays: built from the contacts, solved, and
 /// their impulses stored back into the contact cache, with no scalar constraint kept between.
 #[derive(Debug, Clone, Copy)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct ContactLanes {
     /// The contact of each lane, as an index into the contact cache; `usize::MAX` in empty lanes.
     contacts: [usize; LANES],
