@@ -42,6 +42,13 @@ pub(crate) fn reading_state<R>(read: impl FnOnce() -> R) -> R {
     result
 }
 
+/// Takes `world`, the identity of a world rebuilt from a portable snapshot, so that no world made
+/// later is given it (as [`reading_state`] does for the identities it reads).
+#[cfg(feature = "serde")]
+pub(crate) fn restore_world(world: u32) {
+    NEXT_WORLD.fetch_max(world.saturating_add(1), Ordering::Relaxed);
+}
+
 /// Reads a world identity: the state's within [`reading_state`], the one written elsewhere.
 #[cfg(feature = "serde")]
 fn deserialize_world<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<u32, D::Error> {
@@ -71,6 +78,23 @@ impl ArenaIndex {
     /// Position of the slot in the arena's storage; stable for the item's lifetime.
     pub fn slot(&self) -> usize {
         self.index as usize
+    }
+
+    /// The generation of the slot the handle names.
+    #[cfg(feature = "serde")]
+    pub(crate) fn generation(&self) -> u32 {
+        self.generation
+    }
+
+    /// The handle of `slot` at `generation` in the world with identity `world`, as a portable
+    /// snapshot names it.
+    #[cfg(feature = "serde")]
+    pub(crate) fn from_parts(slot: u32, generation: u32, world: u32) -> Self {
+        Self {
+            index: slot,
+            generation,
+            world,
+        }
     }
 }
 
@@ -232,6 +256,51 @@ impl<T> Arena<T> {
             return Err("an empty slot is not on the free list".to_owned());
         }
         Ok(())
+    }
+
+    /// The identity of the world the arena belongs to.
+    #[cfg(feature = "serde")]
+    pub(crate) fn world(&self) -> u32 {
+        self.world
+    }
+
+    /// Every slot's generation and item, in slot order, empty slots included: what a portable
+    /// snapshot keeps so that every handle, stale ones too, names the same items after a load.
+    #[cfg(feature = "serde")]
+    pub(crate) fn slots(&self) -> impl Iterator<Item = (u32, Option<&T>)> {
+        self.slots
+            .iter()
+            .map(|slot| (slot.generation, slot.item.as_ref()))
+    }
+
+    /// The empty slots in the order the next inserts take them (last first).
+    #[cfg(feature = "serde")]
+    pub(crate) fn free_slots(&self) -> &[u32] {
+        &self.free_slots
+    }
+
+    /// The arena of world `world` with `slots` (each slot's generation and item, in slot order)
+    /// and the free list `free_slots`, as [`Arena::slots`] and [`Arena::free_slots`] gave them;
+    /// checked as a decoded arena is. Describes the first broken invariant.
+    #[cfg(feature = "serde")]
+    pub(crate) fn from_slots(
+        world: u32,
+        slots: Vec<(u32, Option<T>)>,
+        free_slots: Vec<u32>,
+    ) -> Result<Self, String> {
+        let slots: Vec<Slot<T>> = slots
+            .into_iter()
+            .map(|(generation, item)| Slot { generation, item })
+            .collect();
+        let len = slots.iter().filter(|slot| slot.item.is_some()).count();
+        let arena = Self {
+            world,
+            slots,
+            free_slots,
+            len,
+        };
+        arena.check_decoded()?;
+        Ok(arena)
     }
 
     /// Live items with their handles, mutably, in slot order.

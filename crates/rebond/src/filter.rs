@@ -84,6 +84,12 @@ impl IgnoredPairs {
         !self.pairs.is_empty() && self.pairs.binary_search(&ordered(a, b)).is_ok()
     }
 
+    /// Every pair, smaller handle first, sorted.
+    #[cfg(feature = "serde")]
+    pub fn pairs(&self) -> &[(BodyHandle, BodyHandle)] {
+        &self.pairs
+    }
+
     /// Forgets every pair of `body` (it was removed).
     pub fn remove_body(&mut self, body: BodyHandle) {
         self.pairs.retain(|&(a, b)| a != body && b != body);

@@ -132,6 +132,32 @@ impl Islands {
         true
     }
 
+    /// The islands of bodies restored from a portable snapshot, whose `sleeping` and
+    /// `sleep_group` are as saved: the moving bodies that are not asleep are awake; each sleeping
+    /// body joins the list of its group's root; a body woken by hand before the save (no longer
+    /// asleep, still in a group) wakes its group at the next step, as it would have. Built
+    /// without checks: [`check_decoded`](Self::check_decoded) follows.
+    #[cfg(feature = "serde")]
+    pub fn restored(bodies: &Arena<RigidBody>) -> Self {
+        let mut islands = Self {
+            next_in_group: vec![END_OF_GROUP; bodies.slot_count()],
+            ..Self::default()
+        };
+        for (index, body) in bodies.iter() {
+            let slot = index.slot();
+            match (body.sleeping, body.sleep_group) {
+                (false, None) if body.body_type != BodyType::Static => islands.awake.push(slot),
+                (false, Some(_)) => islands.wake_candidates.push(slot),
+                (true, Some(root)) if root != slot && root < islands.next_in_group.len() => {
+                    islands.next_in_group[slot] = islands.next_in_group[root];
+                    islands.next_in_group[root] = slot;
+                }
+                _ => {}
+            }
+        }
+        islands
+    }
+
     /// Checks decoded islands against `bodies`: the awake list ascending, of live moving bodies
     /// that are not asleep; every sleeping group a list without loops through slots of the arena,
     /// starting at its members' root. Describes the first broken invariant.

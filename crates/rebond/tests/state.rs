@@ -184,9 +184,10 @@ fn bytes_that_are_not_a_whole_state_of_this_version_are_refused() {
             found: STATE_FORMAT_VERSION + 1
         }
     );
+    // Another build's state is read from its portable snapshot (tests/durable_state.rs).
     let mut other_build = bytes.clone();
     other_build[12] ^= 1;
-    assert_eq!(refuse(&other_build), StateError::OtherBuild);
+    assert!(World::load_state(&other_build).is_ok());
     // Any flipped bit in the world's bytes is caught by the checksum.
     for position in [32, 100, bytes.len() / 2, bytes.len() - 1] {
         let mut damaged = bytes.clone();

@@ -207,11 +207,7 @@ impl RigidBody {
             body.local_inverse_inertia = inverse_inertia;
         }
         body.polyhedral = body.shape.is_polyhedral();
-        let local_bounds = body.shape.aabb(&Pose::IDENTITY);
-        body.max_extent = (local_bounds.min - body.local_center_of_mass)
-            .abs()
-            .max((local_bounds.max - body.local_center_of_mass).abs())
-            .length();
+        body.update_max_extent();
         body.set_origin_pose(match &path {
             Some(path) => path.pose_at(0.0),
             None => Pose::new(desc.position, rotation),
@@ -219,6 +215,34 @@ impl RigidBody {
         body.path = path;
         body.hold_to_locked_axes();
         Ok(body)
+    }
+
+    /// Gives a dynamic body restored from a portable snapshot the mass (kg), centre of mass
+    /// (body frame, m) and inertia (kg·m², body axes) it was saved with, rather than those its
+    /// shape gives in this build, and puts its centre of mass at `center_of_mass` (world, m)
+    /// turned by `rotation`. Errors when the mass is out of range or the inertia not invertible.
+    #[cfg(feature = "serde")]
+    pub(crate) fn restore_mass_and_pose(
+        &mut self,
+        properties: Option<MassProperties>,
+        center_of_mass: Vec3,
+        rotation: Quat,
+    ) -> std::result::Result<(), String> {
+        if let Some(properties) = properties {
+            let inverse = inverse_inertia(&properties)
+                .filter(|_| (MIN_MASS..=MAX_MASS).contains(&properties.mass))
+                .ok_or("the mass or inertia is out of range")?;
+            self.mass = properties.mass;
+            self.inverse_mass = 1.0 / properties.mass;
+            self.local_center_of_mass = properties.center_of_mass;
+            self.local_inertia = properties.inertia;
+            self.local_inverse_inertia = inverse;
+            self.update_max_extent();
+        }
+        self.center_of_mass = center_of_mass;
+        self.rotation = rotation;
+        self.update_world_inverse_inertia();
+        Ok(())
     }
 
     /// Dynamic, static or kinematic.
@@ -817,6 +841,16 @@ impl RigidBody {
 
     pub(crate) fn is_dynamic(&self) -> bool {
         self.body_type == BodyType::Dynamic
+    }
+
+    /// The distance from the centre of mass to the farthest corner of the shape's local bounding
+    /// box, once the shape and centre of mass are set.
+    fn update_max_extent(&mut self) {
+        let local_bounds = self.shape.aabb(&Pose::IDENTITY);
+        self.max_extent = (local_bounds.min - self.local_center_of_mass)
+            .abs()
+            .max((local_bounds.max - self.local_center_of_mass).abs())
+            .length();
     }
 
     /// Places the body origin at `pose` and refreshes what follows from the rotation.

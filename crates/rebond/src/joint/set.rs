@@ -108,6 +108,29 @@ pub(crate) struct JointSolverData {
     pub solved: bool,
 }
 
+impl JointSolverData {
+    /// A joint's solver data before its first step: nothing to warm-start from.
+    const COLD: Self = Self {
+        impulses: JointImpulses {
+            linear: Vec3::ZERO,
+            angular: Vec3::ZERO,
+            axial: 0.0,
+            lower: 0.0,
+            upper: 0.0,
+            motor: 0.0,
+            swing: 0.0,
+            twist_lower: 0.0,
+            twist_upper: 0.0,
+            friction_couple: Vec3::ZERO,
+            friction: 0.0,
+        },
+        poses: [SidePose::WORLD; 2],
+        step_linear: Vec3::ZERO,
+        step_angular: Vec3::ZERO,
+        solved: false,
+    };
+}
+
 /// Every joint of a world, with the pairs of bodies that joints keep from colliding.
 #[derive(Debug, Clone, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -155,22 +178,8 @@ impl JointSet {
                 .length
                 .unwrap_or_else(|| (anchor_b - desc.anchor).length()),
         };
-        if !desc.collide_connected {
-            if let Some(body_a) = desc.body_a {
-                let pair = ordered(body_a, desc.body_b);
-                match self.excluded.binary_search_by_key(&pair, |&(pair, _)| pair) {
-                    Ok(index) => self.excluded[index].1 += 1,
-                    Err(index) => self.excluded.insert(index, (pair, 1)),
-                }
-            }
-        }
-        let data = JointSolverData {
-            impulses: JointImpulses::default(),
-            poses: [SidePose::WORLD; 2],
-            step_linear: Vec3::ZERO,
-            step_angular: Vec3::ZERO,
-            solved: false,
-        };
+        add_exclusion(&mut self.excluded, &desc);
+        let data = JointSolverData::COLD;
         let joint = Joint {
             desc,
             frames,
@@ -180,6 +189,44 @@ impl JointSet {
             angle: 0.0,
         };
         JointHandle(self.joints.insert((joint, data)))
+    }
+
+    /// The joints of a portable snapshot in the world with identity `world`: each slot's
+    /// generation and joint, in slot order, and the free list ([`Arena::from_slots`]). Their
+    /// solver data starts cold; the pairs they keep apart follow from the joints.
+    #[cfg(feature = "serde")]
+    pub fn restored(
+        world: u32,
+        slots: Vec<(u32, Option<Joint>)>,
+        free_slots: Vec<u32>,
+    ) -> Result<Self, String> {
+        let slots = slots
+            .into_iter()
+            .map(|(generation, joint)| (generation, joint.map(|joint| (joint, JointSolverData::COLD))))
+            .collect();
+        let joints = Arena::from_slots(world, slots, free_slots)?;
+        let mut excluded = Vec::new();
+        for (_, (joint, _)) in joints.iter() {
+            if !joint.broken {
+                add_exclusion(&mut excluded, &joint.desc);
+            }
+        }
+        Ok(Self {
+            joints,
+            excluded,
+            break_events: Vec::new(),
+        })
+    }
+
+    /// Every joint in slot order, empty slots included, with its slot's generation
+    /// ([`Arena::slots`]), and the free list: what a portable snapshot keeps.
+    #[cfg(feature = "serde")]
+    pub fn slots(&self) -> (impl Iterator<Item = (u32, Option<&Joint>)>, &[u32]) {
+        let slots = self
+            .joints
+            .slots()
+            .map(|(generation, item)| (generation, item.map(|(joint, _)| joint)));
+        (slots, self.joints.free_slots())
     }
 
     /// Removes a joint and returns it.
@@ -365,6 +412,18 @@ impl JointSet {
     /// The joints that broke in the last step.
     pub fn break_events(&self) -> &[JointBreakEvent] {
         &self.break_events
+    }
+}
+
+/// Notes that the joint of `desc` keeps its bodies from colliding, unless it lets them collide
+/// or joins a body to the world.
+fn add_exclusion(excluded: &mut Vec<((BodyHandle, BodyHandle), u32)>, desc: &JointDesc) {
+    if let (false, Some(body_a)) = (desc.collide_connected, desc.body_a) {
+        let pair = ordered(body_a, desc.body_b);
+        match excluded.binary_search_by_key(&pair, |&(pair, _)| pair) {
+            Ok(index) => excluded[index].1 += 1,
+            Err(index) => excluded.insert(index, (pair, 1)),
+        }
     }
 }
 

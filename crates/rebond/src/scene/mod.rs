@@ -419,18 +419,87 @@ impl Scene {
     /// scene's header): its world, names and timestep. [`Scene::load_state`] restores it.
     #[cfg(feature = "serde")]
     pub fn save_state(&self, step: u64) -> Vec<u8> {
-        crate::state::encode(SCENE_MAGIC, &(step, self))
+        let named = |name: &str, handle: crate::arena::ArenaIndex| crate::state::NamedV1 {
+            name: name.to_owned(),
+            slot: handle.slot() as u32,
+            generation: handle.generation(),
+        };
+        let scene = crate::state::SceneV1 {
+            step,
+            timestep: self.timestep.seconds,
+            bodies: (self.bodies.iter())
+                .map(|body| named(&body.name, body.handle.0))
+                .collect(),
+            joints: (self.joints.iter())
+                .map(|joint| named(&joint.name, joint.handle.0))
+                .collect(),
+        };
+        let snapshot = crate::state::SnapshotV1::of(&self.world, Some(scene));
+        crate::state::encode(SCENE_MAGIC, &(step, self), snapshot)
     }
 
     /// A scene saved by [`Scene::save_state`] and the step it was saved after; bytes that are not
     /// a scene's state of this format version, or are cut short or damaged, are an error saying
-    /// which.
+    /// which. A state another build wrote is rebuilt from its portable snapshot, as
+    /// [`World::load_state`] does.
     #[cfg(feature = "serde")]
     pub fn load_state(bytes: &[u8]) -> Result<(Scene, u64), crate::state::StateError> {
-        let (step, mut scene): (u64, Scene) = crate::state::decode(SCENE_MAGIC, bytes)?;
-        scene
-            .check_decoded()
-            .map_err(crate::state::StateError::Inconsistent)?;
+        Self::load_state_from(bytes, false)
+    }
+
+    /// [`Scene::load_state`] as a build of other engine sources reads the bytes: from their
+    /// portable snapshot, contacts cold. For tests of the snapshot.
+    #[doc(hidden)]
+    #[cfg(feature = "serde")]
+    pub fn load_state_as_other_build(
+        bytes: &[u8],
+    ) -> Result<(Scene, u64), crate::state::StateError> {
+        Self::load_state_from(bytes, true)
+    }
+
+    #[cfg(feature = "serde")]
+    fn load_state_from(
+        bytes: &[u8],
+        portable: bool,
+    ) -> Result<(Scene, u64), crate::state::StateError> {
+        use crate::state::{Decoded, StateError};
+        let (step, mut scene) = match crate::state::decode(SCENE_MAGIC, bytes, portable)? {
+            Decoded::Exact((step, scene)) => {
+                let scene: Scene = scene;
+                scene.check_decoded().map_err(StateError::Inconsistent)?;
+                (step, scene)
+            }
+            Decoded::Portable(snapshot) => {
+                let missing = || StateError::Inconsistent("the scene's names are missing".into());
+                let names = snapshot.scene.ok_or_else(missing)?;
+                let world = snapshot.world.restore().map_err(StateError::Inconsistent)?;
+                let identity = world.identity();
+                let handle = |named: &crate::state::NamedV1| {
+                    crate::arena::ArenaIndex::from_parts(named.slot, named.generation, identity)
+                };
+                let scene = Scene {
+                    bodies: (names.bodies.iter())
+                        .map(|named| SceneBody {
+                            name: named.name.clone(),
+                            handle: BodyHandle(handle(named)),
+                        })
+                        .collect(),
+                    joints: (names.joints.iter())
+                        .map(|named| SceneJoint {
+                            name: named.name.clone(),
+                            handle: JointHandle(handle(named)),
+                        })
+                        .collect(),
+                    world,
+                    body_indices: HashMap::new(),
+                    joint_indices: HashMap::new(),
+                    timestep: timestep(Some(names.timestep)).map_err(|error| {
+                        StateError::Inconsistent(format!("the timestep: {error}"))
+                    })?,
+                };
+                (names.step, scene)
+            }
+        };
         scene.body_indices = (scene.bodies.iter().enumerate())
             .map(|(index, body)| (body.name.clone(), index))
             .collect();

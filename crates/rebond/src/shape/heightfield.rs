@@ -143,6 +143,13 @@ impl HeightField {
         self.data.sample(i, j)
     }
 
+    /// The heights before scaling, row-major, `rows × cols`: what [`HeightField::new`] was
+    /// given.
+    #[cfg(feature = "serde")]
+    pub(crate) fn heights(&self) -> &[f32] {
+        &self.data.heights
+    }
+
     /// Number of triangles, two a cell.
     pub fn triangle_count(&self) -> u32 {
         self.data.triangle_count()

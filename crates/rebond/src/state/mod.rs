@@ -30,10 +30,14 @@ use serde::Serialize;
 
 use crate::World;
 
+mod portable;
 pub(crate) mod shared;
 
+pub(crate) use portable::{NamedV1, SceneV1, SnapshotV1};
+use portable::{Snapshot, SNAPSHOT_VERSIONS};
+
 /// The format version this build writes and reads; states of other versions are refused.
-pub const STATE_FORMAT_VERSION: u32 = 1;
+pub const STATE_FORMAT_VERSION: u32 = 2;
 
 /// The first eight bytes of a world's state.
 pub(crate) const WORLD_MAGIC: &[u8; 8] = b"REBONDST";
@@ -111,11 +115,16 @@ impl fmt::Display for StateError {
 
 impl std::error::Error for StateError {}
 
-/// `value` encoded, behind the header starting with `magic`.
-pub(crate) fn encode<T: Serialize>(magic: &[u8; 8], value: &T) -> Vec<u8> {
+/// `exact` encoded, then `snapshot`, behind the header starting with `magic`.
+pub(crate) fn encode<T: Serialize>(magic: &[u8; 8], exact: &T, snapshot: SnapshotV1) -> Vec<u8> {
     // Every part of a world encodes: postcard fails only on types serde cannot describe
-    // (maps with non-string keys and the like), which the world does not hold.
-    let payload = shared::writing(|| postcard::to_stdvec(value)).unwrap_or_default();
+    // (maps with non-string keys and the like), which neither holds.
+    let exact = shared::writing(|| postcard::to_stdvec(exact)).unwrap_or_default();
+    let snapshot = postcard::to_stdvec(&Snapshot::V1(snapshot)).unwrap_or_default();
+    let mut payload = Vec::with_capacity(8 + exact.len() + snapshot.len());
+    payload.extend_from_slice(&(exact.len() as u64).to_le_bytes());
+    payload.extend_from_slice(&exact);
+    payload.extend_from_slice(&snapshot);
     let mut bytes = Vec::with_capacity(HEADER_LENGTH + payload.len());
     bytes.extend_from_slice(magic);
     bytes.extend_from_slice(&STATE_FORMAT_VERSION.to_le_bytes());
@@ -126,9 +135,20 @@ pub(crate) fn encode<T: Serialize>(magic: &[u8; 8], value: &T) -> Vec<u8> {
     bytes
 }
 
-/// The value `bytes` encode behind a header starting with `magic`, once the header, length and
-/// checksum are checked.
-pub(crate) fn decode<T: DeserializeOwned>(magic: &[u8; 8], bytes: &[u8]) -> Result<T, StateError> {
+/// What a state gave: its exact part, when this build wrote it, or its portable snapshot.
+pub(crate) enum Decoded<T> {
+    Exact(T),
+    Portable(SnapshotV1),
+}
+
+/// The exact part `bytes` encode behind a header starting with `magic` when the build that
+/// wrote them is this one and `portable` is false, or else their portable snapshot, once the
+/// header, length and checksum are checked.
+pub(crate) fn decode<T: DeserializeOwned>(
+    magic: &[u8; 8],
+    bytes: &[u8],
+    portable: bool,
+) -> Result<Decoded<T>, StateError> {
     let starts_as_state = if bytes.len() < magic.len() {
         !bytes.is_empty() && magic.starts_with(bytes)
     } else {
@@ -143,20 +163,17 @@ pub(crate) fn decode<T: DeserializeOwned>(magic: &[u8; 8], bytes: &[u8]) -> Resu
             found: bytes.len() as u64,
         });
     };
-    let word = |range: std::ops::Range<usize>| {
-        header[range]
+    let word = |bytes: &[u8], range: std::ops::Range<usize>| {
+        bytes[range]
             .iter()
             .rev()
             .fold(0_u64, |sum, &byte| (sum << 8) | u64::from(byte))
     };
-    let version = word(8..12) as u32;
+    let version = word(header, 8..12) as u32;
     if version != STATE_FORMAT_VERSION {
         return Err(StateError::OtherVersion { found: version });
     }
-    if word(12..20) != source_fingerprint() {
-        return Err(StateError::OtherBuild);
-    }
-    let expected = (HEADER_LENGTH as u64).saturating_add(word(20..28));
+    let expected = (HEADER_LENGTH as u64).saturating_add(word(header, 20..28));
     let found = bytes.len() as u64;
     if found < expected {
         return Err(StateError::Truncated { expected, found });
@@ -165,22 +182,48 @@ pub(crate) fn decode<T: DeserializeOwned>(magic: &[u8; 8], bytes: &[u8]) -> Resu
         return Err(StateError::TrailingBytes { expected, found });
     }
     let payload = &bytes[HEADER_LENGTH..];
-    if crc32fast::hash(payload) != word(28..32) as u32 {
+    if crc32fast::hash(payload) != word(header, 28..32) as u32 {
         return Err(StateError::Damaged);
     }
-    crate::arena::reading_state(|| shared::reading(|| postcard::from_bytes(payload)))
-        .map_err(|error| StateError::Undecodable(error.to_string()))
+    let exact_length = payload.get(..8).map(|length| word(length, 0..8));
+    let Some((exact, snapshot)) = exact_length
+        .and_then(|length| usize::try_from(length).ok()?.checked_add(8))
+        .and_then(|end| Some((payload.get(8..end)?, payload.get(end..)?)))
+    else {
+        return Err(StateError::Undecodable(
+            "the exact part runs past the state".to_owned(),
+        ));
+    };
+    if !portable && word(header, 12..20) == source_fingerprint() {
+        return crate::arena::reading_state(|| shared::reading(|| postcard::from_bytes(exact)))
+            .map(Decoded::Exact)
+            .map_err(|error| StateError::Undecodable(error.to_string()));
+    }
+    // A snapshot starts with its version's number: one past those this build knows is a later
+    // build's, not damage.
+    match postcard::take_from_bytes::<u32>(snapshot) {
+        Ok((version, _)) if version >= SNAPSHOT_VERSIONS => return Err(StateError::OtherBuild),
+        _ => {}
+    }
+    postcard::from_bytes::<Snapshot>(snapshot)
+        .map(|snapshot| Decoded::Portable(snapshot.into_latest()))
+        .map_err(|error| StateError::Undecodable(format!("snapshot: {error}")))
 }
 
 impl World {
     /// The whole world as bytes (format in [`crate::state`]): restored by
-    /// [`World::load_state`], it steps exactly as this world would.
+    /// [`World::load_state`] in this build, it steps exactly as this world would; in any other
+    /// build, later ones included, it is rebuilt from its portable snapshot, contacts cold.
     pub fn save_state(&self) -> Vec<u8> {
-        encode(WORLD_MAGIC, self)
+        encode(WORLD_MAGIC, self, SnapshotV1::of(self, None))
     }
 
     /// A world saved by [`World::save_state`]; bytes that are not a state of this format
     /// version, or are cut short or damaged, are an error saying which.
+    ///
+    /// A state this build wrote is restored exactly; one another build wrote is rebuilt from its
+    /// portable snapshot (the compatibility rule in [`crate::state`]: bodies, joints, handles,
+    /// settings and sleep are kept; contacts start cold).
     ///
     /// The world restored is the saved one at the time of saving, with its identity: the saved
     /// world's handles name its bodies and joints (rolling a world back keeps its handles), and
@@ -189,8 +232,26 @@ impl World {
     /// differ in those bytes; a program that makes its worlds in the same order makes the same
     /// bytes each run.
     pub fn load_state(bytes: &[u8]) -> Result<World, StateError> {
-        let world: World = decode(WORLD_MAGIC, bytes)?;
-        world.check_decoded().map_err(StateError::Inconsistent)?;
-        Ok(world)
+        Self::load_state_from(bytes, false)
+    }
+
+    /// [`World::load_state`] as a build of other engine sources reads the bytes: from their
+    /// portable snapshot, contacts cold. For tests of the snapshot.
+    #[doc(hidden)]
+    pub fn load_state_as_other_build(bytes: &[u8]) -> Result<World, StateError> {
+        Self::load_state_from(bytes, true)
+    }
+
+    fn load_state_from(bytes: &[u8], portable: bool) -> Result<World, StateError> {
+        match decode::<World>(WORLD_MAGIC, bytes, portable)? {
+            Decoded::Exact(world) => {
+                world.check_decoded().map_err(StateError::Inconsistent)?;
+                Ok(world)
+            }
+            Decoded::Portable(snapshot) => snapshot
+                .world
+                .restore()
+                .map_err(StateError::Inconsistent),
+        }
     }
 }

@@ -3,8 +3,12 @@
 //! match it), so before a decoded world is handed out every index it stores is checked to be in
 //! range and every value the step reads to be finite and within the limits.
 
-use super::World;
+use super::{WorldSettings, World};
+use crate::arena::{restore_world, Arena};
 use crate::body::{BodyHandle, BodyType, RigidBody};
+use crate::filter::IgnoredPairs;
+use crate::island::Islands;
+use crate::joint::JointSet;
 use crate::limits::{MAX_ANGULAR_SPEED, MAX_MASS, MAX_SPEED, MIN_MASS};
 
 /// How far past a speed limit a decoded velocity may lie: the step holds velocities to the limits
@@ -48,6 +52,61 @@ impl World {
             return Err("bounding boxes are missing for some slots".to_owned());
         }
         Ok(())
+    }
+}
+
+/// A world rebuilt from a portable snapshot ([`crate::state`]), and what such a snapshot reads of
+/// a world.
+impl World {
+    /// The world of `settings`, `bodies` and `joints` (built with their saved slots, generations
+    /// and identity) and the `ignored` pairs, with no contacts: the broad phase, islands and
+    /// bounding boxes are made from the bodies, sleeping ones parked as they were. Checked as a
+    /// decoded world is; describes the first broken invariant.
+    pub(crate) fn restored(
+        settings: WorldSettings,
+        bodies: Arena<RigidBody>,
+        joints: JointSet,
+        ignored: &[(BodyHandle, BodyHandle)],
+    ) -> Result<World, String> {
+        let mut world = World::new(settings).map_err(|error| error.to_string())?;
+        restore_world(bodies.world());
+        world.islands = Islands::restored(&bodies);
+        world.bodies = bodies;
+        world.joints = joints;
+        let slots = world.bodies.slot_count();
+        for slot in 0..slots {
+            let Some(body) = world.bodies.at_slot_mut(slot) else {
+                continue;
+            };
+            let (aabb, is_static) = (body.aabb(), body.body_type == BodyType::Static);
+            let proxy = world.broad_phase.insert(slot as u32, aabb, is_static);
+            body.proxy = Some(proxy);
+            if body.sleeping && !is_static {
+                world.broad_phase.set_asleep(proxy, true);
+            }
+            if world.bounds_of_slot.len() <= slot {
+                world.bounds_of_slot.resize(slot + 1, aabb);
+            }
+            world.bounds_of_slot[slot] = aabb;
+        }
+        for &(a, b) in ignored {
+            if world.bodies.get(a.0).is_none() || world.bodies.get(b.0).is_none() {
+                return Err("an ignored pair names a missing body".to_owned());
+            }
+            world.ignored_pairs.set(a, b, true);
+        }
+        world.check_decoded()?;
+        Ok(world)
+    }
+
+    /// The world's identity, which its handles carry.
+    pub(crate) fn identity(&self) -> u32 {
+        self.bodies.world()
+    }
+
+    /// The parts a portable snapshot reads: bodies, joints and ignored pairs.
+    pub(crate) fn portable_parts(&self) -> (&Arena<RigidBody>, &JointSet, &IgnoredPairs) {
+        (&self.bodies, &self.joints, &self.ignored_pairs)
     }
 }
 
