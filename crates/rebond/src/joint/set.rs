@@ -202,7 +202,12 @@ impl JointSet {
     ) -> Result<Self, String> {
         let slots = slots
             .into_iter()
-            .map(|(generation, joint)| (generation, joint.map(|joint| (joint, JointSolverData::COLD))))
+            .map(|(generation, joint)| {
+                (
+                    generation,
+                    joint.map(|joint| (joint, JointSolverData::COLD)),
+                )
+            })
             .collect();
         let joints = Arena::from_slots(world, slots, free_slots)?;
         let mut excluded = Vec::new();

@@ -248,10 +248,9 @@ impl World {
                 world.check_decoded().map_err(StateError::Inconsistent)?;
                 Ok(world)
             }
-            Decoded::Portable(snapshot) => snapshot
-                .world
-                .restore()
-                .map_err(StateError::Inconsistent),
+            Decoded::Portable(snapshot) => {
+                snapshot.world.restore().map_err(StateError::Inconsistent)
+            }
         }
     }
 }

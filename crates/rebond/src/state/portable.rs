@@ -17,8 +17,8 @@ use std::collections::HashMap;
 use serde::{Deserialize, Serialize};
 
 use crate::arena::Arena;
-use crate::body::{BodyDesc, BodyHandle, BodyType, KinematicPath, LockedAxes, PathPoint};
 use crate::body::RigidBody;
+use crate::body::{BodyDesc, BodyHandle, BodyType, KinematicPath, LockedAxes, PathPoint};
 use crate::error::check_position;
 use crate::filter::InteractionGroups;
 use crate::joint::{Joint, JointDesc, JointFrames, JointSet, JointType, Motor, Spring};
@@ -143,12 +143,24 @@ enum ShapeV1 {
 
 #[derive(Serialize, Deserialize, PartialEq)]
 enum ConvexV1 {
-    Sphere { radius: f32 },
-    Cuboid { half_extents: [f32; 3] },
-    Capsule { radius: f32, half_height: f32 },
-    Cylinder { radius: f32, half_height: f32 },
+    Sphere {
+        radius: f32,
+    },
+    Cuboid {
+        half_extents: [f32; 3],
+    },
+    Capsule {
+        radius: f32,
+        half_height: f32,
+    },
+    Cylinder {
+        radius: f32,
+        half_height: f32,
+    },
     /// The hull's vertices: the hull of these points is the same hull.
-    ConvexHull { points: Vec<[f32; 3]> },
+    ConvexHull {
+        points: Vec<[f32; 3]>,
+    },
 }
 
 #[derive(Serialize, Deserialize, PartialEq)]
@@ -538,9 +550,10 @@ fn build_shape(record: &ShapeV1) -> crate::Result<Shape> {
             Shape::compound(children)
         }
         ShapeV1::Halfspace { normal } => Shape::halfspace(Vec3::from_array(*normal)),
-        ShapeV1::TriMesh { vertices, indices } => {
-            Shape::trimesh(vertices.iter().copied().map(Vec3::from_array).collect(), indices)
-        }
+        ShapeV1::TriMesh { vertices, indices } => Shape::trimesh(
+            vertices.iter().copied().map(Vec3::from_array).collect(),
+            indices,
+        ),
         ShapeV1::HeightField {
             cols,
             heights,
@@ -830,7 +843,9 @@ impl JointV1 {
                 MotorV1::Torque { torque } => Motor::Torque { torque },
             }),
             length: self.length,
-            spring: self.spring.map(|[stiffness, damping]| Spring { stiffness, damping }),
+            spring: self
+                .spring
+                .map(|[stiffness, damping]| Spring { stiffness, damping }),
             friction: self.friction,
             collide_connected: self.collide_connected,
             break_force: self.break_force,

@@ -3,7 +3,7 @@
 //! match it), so before a decoded world is handed out every index it stores is checked to be in
 //! range and every value the step reads to be finite and within the limits.
 
-use super::{WorldSettings, World};
+use super::{World, WorldSettings};
 use crate::arena::{restore_world, Arena};
 use crate::body::{BodyHandle, BodyType, RigidBody};
 use crate::filter::IgnoredPairs;
@@ -111,7 +111,7 @@ impl World {
 }
 
 /// Checks a decoded body: its shape, finite values, its mass and `1/m`, materials and speeds in
-/// range.
+/// range, sleep for dynamic bodies only.
 fn check_body(body: &RigidBody) -> Result<(), String> {
     body.shape.check_decoded()?;
     body.check_kinematic_decoded()?;
@@ -136,7 +136,11 @@ fn check_body(body: &RigidBody) -> Result<(), String> {
             (MIN_MASS..=MAX_MASS).contains(&body.mass)
                 && (body.inverse_mass * body.mass - 1.0).abs() <= 1e-5
         }
-        BodyType::Static | BodyType::Kinematic => body.inverse_mass == 0.0,
+        BodyType::Static | BodyType::Kinematic => {
+            // Only dynamic bodies fall asleep: waking another's group would park or unpark a
+            // proxy that never sleeps.
+            body.inverse_mass == 0.0 && !body.sleeping && body.sleep_group.is_none()
+        }
     };
     let finite = mass_fits
         && vectors.iter().all(|vector| vector.is_finite())
