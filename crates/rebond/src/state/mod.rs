@@ -138,7 +138,7 @@ pub(crate) fn encode<T: Serialize>(magic: &[u8; 8], exact: &T, snapshot: Snapsho
 /// What a state gave: its exact part, when this build wrote it, or its portable snapshot.
 pub(crate) enum Decoded<T> {
     Exact(T),
-    Portable(SnapshotV1),
+    Portable(Box<SnapshotV1>),
 }
 
 /// The exact part `bytes` encode behind a header starting with `magic` when the build that
@@ -206,7 +206,7 @@ pub(crate) fn decode<T: DeserializeOwned>(
         _ => {}
     }
     postcard::from_bytes::<Snapshot>(snapshot)
-        .map(|snapshot| Decoded::Portable(snapshot.into_latest()))
+        .map(|snapshot| Decoded::Portable(Box::new(snapshot.into_latest())))
         .map_err(|error| StateError::Undecodable(format!("snapshot: {error}")))
 }
 
