@@ -1,7 +1,8 @@
-//! Fingerprints the engine's sources for saved states (`src/state.rs`): a state holds the world's
-//! every internal structure, so only a build of the same sources reads it back. The fingerprint
-//! is the FNV-1a hash of every source file's path and bytes, in path order, set as the
-//! environment variable `REBOND_SOURCE_FINGERPRINT` for the crate's compilation.
+//! Fingerprints the engine's sources for saved states (`src/state/mod.rs`): a state's exact part
+//! holds the world's every internal structure, so only a build of the same sources reads that
+//! part back; other builds read its portable snapshot. The fingerprint is the FNV-1a hash of
+//! every source file's path and bytes, in path order, set as the environment variable
+//! `REBOND_SOURCE_FINGERPRINT` for the crate's compilation.
 
 use std::fs;
 use std::path::{Path, PathBuf};

@@ -193,8 +193,9 @@ impl World {
         PyBytes::new(py, &self.sim.save())
     }
 
-    /// A world saved by `save` (or by the command line's `--save-state`); bytes that are not
-    /// such a state of this build raise `StateError` saying why.
+    /// A world saved by `save` (or by the command line's `--save-state`), exactly by this build,
+    /// from its portable snapshot (contacts cold) by another; bytes that are not such a state
+    /// raise `StateError` saying why.
     #[staticmethod]
     fn load(data: &[u8]) -> PyResult<Self> {
         let (scene, steps) = Scene::load_state(data)

@@ -1,27 +1,52 @@
-//! Saving a world and restoring it exactly: [`World::save_state`] and [`World::load_state`].
+//! Saving a world and restoring it: [`World::save_state`] and [`World::load_state`].
 //!
-//! A state holds everything the next steps read (bodies, shapes, joints, the broad phase's tree,
-//! the contact cache with its warm-start impulses, islands and sleep timers, settings, and the
-//! solver's buffers), so a restored world steps bit for bit as the saved one would have.
+//! A state holds the world twice. Its *exact* part is everything the next steps read (bodies,
+//! shapes, joints, the broad phase's tree, the contact cache with its warm-start impulses,
+//! islands and sleep timers, settings, and the solver's buffers), so a world restored from it by
+//! the build that wrote it steps bit for bit as the saved one would have. Its *portable
+//! snapshot* is the world in frozen record types of its own (`state/portable.rs`), which every
+//! later build reads.
 //!
-//! The bytes are a 32-byte header, then the world in postcard's compact binary encoding, with
-//! geometry that shapes share (meshes, heightfields, hulls, compounds) written once
-//! (`state/shared.rs`):
+//! # Compatibility rule
+//!
+//! - The build that wrote a state (the same engine sources: the fingerprint says so) restores
+//!   its exact part: bit-exact continuation.
+//! - Any other build rebuilds the world from the portable snapshot. Kept: the settings; every
+//!   body with its shape, pose, velocities, mass, centre of mass and inertia (as saved, not
+//!   recomputed), material, damping, constant and applied forces, locked axes, sensor flag,
+//!   groups, contact force threshold, user data, kinematic target, path and path clock, and its
+//!   sleep (sleeping bodies stay asleep in their groups); every joint with its description, its
+//!   frames in each body, broken flag, last force and revolute turn count; ignored pairs; every
+//!   handle (slots, generations and the world's identity), stale ones staying stale. Not kept:
+//!   contacts and warm-start impulses (contacts start cold: the next step makes them again, so
+//!   the steps after a load differ slightly from the exact continuation's, and contact and
+//!   sensor start events are reported again), the broad phase's tree and solver buffers (rebuilt).
+//! - Every later build reads every earlier snapshot version: a build that changes the records
+//!   adds a version and converts the earlier ones to it. A snapshot of a version newer than the
+//!   reading build knows is [`StateError::OtherBuild`]. States of format version 1 (exact part
+//!   only) are [`StateError::OtherVersion`].
+//!
+//! # Layout
+//!
+//! A 32-byte header, then the payload: the exact part's length, the exact part (postcard, with
+//! geometry that shapes share written once, `state/shared.rs`), then the snapshot (postcard,
+//! each distinct shape written once):
 //!
 //! | bytes | what |
 //! |---|---|
 //! | 0–7 | `REBONDST` (a world), `REBONDSC` (a scene: [`crate::scene::Scene::save_state`]) |
 //! | 8–11 | format version, little-endian `u32` ([`STATE_FORMAT_VERSION`]) |
 //! | 12–19 | fingerprint of the engine's sources, little-endian `u64` |
-//! | 20–27 | length of the encoded world, little-endian `u64` |
-//! | 28–31 | CRC-32 (IEEE) of the encoded world, little-endian `u32` |
+//! | 20–27 | length of the payload, little-endian `u64` |
+//! | 28–31 | CRC-32 (IEEE) of the payload, little-endian `u32` |
+//! | 32–39 | length of the exact part, little-endian `u64` |
+//! | 40– | the exact part, then the snapshot, whose first byte is its version (0 for the first) |
 //!
-//! A state is the world's internal structures as they are, so only a build of the same engine
-//! sources reads it back (the fingerprint says which); exact continuation needs the same binary
-//! anyway. Bytes that are not a state, of another format version or build, cut short or damaged
-//! are refused with a [`StateError`] saying which, before anything is decoded: the checksum
-//! guards the decoder against damage. Bytes made to match their checksum decode, so a decoded
-//! world's invariants (indices in range, values finite) are checked before it is handed out.
+//! Bytes that are not a state, of another format version, cut short or damaged are refused with
+//! a [`StateError`] saying which, before anything is decoded: the checksum guards the decoders
+//! against damage. Bytes made to match their checksum decode, so a decoded or rebuilt world's
+//! invariants (indices in range, values finite and in range) are checked before it is handed
+//! out; a snapshot's values go through the checks the public constructors make.
 
 use std::fmt;
 
@@ -36,7 +61,8 @@ pub(crate) mod shared;
 pub(crate) use portable::{NamedV1, SceneV1, SnapshotV1};
 use portable::{Snapshot, SNAPSHOT_VERSIONS};
 
-/// The format version this build writes and reads; states of other versions are refused.
+/// The format version this build writes and reads; states of other versions are refused. Version
+/// 2 added the portable snapshot; every later version reads version 2's snapshots.
 pub const STATE_FORMAT_VERSION: u32 = 2;
 
 /// The first eight bytes of a world's state.
@@ -60,7 +86,8 @@ pub enum StateError {
         /// The version the bytes say they are.
         found: u32,
     },
-    /// A state written by a build of other engine sources, whose structures may differ.
+    /// A state written by a build of other engine sources whose portable snapshot is of a version
+    /// newer than this build reads.
     OtherBuild,
     /// The bytes end before the state does.
     Truncated {
@@ -96,8 +123,8 @@ impl fmt::Display for StateError {
             ),
             Self::OtherBuild => write!(
                 formatter,
-                "a state written by another build of rebond; only the build that wrote a state \
-                 reads it"
+                "a state written by a later build of rebond: its snapshot is of a version this \
+                 rebond does not read"
             ),
             Self::Truncated { expected, found } => {
                 write!(formatter, "truncated state: {found} bytes of {expected}")
