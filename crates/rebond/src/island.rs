@@ -145,14 +145,18 @@ impl Islands {
         };
         for (index, body) in bodies.iter() {
             let slot = index.slot();
-            match (body.sleeping, body.sleep_group) {
-                (false, None) if body.body_type != BodyType::Static => islands.awake.push(slot),
-                (false, Some(_)) => islands.wake_candidates.push(slot),
-                (true, Some(root)) if root != slot && root < islands.next_in_group.len() => {
-                    islands.next_in_group[slot] = islands.next_in_group[root];
-                    islands.next_in_group[root] = slot;
+            let Some(root) = body.sleep_group else {
+                if !body.sleeping && body.body_type != BodyType::Static {
+                    islands.awake.push(slot);
                 }
-                _ => {}
+                continue;
+            };
+            if !body.sleeping {
+                islands.wake_candidates.push(slot);
+            }
+            if root != slot && root < islands.next_in_group.len() {
+                islands.next_in_group[slot] = islands.next_in_group[root];
+                islands.next_in_group[root] = slot;
             }
         }
         islands
