@@ -675,8 +675,6 @@ impl BodyV1 {
         let angular_velocity = Vec3::from_array(self.angular_velocity);
         let mut desc = BodyDesc::new(body_type, shape)
             .rotation(rotation)
-            .linear_velocity(linear_velocity)
-            .angular_velocity(angular_velocity)
             .friction(self.friction)
             .restitution(self.restitution)
             .rolling_resistance(self.rolling_resistance)
@@ -703,10 +701,14 @@ impl BodyV1 {
         });
         desc.mass = properties.map(|properties| properties.mass);
         check_position("center_of_mass", center_of_mass).map_err(|error| error.to_string())?;
+        if !rotation.is_normalized() {
+            return Err("its rotation is not normalised".to_owned());
+        }
         let mut body = RigidBody::from_desc(desc).map_err(|error| error.to_string())?;
         body.restore_mass_and_pose(properties, center_of_mass, rotation)?;
         if body_type != BodyType::Static {
-            // As saved: the description's checks passed, and locked axes were held then.
+            // As saved, locked axes held then; checked with the world, which allows the rounding
+            // by which the step's speed limits may leave a velocity above them.
             body.linear_velocity = linear_velocity;
             body.angular_velocity = angular_velocity;
         }
