@@ -463,9 +463,9 @@ impl Scene {
         portable: bool,
     ) -> Result<(Scene, u64), crate::state::StateError> {
         use crate::state::{Decoded, StateError};
-        let (step, mut scene) = match crate::state::decode(SCENE_MAGIC, bytes, portable)? {
+        let decoded = crate::state::decode::<(u64, Scene)>(SCENE_MAGIC, bytes, portable)?;
+        let (step, mut scene) = match decoded {
             Decoded::Exact((step, scene)) => {
-                let scene: Scene = scene;
                 scene.check_decoded().map_err(StateError::Inconsistent)?;
                 (step, scene)
             }
