@@ -1,20 +1,24 @@
 //! Contact, force and sensor events: what changed during the last step.
 //!
 //! After each [`World::step`](crate::World::step) the world lists
-//! - [`ContactEvent`]s: pairs of bodies that started or stopped touching. A pair touches during a
-//!   step when its surfaces meet (a manifold point with separation ≤ 0 at the start of the step)
+//! - [`ContactEvent`]s: pairs of colliders that started or stopped touching (a body whose shape
+//!   is not a compound is one collider, index 0; each child of a compound is one, by its index;
+//!   see [`CompoundChild`](crate::CompoundChild)). A pair touches during a step when its surfaces
+//!   meet (a manifold point with separation ≤ 0 at the start of the step)
 //!   or its contacts pushed (the solver's normal impulse, summed over the pair's manifold points,
 //!   is positive). Speculative points that never push (a body passing close by) do not count.
 //!   Each start is followed by exactly one stop, reported at the first step the pair no longer
 //!   touches, or at the step after one of its bodies was removed (with the removed body's stale
 //!   handle).
-//! - [`ContactForceEvent`]s: touching pairs whose normal force exceeds the smaller of the two
-//!   bodies' [`contact_force_threshold`](crate::BodyDesc::contact_force_threshold)s.
-//! - [`SensorEvent`]s: bodies that entered or left a sensor's shape (see
-//!   [`crate::BodyDesc::sensor`]).
+//! - [`ContactForceEvent`]s: touching collider pairs whose normal force exceeds the smaller of
+//!   the two bodies' [`contact_force_threshold`](crate::BodyDesc::contact_force_threshold)s.
+//! - [`SensorEvent`]s: colliders that entered or left a sensor collider (a sensor body, see
+//!   [`crate::BodyDesc::sensor`], or a sensor child of a compound, see
+//!   [`CompoundChild::sensor`](crate::CompoundChild::sensor)). Sensors never report sensors.
 //!
-//! Every list is sorted by the pair's handles, so it does not depend on anything but the bodies
-//! and their history; the buffers are reused from step to step, so a steady scene allocates
+//! Events are per collider pair: a compound resting on the floor on two of its children makes two
+//! contact events, each naming its child. Every list is sorted by the pair's handles and then its
+//! colliders, so it does not depend on anything but the bodies and their history; the buffers are reused from step to step, so a steady scene allocates
 //! nothing. Sleeping pairs keep their state: a body asleep on the floor stays touching it, a body
 //! asleep inside a sensor stays inside. Their pairs are parked apart while no body of theirs is
 //! awake, so that a step's event pass costs what is awake.
@@ -57,8 +61,11 @@
 use crate::arena::Arena;
 use crate::body::{BodyHandle, RigidBody};
 use crate::collision::contact_cache::Contact;
+use crate::collision::narrow_phase::for_each_part;
+use crate::filter::Colliders;
 use crate::math::Vec3;
 use crate::query::shapes_overlap;
+use crate::shape::Shape;
 use crate::sorted::{merge_into, merged};
 
 /// Whether a pair started or stopped touching.
@@ -71,7 +78,7 @@ pub enum ContactEventKind {
     Stopped,
 }
 
-/// Two bodies that started or stopped touching during the last step.
+/// Two colliders of two bodies that started or stopped touching during the last step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ContactEvent {
@@ -79,11 +86,15 @@ pub struct ContactEvent {
     pub body_a: BodyHandle,
     /// The body with the larger handle.
     pub body_b: BodyHandle,
+    /// The collider of A: its compound child's index, or 0.
+    pub collider_a: u32,
+    /// The collider of B: its compound child's index, or 0.
+    pub collider_b: u32,
     /// Started or stopped.
     pub kind: ContactEventKind,
 }
 
-/// A touching pair whose normal force exceeded its threshold during the last step.
+/// A touching collider pair whose normal force exceeded its threshold during the last step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ContactForceEvent {
@@ -91,8 +102,12 @@ pub struct ContactForceEvent {
     pub body_a: BodyHandle,
     /// The body with the larger handle.
     pub body_b: BodyHandle,
-    /// The normal force on B from A, world, newtons: `Σ λ_n n / h` over the pair's manifold
-    /// points, with `λ_n` the normal impulse of the step's last substep and `h = dt / substeps`
+    /// The collider of A: its compound child's index, or 0.
+    pub collider_a: u32,
+    /// The collider of B: its compound child's index, or 0.
+    pub collider_b: u32,
+    /// The normal force on B's collider from A's, world, newtons: `Σ λ_n n / h` over the
+    /// colliders' manifold points, with `λ_n` the normal impulse of the step's last substep and `h = dt / substeps`
     /// (a body of mass m resting on the floor gives `m g`).
     pub total_force: Vec3,
     /// `Σ λ_n / h`, newtons: the sum of the points' force magnitudes, at least `|total_force|`.
@@ -109,40 +124,73 @@ pub enum SensorEventKind {
     Exited,
 }
 
-/// A body that entered or left a sensor during the last step.
+/// A collider of a body that entered or left a sensor collider during the last step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SensorEvent {
-    /// The sensor.
+    /// The sensor's body: a sensor body, or a body with a sensor child.
     pub sensor: BodyHandle,
-    /// The body that entered or left it (never a sensor).
+    /// The body that entered or left it (never a sensor body).
     pub body: BodyHandle,
     /// Entered or exited.
     pub kind: SensorEventKind,
+    /// The sensor collider of `sensor`: its compound child's index, or 0.
+    pub sensor_collider: u32,
+    /// The collider of `body` that entered or left (never a sensor): its compound child's index,
+    /// or 0.
+    pub collider: u32,
+}
+
+/// Collider `collider_a` of body `a` and collider `collider_b` of body `b`: a touching pair
+/// (smaller handle first) or a sensor overlap (sensor first). Ordered by bodies, then colliders.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct ColliderPair {
+    a: BodyHandle,
+    b: BodyHandle,
+    collider_a: u32,
+    collider_b: u32,
+}
+
+/// One collider pair's share of a step's contacts: its normal impulse summed over its manifolds,
+/// N·s, the same weighted by their normals, and whether its surfaces meet. `order` is the first
+/// contact's place in the step's list, so sums keep the contacts' order.
+#[derive(Debug, Clone, Copy)]
+struct ColliderSum {
+    pair: ColliderPair,
+    order: u32,
+    impulse: f32,
+    impulse_vector: Vec3,
+    surfaces_meet: bool,
 }
 
 /// The event lists and the state they are computed from, reused from step to step.
 #[derive(Debug, Clone, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct EventTracker {
-    /// Pairs touching during the last step, sorted; and during the step before.
-    touching: Vec<(BodyHandle, BodyHandle)>,
-    previous_touching: Vec<(BodyHandle, BodyHandle)>,
-    /// (sensor, body) pairs overlapping after the last step, sorted; and after the step before.
-    overlaps: Vec<(BodyHandle, BodyHandle)>,
-    previous_overlaps: Vec<(BodyHandle, BodyHandle)>,
-    /// (sensor, body) pairs to test for overlap at the end of this step.
+    /// Collider pairs touching during the last step, sorted; and during the step before.
+    touching: Vec<ColliderPair>,
+    previous_touching: Vec<ColliderPair>,
+    /// (sensor, body) collider pairs overlapping after the last step, sorted; and after the step
+    /// before.
+    overlaps: Vec<ColliderPair>,
+    previous_overlaps: Vec<ColliderPair>,
+    /// (sensor, body) pairs of bodies whose colliders are tested for overlap at the end of this
+    /// step.
     sensor_candidates: Vec<(BodyHandle, BodyHandle)>,
     /// Touching pairs and overlaps of which no body is awake, sorted: they cannot change while
     /// parked here, so no step walks them.
-    parked_touching: Vec<(BodyHandle, BodyHandle)>,
-    parked_overlaps: Vec<(BodyHandle, BodyHandle)>,
+    parked_touching: Vec<ColliderPair>,
+    parked_overlaps: Vec<ColliderPair>,
     /// The force reports of the parked touching pairs, sorted: repeated each step, as their
     /// contacts keep their impulses while asleep.
     parked_forces: Vec<ContactForceEvent>,
     /// Scratch of [`park`](Self::park) and [`unpark`](Self::unpark): the pairs and reports moving.
-    moving: Vec<(BodyHandle, BodyHandle)>,
+    moving: Vec<ColliderPair>,
     moving_forces: Vec<ContactForceEvent>,
+    /// Scratch of [`update_contacts`](Self::update_contacts): the step's sums per collider pair.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    sums: Vec<ColliderSum>,
     contact_events: Vec<ContactEvent>,
     force_events: Vec<ContactForceEvent>,
     sensor_events: Vec<SensorEvent>,
@@ -175,33 +223,26 @@ impl EventTracker {
             else {
                 continue;
             };
-            if shapes_overlap(
-                &sensor_body.shape,
-                &sensor_body.pose(),
-                &other.shape,
-                &other.pose(),
-            ) {
-                self.overlaps.push((sensor, body));
-            }
+            push_overlaps((sensor, sensor_body), (body, other), &mut self.overlaps);
         }
+        // A pair woken mid-step may be a candidate twice.
         self.overlaps.sort_unstable();
+        self.overlaps.dedup();
         self.sensor_events.clear();
         let events = &mut self.sensor_events;
-        for_each_change(
-            &self.previous_overlaps,
-            &self.overlaps,
-            |(sensor, body), entered| {
-                events.push(SensorEvent {
-                    sensor,
-                    body,
-                    kind: if entered {
-                        SensorEventKind::Entered
-                    } else {
-                        SensorEventKind::Exited
-                    },
-                });
-            },
-        );
+        for_each_change(&self.previous_overlaps, &self.overlaps, |pair, entered| {
+            events.push(SensorEvent {
+                sensor: pair.a,
+                body: pair.b,
+                kind: if entered {
+                    SensorEventKind::Entered
+                } else {
+                    SensorEventKind::Exited
+                },
+                sensor_collider: pair.collider_a,
+                collider: pair.collider_b,
+            });
+        });
         move_pairs(
             &mut self.overlaps,
             &mut self.parked_overlaps,
@@ -210,36 +251,66 @@ impl EventTracker {
         );
     }
 
-    /// Lists the pairs that started and stopped touching in this step's solved `contacts`
-    /// (sorted by key), and the force reports above threshold; `h` is the substep length, s.
+    /// Lists the collider pairs that started and stopped touching in this step's solved
+    /// `contacts` (sorted by key), and the force reports above threshold; `h` is the substep
+    /// length, s.
     pub fn update_contacts(&mut self, contacts: &[Contact], bodies: &Arena<RigidBody>, h: f32) {
         std::mem::swap(&mut self.touching, &mut self.previous_touching);
         self.touching.clear();
         self.force_events.clear();
-        for pair in contacts.chunk_by(same_pair) {
-            let (body_a, body_b) = (pair[0].key.body_a, pair[0].key.body_b);
-            let (mut impulse, mut impulse_vector) = (0.0, Vec3::ZERO);
-            let mut surfaces_meet = false;
-            for contact in pair {
-                let manifold_impulse: f32 = contact.normal_impulses[..contact.manifold.len()]
-                    .iter()
-                    .sum();
-                impulse += manifold_impulse;
-                impulse_vector += manifold_impulse * contact.manifold.normal;
-                surfaces_meet |= contact
-                    .manifold
-                    .points()
-                    .iter()
-                    .any(|p| p.separation <= 0.0);
+        self.sums.clear();
+        for (order, contact) in (0..).zip(contacts) {
+            let key = contact.key;
+            let pair = ColliderPair {
+                a: key.body_a,
+                b: key.body_b,
+                collider_a: collider_of(bodies, key.body_a, key.child_a),
+                collider_b: collider_of(bodies, key.body_b, key.child_b),
+            };
+            let impulse: f32 = contact.normal_impulses[..contact.manifold.len()]
+                .iter()
+                .sum();
+            let surfaces_meet = contact
+                .manifold
+                .points()
+                .iter()
+                .any(|p| p.separation <= 0.0);
+            match self.sums.last_mut() {
+                Some(last) if last.pair == pair => {
+                    last.impulse += impulse;
+                    last.impulse_vector += impulse * contact.manifold.normal;
+                    last.surfaces_meet |= surfaces_meet;
+                }
+                _ => self.sums.push(ColliderSum {
+                    pair,
+                    order,
+                    impulse,
+                    impulse_vector: impulse * contact.manifold.normal,
+                    surfaces_meet,
+                }),
+            }
+        }
+        // Contacts come sorted by children; on a mesh, whose children are its manifolds, one
+        // collider pair's contacts may come apart: they are brought together, in contact order.
+        if !self.sums.is_sorted_by_key(|sum| sum.pair) {
+            self.sums.sort_unstable_by_key(|sum| (sum.pair, sum.order));
+        }
+        for group in self.sums.chunk_by(|x, y| x.pair == y.pair) {
+            let pair = group[0].pair;
+            let (mut impulse, mut impulse_vector, mut surfaces_meet) = (0.0, Vec3::ZERO, false);
+            for sum in group {
+                impulse += sum.impulse;
+                impulse_vector += sum.impulse_vector;
+                surfaces_meet |= sum.surfaces_meet;
             }
             if impulse <= 0.0 && !surfaces_meet {
                 continue;
             }
-            self.touching.push((body_a, body_b));
+            self.touching.push(pair);
             if impulse <= 0.0 {
                 continue;
             }
-            let threshold = [body_a, body_b]
+            let threshold = [pair.a, pair.b]
                 .iter()
                 .filter_map(|handle| bodies.get(handle.0))
                 .map(|body| body.contact_force_threshold)
@@ -247,33 +318,31 @@ impl EventTracker {
             let force = impulse / h;
             if force > threshold {
                 self.force_events.push(ContactForceEvent {
-                    body_a,
-                    body_b,
+                    body_a: pair.a,
+                    body_b: pair.b,
+                    collider_a: pair.collider_a,
+                    collider_b: pair.collider_b,
                     total_force: impulse_vector / h,
                     total_force_magnitude: force,
                 });
             }
         }
-        merge_into(&mut self.force_events, &self.parked_forces, |event| {
-            (event.body_a, event.body_b)
-        });
+        merge_into(&mut self.force_events, &self.parked_forces, force_pair);
         self.contact_events.clear();
         let events = &mut self.contact_events;
-        for_each_change(
-            &self.previous_touching,
-            &self.touching,
-            |(body_a, body_b), started| {
-                events.push(ContactEvent {
-                    body_a,
-                    body_b,
-                    kind: if started {
-                        ContactEventKind::Started
-                    } else {
-                        ContactEventKind::Stopped
-                    },
-                });
-            },
-        );
+        for_each_change(&self.previous_touching, &self.touching, |pair, started| {
+            events.push(ContactEvent {
+                body_a: pair.a,
+                body_b: pair.b,
+                collider_a: pair.collider_a,
+                collider_b: pair.collider_b,
+                kind: if started {
+                    ContactEventKind::Started
+                } else {
+                    ContactEventKind::Stopped
+                },
+            });
+        });
     }
 
     /// Parks the touching pairs and overlaps `(a, b)` for which `parks(a, b)` is true (no body
@@ -292,19 +361,16 @@ impl EventTracker {
             &parks,
         );
         // This step's reports include those parked before, which stay parked once.
-        let pair_of = |event: &ContactForceEvent| (event.body_a, event.body_b);
         let parked_forces = &self.parked_forces;
         self.moving_forces.clear();
         self.moving_forces
             .extend(self.force_events.iter().filter(|event| {
                 parks(event.body_a, event.body_b)
                     && parked_forces
-                        .binary_search_by_key(&pair_of(event), pair_of)
+                        .binary_search_by_key(&force_pair(event), force_pair)
                         .is_err()
             }));
-        merge_into(&mut self.parked_forces, &self.moving_forces, |event| {
-            (event.body_a, event.body_b)
-        });
+        merge_into(&mut self.parked_forces, &self.moving_forces, force_pair);
     }
 
     /// Brings back the parked pairs `(a, b)` for which `wakes(a, b)` is true, as last step's, so
@@ -326,7 +392,8 @@ impl EventTracker {
                 &mut self.moving,
                 &wakes,
             );
-            self.sensor_candidates.extend_from_slice(&self.moving);
+            self.sensor_candidates
+                .extend(self.moving.iter().map(|pair| (pair.a, pair.b)));
         } else {
             move_pairs(
                 &mut self.parked_overlaps,
@@ -349,44 +416,124 @@ impl EventTracker {
         &self.sensor_events
     }
 
-    /// Pairs touching during the last step, sleeping ones included, smaller handle first, sorted.
+    /// Pairs of bodies some colliders of which touched during the last step, sleeping ones
+    /// included, smaller handle first, sorted.
     pub fn touching(&self) -> impl Iterator<Item = (BodyHandle, BodyHandle)> + '_ {
-        merged(
+        body_pairs(merged(
             self.touching.iter().copied(),
             self.parked_touching.iter().copied(),
-        )
+        ))
     }
 
-    /// (sensor, body) pairs overlapping after the last step, sleeping ones included, sorted.
+    /// (sensor, body) pairs of bodies some colliders of which overlap after the last step,
+    /// sleeping ones included, sorted.
     pub fn overlaps(&self) -> impl Iterator<Item = (BodyHandle, BodyHandle)> + '_ {
-        merged(
+        body_pairs(merged(
             self.overlaps.iter().copied(),
             self.parked_overlaps.iter().copied(),
-        )
+        ))
+    }
+}
+
+/// The body pairs of sorted collider pairs, each once.
+fn body_pairs(
+    pairs: impl Iterator<Item = ColliderPair>,
+) -> impl Iterator<Item = (BodyHandle, BodyHandle)> {
+    let mut last = None;
+    pairs.filter_map(move |pair| {
+        let bodies = (pair.a, pair.b);
+        (last.replace(bodies) != Some(bodies)).then_some(bodies)
+    })
+}
+
+/// The collider of `body` that its compound child (or mesh manifold) `child` belongs to: the
+/// child itself on a compound, the whole shape (0) otherwise. A shape that is not a compound has
+/// only child 0, unless it is a mesh, so only then is the body looked up.
+fn collider_of(bodies: &Arena<RigidBody>, body: BodyHandle, child: u32) -> u32 {
+    if child == 0 {
+        return 0;
+    }
+    match bodies.get(body.0).map(|body| &body.shape) {
+        Some(Shape::Compound(_)) => child,
+        _ => 0,
+    }
+}
+
+/// Pushes the overlaps of `sensor`'s sensor colliders with `body`'s colliders they see, each
+/// tested at the bodies' poses.
+fn push_overlaps(
+    (sensor, sensor_body): (BodyHandle, &RigidBody),
+    (body, other): (BodyHandle, &RigidBody),
+    overlaps: &mut Vec<ColliderPair>,
+) {
+    let (sensor_colliders, colliders) = (Colliders::of(sensor_body), Colliders::of(other));
+    let several = |shape: &Shape| matches!(shape, Shape::Compound(_));
+    let sensor_pose = sensor_body.pose();
+    let pose = other.pose();
+    if !several(&sensor_body.shape) && !several(&other.shape) {
+        // One collider each: the bodies' test said they interact.
+        if shapes_overlap(&sensor_body.shape, &sensor_pose, &other.shape, &pose) {
+            overlaps.push(ColliderPair {
+                a: sensor,
+                b: body,
+                collider_a: 0,
+                collider_b: 0,
+            });
+        }
+        return;
+    }
+    for_each_part(
+        &sensor_body.shape,
+        &sensor_pose,
+        |collider_a, part_a, pose_a| {
+            if !sensor_colliders.is_sensor(collider_a) {
+                return;
+            }
+            let bounds = part_a.aabb(&pose_a);
+            for_each_part(&other.shape, &pose, |collider_b, part_b, pose_b| {
+                if sensor_colliders.sees(collider_a, &colliders, collider_b)
+                    && bounds.overlaps(&part_b.aabb(&pose_b))
+                    && shapes_overlap(part_a, &pose_a, part_b, &pose_b)
+                {
+                    overlaps.push(ColliderPair {
+                        a: sensor,
+                        b: body,
+                        collider_a,
+                        collider_b,
+                    });
+                }
+            });
+        },
+    );
+}
+
+/// The collider pair a force report belongs to, by which the reports are sorted.
+fn force_pair(event: &ContactForceEvent) -> ColliderPair {
+    ColliderPair {
+        a: event.body_a,
+        b: event.body_b,
+        collider_a: event.collider_a,
+        collider_b: event.collider_b,
     }
 }
 
 /// Moves the pairs of the sorted `from` for which `moves` is true into the sorted `to`, through
 /// the scratch `moving`, which keeps them.
 fn move_pairs(
-    from: &mut Vec<(BodyHandle, BodyHandle)>,
-    to: &mut Vec<(BodyHandle, BodyHandle)>,
-    moving: &mut Vec<(BodyHandle, BodyHandle)>,
+    from: &mut Vec<ColliderPair>,
+    to: &mut Vec<ColliderPair>,
+    moving: &mut Vec<ColliderPair>,
     moves: &impl Fn(BodyHandle, BodyHandle) -> bool,
 ) {
     moving.clear();
-    from.retain(|&(a, b)| {
-        let leaves = moves(a, b);
+    from.retain(|&pair| {
+        let leaves = moves(pair.a, pair.b);
         if leaves {
-            moving.push((a, b));
+            moving.push(pair);
         }
         !leaves
     });
     merge_into(to, moving, |&pair| pair);
-}
-
-fn same_pair(x: &Contact, y: &Contact) -> bool {
-    (x.key.body_a, x.key.body_b) == (y.key.body_a, y.key.body_b)
 }
 
 /// Walks two sorted lists together and calls `on_change(item, true)` for each item only in

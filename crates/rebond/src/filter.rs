@@ -6,8 +6,13 @@
 //! ([`World::set_pair_ignored`](crate::World::set_pair_ignored)). A pair that does not interact
 //! never becomes a broad-phase pair, so the narrow phase never sees it; no contact, no sensor
 //! overlap, no event.
+//!
+//! The children of a compound are colliders of their own ([`CompoundChild`]): within a pair of
+//! bodies that interact, two colliders touch when neither is a sensor and their own groups (the
+//! child's, else the body's) interact too.
 
-use crate::body::BodyHandle;
+use crate::body::{BodyHandle, RigidBody};
+use crate::shape::{CompoundChild, Shape};
 
 /// Group masks of a body, as in Rapier: bit `i` of `memberships` says the body is in group `i`,
 /// bit `i` of `filter` that it interacts with bodies of group `i`. The default is in every group
@@ -55,6 +60,74 @@ impl InteractionGroups {
 impl Default for InteractionGroups {
     fn default() -> Self {
         Self::ALL
+    }
+}
+
+/// A body's colliders as the narrow phase and the sensor pass see them: which are sensors and
+/// which groups each has. Collider `i` is child `i` of a compound, or the whole shape (0).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Colliders<'a> {
+    children: &'a [CompoundChild],
+    sensor: bool,
+    groups: InteractionGroups,
+}
+
+impl<'a> Colliders<'a> {
+    pub fn of(body: &'a RigidBody) -> Self {
+        Self {
+            children: match &body.shape {
+                Shape::Compound(compound) => compound.children(),
+                _ => &[],
+            },
+            sensor: body.sensor,
+            groups: body.collision_groups,
+        }
+    }
+
+    /// Whether collider `index` is a sensor: the body is, or the child says so.
+    pub fn is_sensor(&self, index: u32) -> bool {
+        self.sensor
+            || self
+                .children
+                .get(index as usize)
+                .is_some_and(|child| child.sensor == Some(true))
+    }
+
+    /// The groups of collider `index`: the child's own, else the body's.
+    pub fn groups(&self, index: u32) -> InteractionGroups {
+        self.children
+            .get(index as usize)
+            .and_then(|child| child.collision_groups)
+            .unwrap_or(self.groups)
+    }
+
+    /// Whether the body is no sensor but some of its children are: its pairs then also go to the
+    /// sensor pass.
+    pub fn has_sensor_children(&self) -> bool {
+        !self.sensor && self.children.iter().any(|child| child.sensor == Some(true))
+    }
+
+    /// Whether the pair needs the colliders' own flags looked at: some child of either has a
+    /// sensor flag or groups of its own. Otherwise the bodies' test said it all.
+    pub fn need_filtering(&self, other: &Colliders) -> bool {
+        let own =
+            |child: &CompoundChild| child.sensor.is_some() || child.collision_groups.is_some();
+        self.children.iter().any(own) || other.children.iter().any(own)
+    }
+
+    /// Whether this body's collider `index` and `other`'s collider `other_index` make contacts:
+    /// neither is a sensor and their groups interact.
+    pub fn touch(&self, index: u32, other: &Colliders, other_index: u32) -> bool {
+        !self.is_sensor(index)
+            && !other.is_sensor(other_index)
+            && self.sees(index, other, other_index)
+    }
+
+    /// Whether this body's sensor collider `index` reports `other`'s collider `other_index`: it
+    /// is not a sensor and their groups interact.
+    pub fn sees(&self, index: u32, other: &Colliders, other_index: u32) -> bool {
+        !other.is_sensor(other_index)
+            && self.groups(index).interacts_with(other.groups(other_index))
     }
 }
 

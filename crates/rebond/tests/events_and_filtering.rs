@@ -262,7 +262,9 @@ fn a_body_asleep_inside_a_sensor_stays_inside() {
         [SensorEvent {
             sensor: late,
             body: crate_box,
-            kind: SensorEventKind::Entered
+            kind: SensorEventKind::Entered,
+            sensor_collider: 0,
+            collider: 0,
         }]
     );
     assert!(world.body(crate_box).unwrap().is_sleeping());

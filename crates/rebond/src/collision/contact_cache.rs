@@ -8,6 +8,7 @@ use super::manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
 use super::manifold_frame::{CenterPose, ManifoldFrame, PlacedBody};
 use super::narrow_phase::{PartCache, PartContacts};
 use crate::body::BodyHandle;
+use crate::filter::Colliders;
 #[cfg(feature = "serde")]
 use crate::limits::MAX_SOLVER_IMPULSE;
 use crate::material::Material;
@@ -214,6 +215,7 @@ impl ContactCache {
             bodies: (body_a, body_b),
             poses: (pose_a, pose_b),
             previous,
+            colliders: None,
         }
     }
 
@@ -477,6 +479,19 @@ pub struct PairContacts<'a> {
     poses: (&'a Pose, &'a Pose),
     /// The pair's contacts of last step not yet passed, sorted by children.
     previous: Range<usize>,
+    /// The colliders of A and B, when some have a sensor flag or groups of their own; `None`
+    /// when every collider pair of the two bodies touches.
+    colliders: Option<(Colliders<'a>, Colliders<'a>)>,
+}
+
+impl<'a> PairContacts<'a> {
+    /// The same pair, whose colliders touch only as `colliders_a` and `colliders_b` say.
+    pub(crate) fn filtered(self, colliders_a: Colliders<'a>, colliders_b: Colliders<'a>) -> Self {
+        Self {
+            colliders: Some((colliders_a, colliders_b)),
+            ..self
+        }
+    }
 }
 
 impl PartContacts for PairContacts<'_> {
@@ -508,6 +523,11 @@ impl PartContacts for PairContacts<'_> {
         };
         let (pose_a, pose_b) = self.poses;
         self.cache.push(key, manifold, pose_a, pose_b, part_cache);
+    }
+
+    fn colliders_touch(&self, collider_a: u32, collider_b: u32) -> bool {
+        self.colliders
+            .is_none_or(|(a, b)| a.touch(collider_a, &b, collider_b))
     }
 }
 

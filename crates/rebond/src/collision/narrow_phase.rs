@@ -80,6 +80,13 @@ pub trait PartContacts {
 
     /// A manifold between parts `child_a` and `child_b`, with what the query leaves for the next.
     fn add(&mut self, child_a: u32, child_b: u32, manifold: Manifold, cache: PartCache);
+
+    /// Whether collider `collider_a` of A and `collider_b` of B may touch (a compound's child is
+    /// a collider of its own, which may be a sensor or have its own groups; 0 for a shape that is
+    /// not a compound). Asked before each pair of parts is tested. The default: always.
+    fn colliders_touch(&self, _collider_a: u32, _collider_b: u32) -> bool {
+        true
+    }
 }
 
 /// Parts found with nothing from before, handed to a closure.
@@ -239,6 +246,9 @@ impl NarrowPhase {
                                  child_b: u32,
                                  part_b: &Shape,
                                  part_pose_b: &Pose| {
+            if !contacts.colliders_touch(child_a, child_b) {
+                return;
+            }
             let mut cache = contacts.previous_cache(child_a, child_b);
             if let Some(manifold) = self.collide_convex_from(
                 part_a,
@@ -308,6 +318,14 @@ impl NarrowPhase {
         };
         let scratch = &mut self.mesh;
         for_each_part(other, other_pose, |child, part, part_pose| {
+            let touch = if mesh_is_a {
+                contacts.colliders_touch(0, child)
+            } else {
+                contacts.colliders_touch(child, 0)
+            };
+            if !touch {
+                return;
+            }
             scratch.collide(&mesh, part, &part_pose, margin, |group, manifold| {
                 if mesh_is_a {
                     contacts.add(group, child, manifold, PartCache::Cold);
@@ -352,8 +370,8 @@ pub fn collide(
 }
 
 /// The convex parts of a shape with their world poses: the shape itself, or each child of a
-/// compound with its index.
-fn for_each_part(shape: &Shape, pose: &Pose, mut visit: impl FnMut(u32, &Shape, Pose)) {
+/// compound with its index (the collider index).
+pub(crate) fn for_each_part(shape: &Shape, pose: &Pose, mut visit: impl FnMut(u32, &Shape, Pose)) {
     match shape {
         Shape::Compound(compound) => {
             for (index, child) in (0..).zip(compound.children()) {

@@ -1,14 +1,20 @@
-//! Compound: several convex shapes rigidly attached to one body.
+//! Compound: several convex shapes rigidly attached to one body, each a collider of its own.
+//!
+//! A body's colliders are numbered by a collider index: 0 for a body whose shape is not a
+//! compound, the child's index in [`Compound::children`] otherwise. A child may be a sensor, have
+//! collision groups of its own, a name and user data; events and query hits name it by index.
 
 use crate::error::{check_length, check_non_negative, check_range, Error, ErrorKind, Result};
+use crate::filter::InteractionGroups;
 use crate::limits::MAX_SIZE;
 use crate::mass::MassProperties;
 use crate::math::{normalize_rotation, Aabb, Pose, Vec3};
 
 use super::Shape;
 
-/// One child of a compound: a convex shape, its pose in the body frame, and optionally a
-/// surface material of its own.
+/// One child of a compound, a collider of the body: a convex shape, its pose in the body frame,
+/// and optionally a surface material, a sensor flag, collision groups, a name and user data of
+/// its own.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CompoundChild {
@@ -23,6 +29,18 @@ pub struct CompoundChild {
     /// The child's rolling resistance coefficient, ≥ 0; `None` (the default) for the body's.
     /// Its lever is the child's own rolling radius ([`Shape::rolling_radius`]).
     pub rolling_resistance: Option<f32>,
+    /// Whether the child is a sensor: it reports the colliders of other bodies entering and
+    /// leaving it ([`SensorEvent`](crate::SensorEvent)) and pushes nothing. `None` (the default)
+    /// for the body's flag; a child of a sensor body is always a sensor.
+    pub sensor: Option<bool>,
+    /// The child's collision groups; `None` (the default) for the body's. Two bodies whose groups
+    /// interact then meet collider by collider: two colliders touch (or a sensor child sees a
+    /// collider) when their own groups interact too.
+    pub collision_groups: Option<InteractionGroups>,
+    /// A label, unique within the body; `None` (the default) for none.
+    pub name: Option<String>,
+    /// Free for the user (an entity id, say); default 0. The engine never reads it.
+    pub user_data: u128,
 }
 
 impl CompoundChild {
@@ -35,6 +53,10 @@ impl CompoundChild {
             friction: None,
             restitution: None,
             rolling_resistance: None,
+            sensor: None,
+            collision_groups: None,
+            name: None,
+            user_data: 0,
         }
     }
 
@@ -55,6 +77,31 @@ impl CompoundChild {
         self.rolling_resistance = Some(rolling_resistance);
         self
     }
+
+    /// Makes the child a sensor (`true`) or a solid collider (`false`), whatever the body's flag
+    /// (a child of a sensor body stays a sensor).
+    pub fn sensor(mut self, sensor: bool) -> Self {
+        self.sensor = Some(sensor);
+        self
+    }
+
+    /// Gives the child collision groups of its own.
+    pub fn collision_groups(mut self, groups: InteractionGroups) -> Self {
+        self.collision_groups = Some(groups);
+        self
+    }
+
+    /// Names the child (unique within the body).
+    pub fn name(mut self, name: impl Into<String>) -> Self {
+        self.name = Some(name.into());
+        self
+    }
+
+    /// Sets the child's user data.
+    pub fn user_data(mut self, data: u128) -> Self {
+        self.user_data = data;
+        self
+    }
 }
 
 /// A rigid union of convex children.
@@ -67,9 +114,9 @@ pub struct Compound {
 impl Compound {
     /// A compound of at least one child. Child poses must be finite (their rotations are
     /// normalised here), their materials in range; a child may not be a compound or a
-    /// halfspace. Errors name the field as `children[i].position`, `children[i].rotation`,
-    /// `children[i].friction`, `children[i].restitution`, `children[i].rolling_resistance` or
-    /// `children[i].shape`.
+    /// halfspace; names are unique. Errors name the field as `children[i].position`,
+    /// `children[i].rotation`, `children[i].friction`, `children[i].restitution`,
+    /// `children[i].rolling_resistance`, `children[i].shape` or `children[i].name`.
     pub fn new(mut children: Vec<CompoundChild>) -> Result<Self> {
         if children.is_empty() {
             return Err(Error::new(
@@ -109,12 +156,33 @@ impl Compound {
                 ));
             }
         }
+        for (index, child) in children.iter().enumerate() {
+            let Some(name) = &child.name else {
+                continue;
+            };
+            if children[..index]
+                .iter()
+                .any(|earlier| earlier.name.as_ref() == Some(name))
+            {
+                return Err(Error::new(
+                    format!("children[{index}].name"),
+                    ErrorKind::InvalidCompound("two children of a compound share a name"),
+                ));
+            }
+        }
         Ok(Self { children })
     }
 
     /// The children, in the order given.
     pub fn children(&self) -> &[CompoundChild] {
         &self.children
+    }
+
+    /// The index of the child named `name`, if any.
+    pub fn child_index(&self, name: &str) -> Option<u32> {
+        (0..)
+            .zip(&self.children)
+            .find_map(|(index, child)| (child.name.as_deref() == Some(name)).then_some(index))
     }
 
     /// The children's mass properties moved into the body frame and combined by the

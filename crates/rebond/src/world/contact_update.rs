@@ -6,7 +6,7 @@ use super::World;
 use crate::arena::Arena;
 use crate::body::{BodyHandle, BodyType, RigidBody};
 use crate::collision::FAST_MOTION_REACHES;
-use crate::filter::IgnoredPairs;
+use crate::filter::{Colliders, IgnoredPairs};
 use crate::joint::JointSet;
 use crate::material::Material;
 use crate::math::{Aabb, Vec3};
@@ -75,7 +75,8 @@ impl World {
 
     /// Walks the broad phase's pairs: a pair with a sensor becomes a candidate for the overlap
     /// test, a pair of which no body is awake keeps its parked contacts, a recycled pair its
-    /// manifolds, and the others within their margin of each other go through the narrow phase.
+    /// manifolds, and the others within their margin of each other go through the narrow phase,
+    /// collider by collider. A body with sensor children is also a candidate with the other.
     fn collide_pairs(&mut self, dt: f32) {
         let Self {
             settings,
@@ -108,6 +109,13 @@ impl World {
                 events.add_sensor_candidate(sensor, other);
                 continue;
             }
+            let colliders = (Colliders::of(body_a), Colliders::of(body_b));
+            if colliders.0.has_sensor_children() {
+                events.add_sensor_candidate(body_a_handle, body_b_handle);
+            }
+            if colliders.1.has_sensor_children() {
+                events.add_sensor_candidate(body_b_handle, body_a_handle);
+            }
             if !body_a.is_awake_mover() && !body_b.is_awake_mover() {
                 if body_a.sleeping || body_b.sleeping {
                     contacts.keep_previous(body_a_handle, body_b_handle);
@@ -134,13 +142,17 @@ impl World {
                 continue;
             }
             *narrow_phase_pair_tests += 1;
+            let mut pair = contacts.pair(body_a_handle, body_b_handle, &center_a, &center_b);
+            if colliders.0.need_filtering(&colliders.1) {
+                pair = pair.filtered(colliders.0, colliders.1);
+            }
             narrow_phase.collide(
                 &body_a.shape,
                 &pose_a,
                 &body_b.shape,
                 &pose_b,
                 margin,
-                &mut contacts.pair(body_a_handle, body_b_handle, &center_a, &center_b),
+                &mut pair,
             );
         }
         contacts.finish_step();
