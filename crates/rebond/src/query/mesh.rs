@@ -7,7 +7,7 @@
 //! distance zero, and a shape below it overlaps it.
 
 use super::ray::ShapeRayHit;
-use super::Ray;
+use super::{HitPart, Ray};
 use crate::collision::triangle_contact::collide_triangle;
 use crate::math::{Aabb, Pose, Vec3};
 use crate::shape::{Shape, Triangle};
@@ -75,12 +75,15 @@ fn segment_in_box(bounds: &Aabb, origin: Vec3, direction: Vec3, reach: f32) -> O
 pub(crate) fn cast_ray_at_mesh(shape: &Shape, pose: &Pose, ray: &Ray) -> Option<ShapeRayHit> {
     let origin = pose.inverse_transform_point(ray.origin);
     let direction = pose.inverse_transform_vector(ray.direction);
-    let mut best: Option<(f32, Vec3)> = None;
-    let offer = |triangle: Option<Triangle>, best: &mut Option<(f32, Vec3)>| {
-        let reach = best.map_or(ray.max_distance, |(t, _)| t);
-        if let Some(hit) = triangle.and_then(|t| cross_triangle(&t, origin, direction, reach)) {
-            if best.is_none_or(|(t, _)| hit.0 < t) {
-                *best = Some(hit);
+    let mut best: Option<(f32, Vec3, u32)> = None;
+    let offer = |index: u32, best: &mut Option<(f32, Vec3, u32)>| {
+        let reach = best.map_or(ray.max_distance, |(t, _, _)| t);
+        let crossing = shape
+            .triangle(index)
+            .and_then(|t| cross_triangle(&t, origin, direction, reach));
+        if let Some((t, normal)) = crossing {
+            if best.is_none_or(|(best_t, _, _)| t < best_t) {
+                *best = Some((t, normal, index));
             }
         }
     };
@@ -90,8 +93,8 @@ pub(crate) fn cast_ray_at_mesh(shape: &Shape, pose: &Pose, ray: &Ray) -> Option<
             mesh.triangles_where(
                 |bounds| segment_in_box(bounds, origin, direction, walk_reach.get()).is_some(),
                 |index| {
-                    offer(shape.triangle(index), &mut best);
-                    if let Some((t, _)) = best {
+                    offer(index, &mut best);
+                    if let Some((t, _, _)) = best {
                         walk_reach.set(t);
                     }
                 },
@@ -102,6 +105,7 @@ pub(crate) fn cast_ray_at_mesh(shape: &Shape, pose: &Pose, ray: &Ray) -> Option<
                 return Some(ShapeRayHit {
                     distance: 0.0,
                     normal: -ray.direction,
+                    part: HitPart::default(),
                 });
             }
             let (enter, leave) = segment_in_box(
@@ -112,13 +116,17 @@ pub(crate) fn cast_ray_at_mesh(shape: &Shape, pose: &Pose, ray: &Ray) -> Option<
             )?;
             let (from, to) = (origin + direction * enter, origin + direction * leave);
             let span = Aabb::new(from.min(to), from.max(to));
-            shape.triangles_in(&span, |index| offer(shape.triangle(index), &mut best));
+            shape.triangles_in(&span, |index| offer(index, &mut best));
         }
         _ => return None,
     }
-    best.map(|(distance, normal)| ShapeRayHit {
+    best.map(|(distance, normal, triangle)| ShapeRayHit {
         distance,
         normal: pose.transform_vector(normal),
+        part: HitPart {
+            collider: 0,
+            triangle: Some(triangle),
+        },
     })
 }
 

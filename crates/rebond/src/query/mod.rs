@@ -51,7 +51,7 @@ use std::fmt;
 
 use crate::body::{BodyHandle, BodyType, RigidBody};
 use crate::error::{check_non_negative_or_infinite, Error, ErrorKind, Result};
-use crate::filter::InteractionGroups;
+use crate::filter::{Colliders, InteractionGroups};
 use crate::math::{normalize_rotation, Pose, Vec3};
 use crate::shape::{Halfspace, Shape};
 
@@ -118,6 +118,12 @@ impl Ray {
 pub struct RayHit {
     /// The body hit.
     pub body: BodyHandle,
+    /// The body's collider hit: its compound child's index, or 0 (see
+    /// [`CompoundChild`](crate::CompoundChild)).
+    pub collider: u32,
+    /// On a trimesh or heightfield, the triangle hit ([`Shape::triangle`]'s index); `None` on
+    /// any other shape, and for a solid ray starting below a heightfield.
+    pub triangle: Option<u32>,
     /// The point hit, world, metres: `origin + distance · direction`.
     pub point: Vec3,
     /// Unit world normal facing the ray (see the [module conventions](self)).
@@ -131,6 +137,11 @@ pub struct RayHit {
 pub struct ShapeHit {
     /// The body touched.
     pub body: BodyHandle,
+    /// The body's collider touched: its compound child's index, or 0.
+    pub collider: u32,
+    /// On a trimesh or heightfield, the triangle touched ([`Shape::triangle`]'s index); `None`
+    /// on any other shape.
+    pub triangle: Option<u32>,
     /// How far the shape travels before it touches, metres along the unit direction: the time of
     /// impact at unit speed. Zero when it overlaps the body from the start.
     pub distance: f32,
@@ -168,10 +179,13 @@ pub struct QueryFilter<'a> {
     pub include_static: bool,
     /// Whether kinematic bodies are seen (default true).
     pub include_kinematic: bool,
-    /// Whether sensors are seen (default true).
+    /// Whether sensors are seen (default true): sensor bodies, and the sensor children of
+    /// compounds.
     pub include_sensors: bool,
     /// When set, only bodies whose collision groups interact with these are seen, by the rule of
-    /// [`InteractionGroups::interacts_with`]; default `None` (groups ignored).
+    /// [`InteractionGroups::interacts_with`], and of a compound only the children whose own
+    /// groups (the child's, else the body's) interact with them too; default `None` (groups
+    /// ignored).
     pub groups: Option<InteractionGroups>,
     /// A last word on each body that passed the other tests: it is seen when this returns true.
     /// Called before the body's shape is tested, so it may be called for bodies the query then
@@ -271,6 +285,16 @@ impl<'a> QueryFilter<'a> {
                 .is_none_or(|predicate| predicate(handle, body))
     }
 
+    /// Whether the query sees collider `index` of a body it accepts: a compound's child that is
+    /// a sensor or whose own groups do not interact with the filter's is left out as a body
+    /// would be.
+    pub(crate) fn sees_collider(&self, colliders: &Colliders, index: u32) -> bool {
+        (self.include_sensors || !colliders.is_sensor(index))
+            && self
+                .groups
+                .is_none_or(|groups| groups.interacts_with(colliders.groups(index)))
+    }
+
     fn includes_mut(&mut self, body_type: BodyType) -> &mut bool {
         match body_type {
             BodyType::Dynamic => &mut self.include_dynamic,
@@ -301,18 +325,25 @@ fn validated_pose(pose: &Pose) -> Result<Pose> {
     Ok(Pose::new(pose.position, rotation))
 }
 
-/// The convex parts of a shape with their world poses: the shape itself, or each child of a
-/// compound.
-fn convex_parts(shape: &Shape, pose: Pose) -> impl Iterator<Item = (&Shape, Pose)> {
+/// The convex parts of a shape with their collider indices and world poses: the shape itself
+/// (0), or each child of a compound.
+fn convex_parts(shape: &Shape, pose: Pose) -> impl Iterator<Item = (u32, &Shape, Pose)> {
     let (whole, children) = match shape {
         Shape::Compound(compound) => (None, compound.children()),
-        _ => (Some((shape, pose)), &[][..]),
+        _ => (Some((0, shape, pose)), &[][..]),
     };
     whole.into_iter().chain(
-        children
-            .iter()
-            .map(move |child| (&child.shape, pose.mul_pose(&child.pose))),
+        (0..)
+            .zip(children)
+            .map(move |(index, child)| (index, &child.shape, pose.mul_pose(&child.pose))),
     )
+}
+
+/// Which part of a body a query met: its collider, and on a mesh or heightfield the triangle.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct HitPart {
+    pub collider: u32,
+    pub triangle: Option<u32>,
 }
 
 /// The point of a bounded convex shape at `pose` farthest along world `direction`; `None` for a

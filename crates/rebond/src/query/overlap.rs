@@ -10,7 +10,7 @@ use crate::shape::Shape;
 
 /// Whether `point` (world) lies inside or on `shape` placed at `pose`.
 pub(crate) fn shape_contains_point(shape: &Shape, pose: &Pose, point: Vec3) -> bool {
-    convex_parts(shape, *pose).any(|(part, part_pose)| {
+    convex_parts(shape, *pose).any(|(_, part, part_pose)| {
         let local = part_pose.inverse_transform_point(point);
         match part {
             Shape::Sphere(sphere) => local.length_squared() <= sphere.radius() * sphere.radius(),
@@ -48,17 +48,17 @@ pub(crate) fn shapes_overlap(
         (true, true) => return false,
         (true, false) => {
             return convex_parts(shape_b, *pose_b)
-                .any(|(part, part_pose)| part_overlaps_mesh(shape_a, pose_a, part, &part_pose))
+                .any(|(_, part, part_pose)| part_overlaps_mesh(shape_a, pose_a, part, &part_pose))
         }
         (false, true) => {
             return convex_parts(shape_a, *pose_a)
-                .any(|(part, part_pose)| part_overlaps_mesh(shape_b, pose_b, part, &part_pose))
+                .any(|(_, part, part_pose)| part_overlaps_mesh(shape_b, pose_b, part, &part_pose))
         }
         (false, false) => {}
     }
-    convex_parts(shape_a, *pose_a).any(|(part_a, part_pose_a)| {
+    convex_parts(shape_a, *pose_a).any(|(_, part_a, part_pose_a)| {
         let bounds_a = part_a.aabb(&part_pose_a);
-        convex_parts(shape_b, *pose_b).any(|(part_b, part_pose_b)| {
+        convex_parts(shape_b, *pose_b).any(|(_, part_b, part_pose_b)| {
             bounds_a.overlaps(&part_b.aabb(&part_pose_b))
                 && convex_parts_overlap(part_a, &part_pose_a, part_b, &part_pose_b)
         })

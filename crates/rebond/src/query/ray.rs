@@ -6,7 +6,7 @@
 //! `leave` if hollow.
 
 use super::mesh::cast_ray_at_mesh;
-use super::{convex_parts, Ray};
+use super::{convex_parts, HitPart, Ray};
 use crate::math::{Pose, Vec3};
 use crate::shape::line::line_crossing;
 use crate::shape::Shape;
@@ -18,18 +18,34 @@ pub(crate) struct ShapeRayHit {
     pub distance: f32,
     /// Unit world normal facing the ray.
     pub normal: Vec3,
+    /// The collider and triangle hit.
+    pub part: HitPart,
 }
 
 /// The first point where `ray` (validated: unit direction) meets `shape` placed at `pose`, within
-/// the ray's maximum distance. A compound is hit at the nearest of its children's hits (the
-/// first child among equals), each child being solid or hollow as the ray says; a mesh or
-/// heightfield at its first triangle (see `query::mesh`).
-pub(crate) fn cast_ray_at_shape(shape: &Shape, pose: &Pose, ray: &Ray) -> Option<ShapeRayHit> {
+/// the ray's maximum distance. A compound is hit at the nearest of its children's hits for which
+/// `sees(child)` holds (the first child among equals), each child being solid or hollow as the
+/// ray says; a mesh or heightfield at its first triangle (see `query::mesh`).
+pub(crate) fn cast_ray_at_shape(
+    shape: &Shape,
+    pose: &Pose,
+    ray: &Ray,
+    sees: impl Fn(u32) -> bool,
+) -> Option<ShapeRayHit> {
     if shape.is_triangulated() {
         return cast_ray_at_mesh(shape, pose, ray);
     }
     convex_parts(shape, *pose)
-        .filter_map(|(part, part_pose)| cast_ray_at_convex(part, &part_pose, ray))
+        .filter(|&(collider, _, _)| sees(collider))
+        .filter_map(|(collider, part, part_pose)| {
+            cast_ray_at_convex(part, &part_pose, ray).map(|hit| ShapeRayHit {
+                part: HitPart {
+                    collider,
+                    triangle: None,
+                },
+                ..hit
+            })
+        })
         .reduce(|best, hit| {
             if hit.distance < best.distance {
                 hit
@@ -60,6 +76,9 @@ fn cast_ray_at_convex(shape: &Shape, pose: &Pose, ray: &Ray) -> Option<ShapeRayH
     } else {
         return None;
     };
-    (distance.is_finite() && distance <= ray.max_distance)
-        .then_some(ShapeRayHit { distance, normal })
+    (distance.is_finite() && distance <= ray.max_distance).then_some(ShapeRayHit {
+        distance,
+        normal,
+        part: HitPart::default(),
+    })
 }

@@ -10,7 +10,7 @@
 //! `A − B` along GJK's direction), which keeps every step short of the contact. A part that
 //! reaches a halfspace is solved in closed form from its deepest point.
 
-use super::{convex_parts, world_support, PlacedHalfspace};
+use super::{convex_parts, world_support, HitPart, PlacedHalfspace};
 use crate::collision::gjk::{self, SupportPoint};
 use crate::collision::{epa, PosedCore, SupportMap};
 use crate::math::{Aabb, Pose, Vec3};
@@ -62,11 +62,17 @@ pub(crate) struct Sweep<'a> {
 }
 
 /// The first contact of the sweep (a shape that is not a mesh) with the mesh or heightfield
-/// `target` at `target_pose`: each convex part against each triangle near its path.
-fn cast_shape_at_mesh(sweep: &Sweep, target: &Shape, target_pose: &Pose) -> Option<CastHit> {
+/// `target` at `target_pose`: each convex part against each triangle near its path; with the
+/// triangle touched.
+fn cast_shape_at_mesh(
+    sweep: &Sweep,
+    target: &Shape,
+    target_pose: &Pose,
+) -> Option<(CastHit, HitPart)> {
     let mut best: Option<CastHit> = None;
+    let mut best_triangle = 0;
     let to_local = target_pose.inverse();
-    for (part, part_pose) in convex_parts(sweep.shape, sweep.pose) {
+    for (_, part, part_pose) in convex_parts(sweep.shape, sweep.pose) {
         let local_pose = to_local.mul_pose(&part_pose);
         let local_direction = to_local.transform_vector(sweep.direction);
         let reach = best.map_or(sweep.max_distance, |hit| hit.distance);
@@ -108,10 +114,17 @@ fn cast_shape_at_mesh(sweep: &Sweep, target: &Shape, target_pose: &Pose) -> Opti
                 && best.is_none_or(|best| hit.distance < best.distance)
             {
                 best = Some(hit);
+                best_triangle = index;
             }
         }
     }
-    best
+    best.map(|hit| {
+        let part = HitPart {
+            collider: 0,
+            triangle: Some(best_triangle),
+        };
+        (hit, part)
+    })
 }
 
 /// The box holding `shape` along its whole path from `pose`, `distance` metres along `direction`.
@@ -129,37 +142,47 @@ fn swept_aabb(shape: &Shape, pose: &Pose, direction: Vec3, distance: f32) -> Aab
     )
 }
 
-/// The first contact of the sweep with `target` at `target_pose`, within the sweep's distance.
-/// Compounds on either side are taken part by part (the first pair among equally near ones); a
-/// mesh or heightfield target triangle by triangle (`query::mesh`). A swept mesh or heightfield
-/// meets nothing.
+/// The first contact of the sweep with `target` at `target_pose`, within the sweep's distance,
+/// with the target's collider and triangle touched. Compounds on either side are taken part by
+/// part (the first pair among equally near ones), a target's children only where
+/// `sees(child)` holds; a mesh or heightfield target triangle by triangle (`query::mesh`). A
+/// swept mesh or heightfield meets nothing.
 pub(crate) fn cast_shape_at_shape(
     sweep: &Sweep,
     target: &Shape,
     target_pose: &Pose,
-) -> Option<CastHit> {
+    sees: impl Fn(u32) -> bool,
+) -> Option<(CastHit, HitPart)> {
     if sweep.shape.is_triangulated() {
         return None;
     }
     if target.is_triangulated() {
         return cast_shape_at_mesh(sweep, target, target_pose);
     }
-    let mut best: Option<CastHit> = None;
-    for (part, part_pose) in convex_parts(sweep.shape, sweep.pose) {
-        for (target_part, target_part_pose) in convex_parts(target, *target_pose) {
+    let mut best: Option<(CastHit, HitPart)> = None;
+    for (_, part, part_pose) in convex_parts(sweep.shape, sweep.pose) {
+        for (collider, target_part, target_part_pose) in convex_parts(target, *target_pose) {
+            if !sees(collider) {
+                continue;
+            }
+            let best_distance = best.map(|(hit, _)| hit.distance);
             let part_sweep = Sweep {
                 shape: part,
                 pose: part_pose,
                 direction: sweep.direction,
-                max_distance: best.map_or(sweep.max_distance, |hit| hit.distance),
+                max_distance: best_distance.unwrap_or(sweep.max_distance),
             };
             let path = swept_aabb(part, &part_pose, sweep.direction, part_sweep.max_distance);
             if !path.overlaps(&target_part.aabb(&target_part_pose)) {
                 continue;
             }
             if let Some(hit) = cast_convex(&part_sweep, target_part, &target_part_pose) {
-                if best.is_none_or(|best| hit.distance < best.distance) {
-                    best = Some(hit);
+                if best_distance.is_none_or(|distance| hit.distance < distance) {
+                    let part = HitPart {
+                        collider,
+                        triangle: None,
+                    };
+                    best = Some((hit, part));
                 }
             }
         }

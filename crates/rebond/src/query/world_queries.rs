@@ -4,12 +4,13 @@
 use std::ops::ControlFlow;
 
 use super::overlap::{shape_contains_point, shapes_overlap};
-use super::ray::cast_ray_at_shape;
+use super::ray::{cast_ray_at_shape, ShapeRayHit};
 use super::shape_cast::{cast_shape_at_shape, Sweep};
-use super::{unit_direction, validated_pose, QueryFilter, Ray, RayHit, ShapeHit};
+use super::{convex_parts, unit_direction, validated_pose, QueryFilter, Ray, RayHit, ShapeHit};
 use crate::body::{BodyHandle, RigidBody};
 use crate::collision::dynamic_tree::{DynamicTree, ProxyId};
 use crate::error::{check_non_negative_or_infinite, Error, ErrorKind, Result};
+use crate::filter::Colliders;
 use crate::math::{Aabb, Pose, Vec3};
 use crate::shape::Shape;
 use crate::world::World;
@@ -39,13 +40,13 @@ impl World {
         let ray = ray.validated()?;
         let mut nearest: Option<RayHit> = None;
         self.visit_ray(&ray, filter, |handle, body| {
-            let Some(hit) = cast_ray_at_shape(&body.shape, &body.pose(), &ray) else {
+            let Some(hit) = cast_ray_at_body(body, &ray, filter) else {
                 return ControlFlow::Continue(f32::INFINITY);
             };
             let is_nearer =
                 nearest.is_none_or(|best| (hit.distance, handle) < (best.distance, best.body));
             if is_nearer {
-                nearest = Some(ray_hit(&ray, handle, hit.distance, hit.normal));
+                nearest = Some(ray_hit(&ray, handle, &hit));
             }
             ControlFlow::Continue(nearest.map_or(f32::INFINITY, |best| best.distance))
         })?;
@@ -66,8 +67,8 @@ impl World {
         hits.clear();
         let ray = ray.validated()?;
         self.visit_ray(&ray, filter, |handle, body| {
-            if let Some(hit) = cast_ray_at_shape(&body.shape, &body.pose(), &ray) {
-                hits.push(ray_hit(&ray, handle, hit.distance, hit.normal));
+            if let Some(hit) = cast_ray_at_body(body, &ray, filter) {
+                hits.push(ray_hit(&ray, handle, &hit));
             }
             ControlFlow::Continue(f32::INFINITY)
         })?;
@@ -84,7 +85,7 @@ impl World {
         let ray = ray.validated()?;
         let mut found = false;
         self.visit_ray(&ray, filter, |_, body| {
-            if cast_ray_at_shape(&body.shape, &body.pose(), &ray).is_some() {
+            if cast_ray_at_body(body, &ray, filter).is_some() {
                 found = true;
                 ControlFlow::Break(())
             } else {
@@ -144,7 +145,11 @@ impl World {
                     max_distance: reach,
                     ..sweep
                 };
-                let Some(hit) = cast_shape_at_shape(&body_sweep, &body.shape, &body.pose()) else {
+                let colliders = Colliders::of(body);
+                let sees = |collider| filter.sees_collider(&colliders, collider);
+                let Some((hit, part)) =
+                    cast_shape_at_shape(&body_sweep, &body.shape, &body.pose(), sees)
+                else {
                     return ControlFlow::Continue(reach);
                 };
                 let is_nearer =
@@ -152,6 +157,8 @@ impl World {
                 if is_nearer {
                     nearest = Some(ShapeHit {
                         body: handle,
+                        collider: part.collider,
+                        triangle: part.triangle,
                         distance: hit.distance,
                         point: hit.point,
                         normal: hit.normal,
@@ -180,7 +187,9 @@ impl World {
             return Err(Error::new("point", ErrorKind::NotFinite));
         }
         self.collect_overlaps(&Aabb::new(point, point), filter, bodies, |body| {
-            shape_contains_point(&body.shape, &body.pose(), point)
+            any_collider_seen(body, filter, |part, part_pose| {
+                shape_contains_point(part, part_pose, point)
+            })
         })
     }
 
@@ -242,7 +251,10 @@ impl World {
         let pose = validated_pose(pose)?;
         let bounds = shape.aabb(&pose);
         self.collect_overlaps(&bounds, filter, bodies, |body| {
-            body.aabb().overlaps(&bounds) && shapes_overlap(shape, &pose, &body.shape, &body.pose())
+            body.aabb().overlaps(&bounds)
+                && any_collider_seen(body, filter, |part, part_pose| {
+                    shapes_overlap(shape, &pose, part, part_pose)
+                })
         })
     }
 }
@@ -350,12 +362,35 @@ impl World {
     }
 }
 
-/// A [`RayHit`] on `body` at `distance` along the (validated) ray.
-fn ray_hit(ray: &Ray, body: BodyHandle, distance: f32, normal: Vec3) -> RayHit {
+/// The first point where `ray` (validated) meets a collider of `body` that `filter` sees.
+fn cast_ray_at_body(body: &RigidBody, ray: &Ray, filter: &QueryFilter) -> Option<ShapeRayHit> {
+    let colliders = Colliders::of(body);
+    cast_ray_at_shape(&body.shape, &body.pose(), ray, |collider| {
+        filter.sees_collider(&colliders, collider)
+    })
+}
+
+/// Whether `test(part, pose)` holds for some collider of `body` that `filter` sees, at its world
+/// pose: the body's shape, or a compound's child.
+fn any_collider_seen(
+    body: &RigidBody,
+    filter: &QueryFilter,
+    test: impl Fn(&Shape, &Pose) -> bool,
+) -> bool {
+    let colliders = Colliders::of(body);
+    convex_parts(&body.shape, body.pose()).any(|(collider, part, part_pose)| {
+        filter.sees_collider(&colliders, collider) && test(part, &part_pose)
+    })
+}
+
+/// A [`RayHit`] on `body` along the (validated) ray.
+fn ray_hit(ray: &Ray, body: BodyHandle, hit: &ShapeRayHit) -> RayHit {
     RayHit {
         body,
-        point: ray.point_at(distance),
-        normal,
-        distance,
+        collider: hit.part.collider,
+        triangle: hit.part.triangle,
+        point: ray.point_at(hit.distance),
+        normal: hit.normal,
+        distance: hit.distance,
     }
 }

@@ -10,7 +10,8 @@ use crate::shape::{CompoundChild, Shape};
 use crate::world::WorldSettings;
 
 use super::format::{
-    BodyEntry, ChildEntry, JointEntry, MotorEntry, PathEntry, SceneFile, ShapeEntry, ShapeKind,
+    BodyEntry, ChildEntry, GroupsEntry, JointEntry, MotorEntry, PathEntry, SceneFile, ShapeEntry,
+    ShapeKind,
 };
 use super::meshes::{heightfield, trimesh, MeshFiles};
 use super::{join, LoadError, SceneError, Timestep, DEFAULT_TIMESTEP};
@@ -223,10 +224,7 @@ pub(super) fn body_desc(
         desc.sensor = value;
     }
     if let Some(groups) = &entry.collision_groups {
-        desc.collision_groups = InteractionGroups::new(
-            groups.memberships.unwrap_or(u32::MAX),
-            groups.filter.unwrap_or(u32::MAX),
-        );
+        desc.collision_groups = interaction_groups(groups);
     }
     if let Some(entry) = &entry.path {
         desc.path = Some(path(entry, &field("path"), desc.position, desc.rotation)?);
@@ -258,6 +256,14 @@ fn path(
         points.push(PathPoint::new(time, position, rotation));
     }
     Ok(KinematicPath::new(points).looping(entry.looping.unwrap_or(false)))
+}
+
+/// The groups of a `collision_groups` entry: each mask all ones when left out.
+fn interaction_groups(entry: &GroupsEntry) -> InteractionGroups {
+    InteractionGroups::new(
+        entry.memberships.unwrap_or(u32::MAX),
+        entry.filter.unwrap_or(u32::MAX),
+    )
 }
 
 /// The engine shape of a shape entry; errors are placed under `place` (`bodies[i].shape`).
@@ -376,6 +382,9 @@ fn compound_child(
     if let Some(value) = entry.rolling_resistance {
         child.rolling_resistance = Some(scalar(&format!("{place}.rolling_resistance"), value)?);
     }
+    child.name.clone_from(&entry.name);
+    child.sensor = entry.sensor;
+    child.collision_groups = entry.collision_groups.as_deref().map(interaction_groups);
     Ok(child)
 }
 

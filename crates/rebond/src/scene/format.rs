@@ -285,6 +285,9 @@ pub(super) struct ChildEntry {
     pub(super) restitution: Option<f64>,
     /// Extension of the contract: the child's rolling resistance coefficient.
     pub(super) rolling_resistance: Option<f64>,
+    pub(super) name: Option<String>,
+    pub(super) sensor: Option<bool>,
+    pub(super) collision_groups: Option<JsonObject<GroupsEntry>>,
 }
 
 /// The joint types of the format.

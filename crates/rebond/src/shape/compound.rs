@@ -114,7 +114,7 @@ pub struct Compound {
 impl Compound {
     /// A compound of at least one child. Child poses must be finite (their rotations are
     /// normalised here), their materials in range; a child may not be a compound or a
-    /// halfspace; names are unique. Errors name the field as `children[i].position`,
+    /// halfspace; names are not empty and unique. Errors name the field as `children[i].position`,
     /// `children[i].rotation`, `children[i].friction`, `children[i].restitution`,
     /// `children[i].rolling_resistance`, `children[i].shape` or `children[i].name`.
     pub fn new(mut children: Vec<CompoundChild>) -> Result<Self> {
@@ -160,15 +160,20 @@ impl Compound {
             let Some(name) = &child.name else {
                 continue;
             };
-            if children[..index]
+            let reason = if name.is_empty() {
+                "a child's name may not be empty"
+            } else if children[..index]
                 .iter()
                 .any(|earlier| earlier.name.as_ref() == Some(name))
             {
-                return Err(Error::new(
-                    format!("children[{index}].name"),
-                    ErrorKind::InvalidCompound("two children of a compound share a name"),
-                ));
-            }
+                "two children of a compound share a name"
+            } else {
+                continue;
+            };
+            return Err(Error::new(
+                format!("children[{index}].name"),
+                ErrorKind::InvalidCompound(reason),
+            ));
         }
         Ok(Self { children })
     }

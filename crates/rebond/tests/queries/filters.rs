@@ -180,6 +180,8 @@ fn bad_inputs_are_errors_naming_the_field() {
         assert_eq!(world.cast_ray_any(&ray, &filter).unwrap_err(), error);
         let mut hits = vec![RayHit {
             body: world.bodies().next().unwrap().0,
+            collider: 0,
+            triangle: None,
             point: Vec3::ZERO,
             normal: Vec3::X,
             distance: 0.0,
