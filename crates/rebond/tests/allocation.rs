@@ -11,7 +11,9 @@ use std::cell::Cell;
 use common::{add_ground, unit_box, world, DT, G};
 use rebond::internals::collision::epa;
 use rebond::internals::collision::PosedCore;
-use rebond::{BodyDesc, BodyHandle, JointDesc, Motor, Pose, Quat, Shape, Vec3, World};
+use rebond::{
+    BodyDesc, BodyHandle, CompoundChild, JointDesc, Motor, Pose, Quat, Shape, Vec3, World,
+};
 
 /// Counts the allocations of the calling thread, so a test can prove a step allocates nothing
 /// while other tests run on other threads.
@@ -90,11 +92,25 @@ fn a_steady_step_with_events_and_sensors_allocates_nothing() {
         .unwrap()
         .set_contact_force_threshold(0.0)
         .unwrap();
-    for index in 0..6 {
+    for index in 0..5 {
         world
             .add_body(unit_box(Vec3::new(index as f32 * 1.5, 0.5, 0.0)).can_sleep(false))
             .unwrap();
     }
+    // Last in the row, a box resting on the ground with a sensor child (a foot) in it.
+    let foot = CompoundChild::new(
+        Shape::sphere(0.2).unwrap(),
+        Pose::from_position(Vec3::new(0.0, -0.45, 0.0)),
+    )
+    .sensor(true);
+    let torso = CompoundChild::new(Shape::cuboid(Vec3::splat(0.5)).unwrap(), Pose::IDENTITY);
+    world
+        .add_body(
+            BodyDesc::dynamic(Shape::compound(vec![torso, foot]).unwrap())
+                .position(Vec3::new(7.5, 0.5, 0.0))
+                .can_sleep(false),
+        )
+        .unwrap();
     let gate = world
         .add_body(
             BodyDesc::kinematic(Shape::cuboid(Vec3::new(0.25, 1.0, 1.0)).unwrap())

@@ -1150,3 +1150,37 @@ fn bad_paths_are_refused_at_their_place() {
         assert_refused(name, &scene, place, message);
     }
 }
+
+#[test]
+fn bad_collider_fields_of_compound_children_are_refused() {
+    let children = |second: &str| {
+        scene_with(&format!(
+            r#"{{"shape": {{"type": "compound", "children": [
+                {{{BALL}, "name": "torso"}}, {{{BALL}, {second}}}]}}}}"#
+        ))
+    };
+    assert_refused(
+        "duplicate_child_name",
+        &children(r#""name": "torso""#),
+        "bodies[1].shape.children[1].name",
+        "share a name",
+    );
+    assert_refused(
+        "empty_child_name",
+        &children(r#""name": """#),
+        "bodies[1].shape.children[1].name",
+        "may not be empty",
+    );
+    assert_refused(
+        "child_sensor_not_a_boolean",
+        &children(r#""sensor": 1"#),
+        "bodies[1].shape.children[1].sensor",
+        "invalid type: integer `1`",
+    );
+    assert_refused(
+        "negative_child_groups",
+        &children(r#""collision_groups": {"memberships": -1}"#),
+        "bodies[1].shape.children[1].collision_groups.memberships",
+        "invalid value: integer `-1`",
+    );
+}

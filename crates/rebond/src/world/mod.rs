@@ -18,7 +18,7 @@ use crate::error::{
     check_length, check_non_negative, check_positive, check_range, Error, ErrorKind, Result,
 };
 use crate::events::{ContactEvent, ContactForceEvent, EventTracker, SensorEvent};
-use crate::filter::{ordered, IgnoredPairs, InteractionGroups};
+use crate::filter::{ordered, Colliders, IgnoredPairs, InteractionGroups};
 use crate::island::Islands;
 use crate::joint::{JointHandle, JointSet};
 use crate::limits::{MAX_GRAVITY, MAX_SPEED, MAX_TIMESTEP, MIN_TIMESTEP};
@@ -422,10 +422,16 @@ impl World {
         if let Some(proxy) = self.bodies.get(handle.0).and_then(|body| body.proxy) {
             self.broad_phase.refilter(proxy);
         }
+        // A pair whose compounds filter their children is rebuilt: a child may take the new
+        // groups.
         self.drop_contacts(|bodies, a, b| match (bodies.get(a.0), bodies.get(b.0)) {
-            (Some(body_a), Some(body_b)) => !body_a
-                .collision_groups
-                .interacts_with(body_b.collision_groups),
+            (Some(body_a), Some(body_b)) => {
+                !body_a
+                    .collision_groups
+                    .interacts_with(body_b.collision_groups)
+                    || ((a == handle || b == handle)
+                        && Colliders::of(body_a).need_filtering(&Colliders::of(body_b)))
+            }
             _ => true,
         });
         Ok(())
