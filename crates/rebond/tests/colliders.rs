@@ -396,3 +396,53 @@ fn scene_files_give_children_names_sensors_and_groups() {
         );
     }
 }
+
+#[test]
+fn a_fast_body_passes_a_sensor_child_unslowed_and_stops_on_a_solid_one() {
+    // A static compound: a thin sensor plate (collider 0) at y = 0 over a solid slab (collider 1)
+    // whose top is at y = −3. A ball shot down at 60 m/s moves 1 m a step, ten times its radius,
+    // so the continuous pass sweeps it: through the plate it keeps falling freely, and the slab
+    // stops it.
+    let radius = 0.1;
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    let plate = CompoundChild::new(
+        Shape::cuboid(Vec3::new(1.0, 0.01, 1.0)).unwrap(),
+        Pose::IDENTITY,
+    )
+    .sensor(true);
+    let slab = CompoundChild::new(
+        Shape::cuboid(Vec3::new(1.0, 0.05, 1.0)).unwrap(),
+        Pose::from_position(Vec3::new(0.0, -3.05, 0.0)),
+    );
+    world
+        .add_body(BodyDesc::static_body(
+            Shape::compound(vec![plate, slab]).unwrap(),
+        ))
+        .unwrap();
+    let (height, speed) = (1.5, 60.0);
+    let ball = world
+        .add_body(
+            BodyDesc::dynamic(Shape::sphere(radius).unwrap())
+                .position(Vec3::new(0.0, height, 0.0))
+                .linear_velocity(Vec3::new(0.0, -speed, 0.0)),
+        )
+        .unwrap();
+    for _ in 0..3 {
+        world.step(DT).unwrap();
+    }
+    // Three steps: past the plate, 1.5 m above the slab's top. Free fall,
+    // `y = y₀ − v t − g t²/2`, to within the integrator's `g t h / 2` (h ≤ DT) and 0.1 mm.
+    let time = 3.0 * DT;
+    let expected = height - speed * time - 0.5 * G * time * time;
+    let y = world.body(ball).unwrap().position().y;
+    assert!(
+        (y - expected).abs() < 0.5 * G * time * DT + 1e-4,
+        "{y} against {expected}"
+    );
+    for _ in 0..60 {
+        world.step(DT).unwrap();
+    }
+    // Stopped by the slab, resting on its top: 0.1 mm as the resting ball above.
+    let y = world.body(ball).unwrap().position().y;
+    assert!((y - (-3.0 + radius)).abs() < 1e-4, "the ball ended at {y}");
+}

@@ -119,13 +119,16 @@ enum Target<'a> {
 /// solver cannot undo: the pair ends the step deeper than [`ImpactTolerances::tolerated_depth`],
 /// or on the other side of the part it met. A part that already touches the other at the step's
 /// start and ends deep in it or past it all the same (it turned into it with a side its contact
-/// did not see) meets it at `t = 0`. `None` when nothing needs stopping.
+/// did not see) meets it at `t = 0`. Only the colliders `i` of A and `j` of B (compound
+/// children, or 0) for which `touch(i, j)` holds are looked at: the others make no contact. `None`
+/// when nothing needs stopping.
 pub(crate) fn time_of_impact(
     a: &Shape,
     motion_a: &Motion,
     b: &Shape,
     motion_b: &Motion,
     tolerances: ImpactTolerances,
+    touch: impl Fn(u32, u32) -> bool,
 ) -> Option<Impact> {
     if a.is_triangulated() || !a.is_bounded() {
         return None;
@@ -136,7 +139,11 @@ pub(crate) fn time_of_impact(
         Impact::keep_earliest(&mut earliest, impact);
     };
     let pose_b = motion_b.pose_at(1.0);
-    for (part, part_pose) in local_parts(a) {
+    for (collider, part, part_pose) in local_parts(a) {
+        // A shape that is not a compound is the other body's collider 0.
+        if !matches!(b, Shape::Compound(_)) && !touch(collider, 0) {
+            continue;
+        }
         match b {
             Shape::Halfspace(halfspace) => consider(
                 part,
@@ -157,7 +164,10 @@ pub(crate) fn time_of_impact(
             }
             _ => {
                 let path = motion_a.swept_bounds(part, &part_pose, &Pose::IDENTITY);
-                for (target, target_pose) in local_parts(b) {
+                for (target_collider, target, target_pose) in local_parts(b) {
+                    if !touch(collider, target_collider) {
+                        continue;
+                    }
                     let target_path = motion_b.swept_bounds(target, &target_pose, &Pose::IDENTITY);
                     if !path.overlaps(&target_path) {
                         continue;
@@ -174,15 +184,17 @@ pub(crate) fn time_of_impact(
     earliest
 }
 
-/// The convex parts of a bounded shape with their poses in its body frame.
-fn local_parts(shape: &Shape) -> impl Iterator<Item = (&Shape, Pose)> {
+/// The convex parts of a bounded shape with their collider indices and poses in its body frame.
+fn local_parts(shape: &Shape) -> impl Iterator<Item = (u32, &Shape, Pose)> {
     let (whole, children) = match shape {
         Shape::Compound(compound) => (None, compound.children()),
-        _ => (Some((shape, Pose::IDENTITY)), &[][..]),
+        _ => (Some((0, shape, Pose::IDENTITY)), &[][..]),
     };
-    whole
-        .into_iter()
-        .chain(children.iter().map(|child| (&child.shape, child.pose)))
+    whole.into_iter().chain(
+        (0..)
+            .zip(children)
+            .map(|(index, child)| (index, &child.shape, child.pose)),
+    )
 }
 
 /// The separation of part A (world pose `pose_a`) from `target` at fraction `t`, m (a lower

@@ -12,6 +12,7 @@ use super::contact_update::pair_interacts;
 use super::World;
 use crate::body::{BodyHandle, RigidBody};
 use crate::collision::time_of_impact::{time_of_impact, Impact, ImpactTolerances, Motion};
+use crate::filter::Colliders;
 use crate::math::{Pose, Vec3};
 use crate::solver::FastMotion;
 
@@ -89,12 +90,14 @@ impl World {
                         return true;
                     }
                     let other_motion = motion_of(other_slot, other);
+                    let colliders = (Colliders::of(body), Colliders::of(other));
                     let impact = time_of_impact(
                         &body.shape,
                         &motion,
                         &other.shape,
                         &other_motion,
                         tolerances,
+                        |a, b| colliders.0.touch(a, &colliders.1, b),
                     );
                     Impact::keep_earliest(&mut earliest, impact);
                     true
