@@ -18,10 +18,11 @@
 //!
 //! Events are per collider pair: a compound resting on the floor on two of its children makes two
 //! contact events, each naming its child. Every list is sorted by the pair's handles and then its
-//! colliders, so it does not depend on anything but the bodies and their history; the buffers are reused from step to step, so a steady scene allocates
-//! nothing. Sleeping pairs keep their state: a body asleep on the floor stays touching it, a body
-//! asleep inside a sensor stays inside. Their pairs are parked apart while no body of theirs is
-//! awake, so that a step's event pass costs what is awake.
+//! colliders, so it does not depend on anything but the bodies and their history; the buffers
+//! are reused from step to step, so a steady scene allocates nothing. Sleeping pairs keep their
+//! state: a body asleep on the floor stays touching it, a body asleep inside a sensor stays
+//! inside. Their pairs are parked apart while no body of theirs is awake, so that a step's event
+//! pass costs what is awake.
 //!
 //! ```
 //! use rebond::{BodyDesc, ContactEventKind, SensorEventKind, Shape, Vec3, World, WorldSettings};
@@ -107,8 +108,8 @@ pub struct ContactForceEvent {
     /// The collider of B: its compound child's index, or 0.
     pub collider_b: u32,
     /// The normal force on B's collider from A's, world, newtons: `Σ λ_n n / h` over the
-    /// colliders' manifold points, with `λ_n` the normal impulse of the step's last substep and `h = dt / substeps`
-    /// (a body of mass m resting on the floor gives `m g`).
+    /// colliders' manifold points, with `λ_n` the normal impulse of the step's last substep and
+    /// `h = dt / substeps` (a body of mass m resting on the floor on one collider gives `m g`).
     pub total_force: Vec3,
     /// `Σ λ_n / h`, newtons: the sum of the points' force magnitudes, at least `|total_force|`.
     pub total_force_magnitude: f32,
