@@ -132,8 +132,13 @@ fn everything() -> Everything {
             Pose::from_position(-0.4 * Vec3::X),
         )
         .rolling_resistance(0.1)
-        .friction(0.9),
-        CompoundChild::new(hull(), Pose::from_position(0.4 * Vec3::X)).restitution(0.7),
+        .friction(0.9)
+        .name("foot")
+        .sensor(true)
+        .user_data(7),
+        CompoundChild::new(hull(), Pose::from_position(0.4 * Vec3::X))
+            .restitution(0.7)
+            .collision_groups(InteractionGroups::new(0b10, 0b01)),
     ])
     .unwrap();
     add(
@@ -337,6 +342,7 @@ fn a_world_rebuilt_from_its_snapshot_keeps_its_bodies_joints_and_handles() {
     let restored = World::load_state_as_other_build(&bytes).unwrap();
     assert_eq!(restored.settings(), world.settings());
     assert_eq!(restored.body_count(), world.body_count());
+    let mut compounds = 0;
     for &handle in &saved.bodies {
         let (before, after) = (world.body(handle).unwrap(), restored.body(handle).unwrap());
         assert_eq!(
@@ -360,7 +366,27 @@ fn a_world_rebuilt_from_its_snapshot_keeps_its_bodies_joints_and_handles() {
             after.shape().aabb(&Pose::IDENTITY),
             before.shape().aabb(&Pose::IDENTITY)
         );
+        // A compound's colliders keep their own fields.
+        if let (Shape::Compound(after), Shape::Compound(before)) = (after.shape(), before.shape()) {
+            let fields = |child: &CompoundChild| {
+                (
+                    child.name.clone(),
+                    child.sensor,
+                    child.collision_groups,
+                    child.user_data,
+                    child.friction,
+                    child.restitution,
+                    child.rolling_resistance,
+                )
+            };
+            let after: Vec<_> = after.children().iter().map(fields).collect();
+            let before: Vec<_> = before.children().iter().map(fields).collect();
+            assert_eq!(after, before);
+            assert_eq!(before[0].0.as_deref(), Some("foot"));
+            compounds += 1;
+        }
     }
+    assert_eq!(compounds, 1);
     assert_eq!(restored.joints().count(), world.joints().count());
     for &handle in &saved.joints {
         let (before, after) = (

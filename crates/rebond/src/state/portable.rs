@@ -171,6 +171,11 @@ struct ChildV1 {
     friction: Option<f32>,
     restitution: Option<f32>,
     rolling_resistance: Option<f32>,
+    /// The collider's own sensor flag, groups (memberships, filter), name and user data.
+    sensor: Option<bool>,
+    collision_groups: Option<(u32, u32)>,
+    name: Option<String>,
+    user_data: u128,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -500,6 +505,12 @@ fn shape_record(shape: &Shape) -> ShapeV1 {
                         friction: child.friction,
                         restitution: child.restitution,
                         rolling_resistance: child.rolling_resistance,
+                        sensor: child.sensor,
+                        collision_groups: child
+                            .collision_groups
+                            .map(|groups| (groups.memberships, groups.filter)),
+                        name: child.name.clone(),
+                        user_data: child.user_data,
                     }),
                     _ => None,
                 })
@@ -544,6 +555,12 @@ fn build_shape(record: &ShapeV1) -> crate::Result<Shape> {
                         friction: child.friction,
                         restitution: child.restitution,
                         rolling_resistance: child.rolling_resistance,
+                        sensor: child.sensor,
+                        collision_groups: child.collision_groups.map(|(memberships, filter)| {
+                            InteractionGroups::new(memberships, filter)
+                        }),
+                        name: child.name.clone(),
+                        user_data: child.user_data,
                     })
                 })
                 .collect::<crate::Result<Vec<_>>>()?;
