@@ -154,15 +154,41 @@ pub(crate) struct ColliderPair {
 }
 
 /// One collider pair's share of a step's contacts: its normal impulse summed over its manifolds,
-/// N·s, the same weighted by their normals, and whether its surfaces meet. `order` is the first
-/// contact's place in the step's list, so sums keep the contacts' order.
+/// N·s, the same weighted by their normals, and whether its surfaces meet.
 #[derive(Debug, Clone, Copy)]
 struct ColliderSum {
-    pair: ColliderPair,
-    order: u32,
     impulse: f32,
     impulse_vector: Vec3,
     surfaces_meet: bool,
+}
+
+impl ColliderSum {
+    const EMPTY: Self = Self {
+        impulse: 0.0,
+        impulse_vector: Vec3::ZERO,
+        surfaces_meet: false,
+    };
+
+    /// Adds one manifold's impulses.
+    fn add(&mut self, contact: &Contact) {
+        let impulse: f32 = contact.normal_impulses[..contact.manifold.len()]
+            .iter()
+            .sum();
+        self.impulse += impulse;
+        self.impulse_vector += impulse * contact.manifold.normal;
+        self.surfaces_meet |= contact
+            .manifold
+            .points()
+            .iter()
+            .any(|p| p.separation <= 0.0);
+    }
+
+    /// Adds the sum of other manifolds of the same collider pair.
+    fn merge(&mut self, other: &Self) {
+        self.impulse += other.impulse;
+        self.impulse_vector += other.impulse_vector;
+        self.surfaces_meet |= other.surfaces_meet;
+    }
 }
 
 /// The event lists and the state they are computed from, reused from step to step.
@@ -189,9 +215,11 @@ pub(crate) struct EventTracker {
     /// Scratch of [`park`](Self::park) and [`unpark`](Self::unpark): the pairs and reports moving.
     moving: Vec<ColliderPair>,
     moving_forces: Vec<ContactForceEvent>,
-    /// Scratch of [`update_contacts`](Self::update_contacts): the step's sums per collider pair.
+    /// Scratch of [`update_contacts`](Self::update_contacts): one body pair's sums per collider
+    /// pair, with the place of its first contact among the pair's, so sums keep the contacts'
+    /// order.
     #[cfg_attr(feature = "serde", serde(skip))]
-    sums: Vec<ColliderSum>,
+    sums: Vec<(ColliderPair, u32, ColliderSum)>,
     contact_events: Vec<ContactEvent>,
     force_events: Vec<ContactForceEvent>,
     sensor_events: Vec<SensorEvent>,
@@ -259,74 +287,61 @@ impl EventTracker {
         std::mem::swap(&mut self.touching, &mut self.previous_touching);
         self.touching.clear();
         self.force_events.clear();
-        self.sums.clear();
-        for (order, contact) in (0..).zip(contacts) {
-            let key = contact.key;
-            let pair = ColliderPair {
-                a: key.body_a,
-                b: key.body_b,
-                collider_a: collider_of(bodies, key.body_a, key.child_a),
-                collider_b: collider_of(bodies, key.body_b, key.child_b),
-            };
-            let impulse: f32 = contact.normal_impulses[..contact.manifold.len()]
+        for pair_contacts in
+            contacts.chunk_by(|x, y| (x.key.body_a, x.key.body_b) == (y.key.body_a, y.key.body_b))
+        {
+            let key = pair_contacts[0].key;
+            // Most pairs touch with their whole shapes (children 0): one collider pair, summed
+            // straight from the contacts.
+            if pair_contacts
                 .iter()
-                .sum();
-            let surfaces_meet = contact
-                .manifold
-                .points()
-                .iter()
-                .any(|p| p.separation <= 0.0);
-            match self.sums.last_mut() {
-                Some(last) if last.pair == pair => {
-                    last.impulse += impulse;
-                    last.impulse_vector += impulse * contact.manifold.normal;
-                    last.surfaces_meet |= surfaces_meet;
+                .all(|contact| contact.key.child_a == 0 && contact.key.child_b == 0)
+            {
+                let mut sum = ColliderSum::EMPTY;
+                for contact in pair_contacts {
+                    sum.add(contact);
                 }
-                _ => self.sums.push(ColliderSum {
-                    pair,
-                    order,
-                    impulse,
-                    impulse_vector: impulse * contact.manifold.normal,
-                    surfaces_meet,
-                }),
-            }
-        }
-        // Contacts come sorted by children; on a mesh, whose children are its manifolds, one
-        // collider pair's contacts may come apart: they are brought together, in contact order.
-        if !self.sums.is_sorted_by_key(|sum| sum.pair) {
-            self.sums.sort_unstable_by_key(|sum| (sum.pair, sum.order));
-        }
-        for group in self.sums.chunk_by(|x, y| x.pair == y.pair) {
-            let pair = group[0].pair;
-            let (mut impulse, mut impulse_vector, mut surfaces_meet) = (0.0, Vec3::ZERO, false);
-            for sum in group {
-                impulse += sum.impulse;
-                impulse_vector += sum.impulse_vector;
-                surfaces_meet |= sum.surfaces_meet;
-            }
-            if impulse <= 0.0 && !surfaces_meet {
+                let pair = ColliderPair {
+                    a: key.body_a,
+                    b: key.body_b,
+                    collider_a: 0,
+                    collider_b: 0,
+                };
+                self.add_touching(pair, &sum, bodies, h);
                 continue;
             }
-            self.touching.push(pair);
-            if impulse <= 0.0 {
-                continue;
+            // Compound children and mesh manifolds: sums per collider pair. Contacts come sorted
+            // by children; on a mesh, whose children are its manifolds, one collider pair's
+            // contacts may come apart: they are brought together, in contact order.
+            let mut sums = std::mem::take(&mut self.sums);
+            sums.clear();
+            for (order, contact) in (0..).zip(pair_contacts) {
+                let pair = ColliderPair {
+                    a: key.body_a,
+                    b: key.body_b,
+                    collider_a: collider_of(bodies, key.body_a, contact.key.child_a),
+                    collider_b: collider_of(bodies, key.body_b, contact.key.child_b),
+                };
+                match sums.last_mut() {
+                    Some((last, _, sum)) if *last == pair => sum.add(contact),
+                    _ => {
+                        let mut sum = ColliderSum::EMPTY;
+                        sum.add(contact);
+                        sums.push((pair, order, sum));
+                    }
+                }
             }
-            let threshold = [pair.a, pair.b]
-                .iter()
-                .filter_map(|handle| bodies.get(handle.0))
-                .map(|body| body.contact_force_threshold)
-                .fold(f32::INFINITY, f32::min);
-            let force = impulse / h;
-            if force > threshold {
-                self.force_events.push(ContactForceEvent {
-                    body_a: pair.a,
-                    body_b: pair.b,
-                    collider_a: pair.collider_a,
-                    collider_b: pair.collider_b,
-                    total_force: impulse_vector / h,
-                    total_force_magnitude: force,
-                });
+            if !sums.is_sorted_by_key(|(pair, ..)| *pair) {
+                sums.sort_unstable_by_key(|&(pair, order, _)| (pair, order));
             }
+            for group in sums.chunk_by(|x, y| x.0 == y.0) {
+                let mut total = ColliderSum::EMPTY;
+                for (.., sum) in group {
+                    total.merge(sum);
+                }
+                self.add_touching(group[0].0, &total, bodies, h);
+            }
+            self.sums = sums;
         }
         merge_into(&mut self.force_events, &self.parked_forces, force_pair);
         self.contact_events.clear();
@@ -344,6 +359,40 @@ impl EventTracker {
                 },
             });
         });
+    }
+
+    /// Lists `pair` as touching when its contacts' `sum` holds an impulse or its surfaces meet,
+    /// and reports its force when that exceeds the smaller threshold of its two bodies.
+    fn add_touching(
+        &mut self,
+        pair: ColliderPair,
+        sum: &ColliderSum,
+        bodies: &Arena<RigidBody>,
+        h: f32,
+    ) {
+        if sum.impulse <= 0.0 && !sum.surfaces_meet {
+            return;
+        }
+        self.touching.push(pair);
+        if sum.impulse <= 0.0 {
+            return;
+        }
+        let threshold = [pair.a, pair.b]
+            .iter()
+            .filter_map(|handle| bodies.get(handle.0))
+            .map(|body| body.contact_force_threshold)
+            .fold(f32::INFINITY, f32::min);
+        let force = sum.impulse / h;
+        if force > threshold {
+            self.force_events.push(ContactForceEvent {
+                body_a: pair.a,
+                body_b: pair.b,
+                collider_a: pair.collider_a,
+                collider_b: pair.collider_b,
+                total_force: sum.impulse_vector / h,
+                total_force_magnitude: force,
+            });
+        }
     }
 
     /// Parks the touching pairs and overlaps `(a, b)` for which `parks(a, b)` is true (no body
