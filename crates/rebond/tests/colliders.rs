@@ -505,3 +505,57 @@ fn a_compound_resting_on_two_children_reports_each_childs_contact_and_half_its_w
         assert!((share - 1.0).abs() < 0.01, "a box carries {share} of half");
     }
 }
+
+#[test]
+fn overlap_queries_name_the_colliders_they_find() {
+    // A static body of two colliders 2 m apart, a solid box (0) and a sensor ball (1), and a
+    // ball of one shape beside them: point and shape overlaps name each collider they find.
+    let mut world = World::new(rebond::WorldSettings::default()).unwrap();
+    let pair = Shape::compound(vec![
+        CompoundChild::new(
+            Shape::cuboid(Vec3::splat(0.5)).unwrap(),
+            Pose::from_position(-Vec3::X),
+        ),
+        CompoundChild::new(Shape::sphere(0.5).unwrap(), Pose::from_position(Vec3::X)).sensor(true),
+    ])
+    .unwrap();
+    let compound = world.add_body(BodyDesc::static_body(pair)).unwrap();
+    let single = world
+        .add_body(BodyDesc::static_body(Shape::sphere(0.5).unwrap()).position(3.0 * Vec3::X))
+        .unwrap();
+    let mut found = Vec::new();
+    let all = QueryFilter::new();
+    world
+        .colliders_containing_point(-Vec3::X, &all, &mut found)
+        .unwrap();
+    assert_eq!(found, [(compound, 0)]);
+    world
+        .colliders_containing_point(Vec3::X, &all, &mut found)
+        .unwrap();
+    assert_eq!(found, [(compound, 1)]);
+    world
+        .colliders_containing_point(Vec3::X, &all.exclude_sensors(), &mut found)
+        .unwrap();
+    assert!(found.is_empty());
+    // A box 4.2 m long along x, centred at x = 1, reaches from the solid box to the single ball.
+    let probe = Shape::cuboid(Vec3::new(2.1, 0.1, 0.1)).unwrap();
+    let at = Pose::from_position(Vec3::X);
+    world
+        .colliders_overlapping_shape(&probe, &at, &all, &mut found)
+        .unwrap();
+    assert_eq!(found, [(compound, 0), (compound, 1), (single, 0)]);
+    let mut bodies = Vec::new();
+    world
+        .bodies_overlapping_shape(&probe, &at, &all, &mut bodies)
+        .unwrap();
+    assert_eq!(bodies, [compound, single]);
+    let nan = Vec3::new(f32::NAN, 0.0, 0.0);
+    let error = world
+        .colliders_containing_point(nan, &all, &mut found)
+        .unwrap_err();
+    assert_eq!(
+        (error.field.as_str(), error.kind),
+        ("point", ErrorKind::NotFinite)
+    );
+    assert!(found.is_empty());
+}

@@ -186,11 +186,46 @@ impl World {
         if !point.is_finite() {
             return Err(Error::new("point", ErrorKind::NotFinite));
         }
-        self.collect_overlaps(&Aabb::new(point, point), filter, bodies, |body| {
-            any_collider_seen(body, filter, |part, part_pose| {
-                shape_contains_point(part, part_pose, point)
-            })
-        })
+        self.collect_overlaps(
+            &Aabb::new(point, point),
+            filter,
+            bodies,
+            |handle, body, found| {
+                if any_collider_seen(body, filter, |part, part_pose| {
+                    shape_contains_point(part, part_pose, point)
+                }) {
+                    found.push(handle);
+                }
+            },
+        )
+    }
+
+    /// The colliders whose shape holds `point`, as `(body, collider)` pairs into `colliders`
+    /// (cleared first), sorted: [`World::bodies_containing_point`] naming each collider (its
+    /// compound child's index, 0 for a body of one shape) the point is in.
+    ///
+    /// # Errors
+    /// As [`World::bodies_containing_point`]; `colliders` is then left empty.
+    pub fn colliders_containing_point(
+        &self,
+        point: Vec3,
+        filter: &QueryFilter,
+        colliders: &mut Vec<(BodyHandle, u32)>,
+    ) -> Result<()> {
+        colliders.clear();
+        if !point.is_finite() {
+            return Err(Error::new("point", ErrorKind::NotFinite));
+        }
+        self.collect_overlaps(
+            &Aabb::new(point, point),
+            filter,
+            colliders,
+            |handle, body, found| {
+                push_colliders_seen(handle, body, filter, found, |part, part_pose| {
+                    shape_contains_point(part, part_pose, point)
+                });
+            },
+        )
     }
 
     /// The bodies whose bounding box overlaps `aabb` (touching counts), into `bodies` (cleared
@@ -231,7 +266,11 @@ impl World {
                 return Err(Error::new(format!("aabb.min[{axis}]"), kind));
             }
         }
-        self.collect_overlaps(aabb, filter, bodies, |body| body.aabb().overlaps(aabb))
+        self.collect_overlaps(aabb, filter, bodies, |handle, body, found| {
+            if body.aabb().overlaps(aabb) {
+                found.push(handle);
+            }
+        })
     }
 
     /// The bodies whose shape overlaps `shape` placed at `pose` (touching counts), into `bodies`
@@ -250,11 +289,41 @@ impl World {
         bodies.clear();
         let pose = validated_pose(pose)?;
         let bounds = shape.aabb(&pose);
-        self.collect_overlaps(&bounds, filter, bodies, |body| {
-            body.aabb().overlaps(&bounds)
+        self.collect_overlaps(&bounds, filter, bodies, |handle, body, found| {
+            if body.aabb().overlaps(&bounds)
                 && any_collider_seen(body, filter, |part, part_pose| {
                     shapes_overlap(shape, &pose, part, part_pose)
                 })
+            {
+                found.push(handle);
+            }
+        })
+    }
+
+    /// The colliders that overlap `shape` placed at `pose` (touching counts), as
+    /// `(body, collider)` pairs into `colliders` (cleared first), sorted:
+    /// [`World::bodies_overlapping_shape`] naming each collider (its compound child's index, 0
+    /// for a body of one shape) that overlaps. A mesh is one collider; the triangles it overlaps
+    /// are not listed.
+    ///
+    /// # Errors
+    /// As [`World::bodies_overlapping_shape`]; `colliders` is then left empty.
+    pub fn colliders_overlapping_shape(
+        &self,
+        shape: &Shape,
+        pose: &Pose,
+        filter: &QueryFilter,
+        colliders: &mut Vec<(BodyHandle, u32)>,
+    ) -> Result<()> {
+        colliders.clear();
+        let pose = validated_pose(pose)?;
+        let bounds = shape.aabb(&pose);
+        self.collect_overlaps(&bounds, filter, colliders, |handle, body, found| {
+            if body.aabb().overlaps(&bounds) {
+                push_colliders_seen(handle, body, filter, found, |part, part_pose| {
+                    shapes_overlap(shape, &pose, part, part_pose)
+                });
+            }
         })
     }
 }
@@ -336,12 +405,12 @@ impl World {
     /// Pushes into `bodies` every body passing `filter` whose broad-phase box overlaps `aabb`
     /// and for which `test` holds, then sorts them by handle; as [`visit_ray`](Self::visit_ray)
     /// for a filter refused.
-    fn collect_overlaps(
+    fn collect_overlaps<T: Ord>(
         &self,
         aabb: &Aabb,
         filter: &QueryFilter,
-        bodies: &mut Vec<BodyHandle>,
-        test: impl Fn(&RigidBody) -> bool,
+        found: &mut Vec<T>,
+        mut visit: impl FnMut(BodyHandle, &RigidBody, &mut Vec<T>),
     ) -> Result<()> {
         self.check_filter(filter)?;
         let arena = self.bodies_arena();
@@ -350,14 +419,14 @@ impl World {
             tree.query(aabb, |proxy| {
                 if let Some((index, body)) = arena.at_slot(tree.user_data(proxy) as usize) {
                     let handle = BodyHandle(index);
-                    if filter.accepts(handle, body) && test(body) {
-                        bodies.push(handle);
+                    if filter.accepts(handle, body) {
+                        visit(handle, body, found);
                     }
                 }
                 true
             });
         }
-        bodies.sort_unstable();
+        found.sort_unstable();
         Ok(())
     }
 }
@@ -381,6 +450,23 @@ fn any_collider_seen(
     convex_parts(&body.shape, body.pose()).any(|(collider, part, part_pose)| {
         filter.sees_collider(&colliders, collider) && test(part, &part_pose)
     })
+}
+
+/// Pushes `(handle, collider)` for each collider of `body` that `filter` sees and `test` holds
+/// for, given its shape and world pose.
+fn push_colliders_seen(
+    handle: BodyHandle,
+    body: &RigidBody,
+    filter: &QueryFilter,
+    found: &mut Vec<(BodyHandle, u32)>,
+    test: impl Fn(&Shape, &Pose) -> bool,
+) {
+    let colliders = Colliders::of(body);
+    for (collider, part, part_pose) in convex_parts(&body.shape, body.pose()) {
+        if filter.sees_collider(&colliders, collider) && test(part, &part_pose) {
+            found.push((handle, collider));
+        }
+    }
 }
 
 /// A [`RayHit`] on `body` along the (validated) ray.
