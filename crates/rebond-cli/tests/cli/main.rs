@@ -2,6 +2,7 @@
 //! built binary on scene files written to a scratch directory.
 
 mod bad_input;
+mod bad_joints;
 mod commands;
 mod common;
 mod filtering;
