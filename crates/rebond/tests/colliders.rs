@@ -200,24 +200,7 @@ fn child_collision_groups_stop_one_childs_contacts_but_not_the_others() {
     };
     let resting = world.add_body(ball(-3.0)).unwrap();
     let falling = world.add_body(ball(3.0)).unwrap();
-    let mut starts = Vec::new();
-    for _ in 0..60 {
-        world.step(DT).unwrap();
-        starts.extend(
-            world
-                .contact_events()
-                .iter()
-                .filter(|event| event.kind == ContactEventKind::Started)
-                .map(|event| {
-                    (
-                        event.body_a,
-                        event.collider_a,
-                        event.body_b,
-                        event.collider_b,
-                    )
-                }),
-        );
-    }
+    let starts = started_contacts(&mut world, 60);
     assert_eq!(starts, [(floor, 0, resting, 0)]);
     let time = 60.0 * DT;
     let y = world.body(falling).unwrap().position().y;
@@ -467,24 +450,7 @@ fn a_compound_resting_on_two_children_reports_each_childs_contact_and_half_its_w
                 .can_sleep(false),
         )
         .unwrap();
-    let mut starts = Vec::new();
-    for _ in 0..60 {
-        world.step(DT).unwrap();
-        starts.extend(
-            world
-                .contact_events()
-                .iter()
-                .filter(|event| event.kind == ContactEventKind::Started)
-                .map(|event| {
-                    (
-                        event.body_a,
-                        event.collider_a,
-                        event.body_b,
-                        event.collider_b,
-                    )
-                }),
-        );
-    }
+    let mut starts = started_contacts(&mut world, 60);
     // Each box starts touching once (the solver's order may let one push a step before the
     // other).
     starts.sort();
@@ -558,4 +524,28 @@ fn overlap_queries_name_the_colliders_they_find() {
         ("point", ErrorKind::NotFinite)
     );
     assert!(found.is_empty());
+}
+
+/// The collider pairs `(body_a, collider_a, body_b, collider_b)` that start touching over `steps`
+/// steps, in event order.
+fn started_contacts(world: &mut World, steps: usize) -> Vec<(BodyHandle, u32, BodyHandle, u32)> {
+    let mut starts = Vec::new();
+    for _ in 0..steps {
+        world.step(DT).unwrap();
+        starts.extend(
+            world
+                .contact_events()
+                .iter()
+                .filter(|event| event.kind == ContactEventKind::Started)
+                .map(|event| {
+                    (
+                        event.body_a,
+                        event.collider_a,
+                        event.body_b,
+                        event.collider_b,
+                    )
+                }),
+        );
+    }
+    starts
 }
