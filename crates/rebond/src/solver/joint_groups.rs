@@ -4,19 +4,20 @@
 //! only its two bodies: a 100 kg weight on 1 kg links needs hundreds of iterations before the
 //! top link feels it, so the chain stretches and bounces. Instead, the equality rows of all the
 //! joints that share moving bodies (a group: a chain, a ragdoll, a vehicle) are solved together,
-//! exactly: `A λ = −(J v + b)` with `A = J M⁻¹ Jᵀ`, factored once per pose (`A = L Lᵀ`, Cholesky
-//! over each row's profile, so a chain costs what a band matrix does). Limits, motors and
-//! springs stay one row at a time (`joints.rs`): they are inequalities or soft by design.
+//! exactly: `A λ = −(J v + b C)` with `A = J M⁻¹ Jᵀ`, factored once per pose (`A = L Lᵀ`, Cholesky
+//! over each row's profile, so a chain costs what a band matrix does). Only the profiles are
+//! stored, so a group of any size is solved exactly: a net of hundreds of joints costs its
+//! profiles, not `n²`. Limits, motors and springs stay one row at a time (`joints.rs`): they are
+//! inequalities or soft by design.
 //!
-//! A row that depends on the ones before it (a closed loop of joints) gets no impulse of its own.
+//! A row that depends on the ones before it (a bridge fixed at both ends, a four-bar linkage)
+//! has no pivot of its own: it gets the one the joints' softness gives it, the compliance
+//! `γ = A_ii / a₂` of the soft spring (`softness.rs`), so it shares the load softly with the rows
+//! it depends on instead of being dropped.
 
 use super::joint_parts::{RowJacobian, RowSoftness};
 use super::BodyState;
 use crate::math::{Mat3, Vec3, Vec3A};
-
-/// Largest group solved directly, in rows; a larger one is left to the row-by-row solve. Its
-/// matrix is stored whole (`n²` floats, 256 KiB at the cap).
-pub(super) const MAX_GROUP_ROWS: usize = 256;
 
 /// Where a row's accumulated impulse lives in its joint's `JointImpulses`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -99,23 +100,27 @@ impl GroupRow {
 #[derive(Debug, Clone, Default)]
 pub(super) struct GroupSystem {
     pub rows: Vec<GroupRow>,
-    /// `L` row-major, `n × n`, lower triangle used.
+    /// `L` by rows, each row's profile only: `L_ij` for `first[i] ≤ j ≤ i` is
+    /// `factor[start[i] + j − first[i]]`.
     factor: Vec<f32>,
     /// The first column of each row's profile: `A_ij = 0` for `j < first[i]`.
     first: Vec<usize>,
+    /// Where each row's profile starts in `factor`.
+    start: Vec<usize>,
     /// Scratch: right-hand side, then solution, then the rows' impulses.
     work: Vec<f32>,
     /// Scratch: each moving body side of each row, `(body, row, side)`, sorted, so the rows
     /// sharing a body are neighbours: `A` is assembled from them alone.
     sides: Vec<(usize, usize, usize)>,
-    /// `1 / L_ii` (0 for a dependent row).
+    /// `1 / L_ii`.
     inverse_diagonal: Vec<f32>,
     /// Whether `sides` and `first` describe `rows`: which rows there are and which bodies they
     /// join stays the same through a step, only their Jacobians change.
     structure_known: bool,
 }
 
-/// Relative size below which a pivot is taken for zero: the row depends on the ones before it.
+/// Relative size below which a pivot is taken for zero: the row depends on the ones before it,
+/// and gets the joints' compliance as its pivot.
 const DEPENDENT_PIVOT: f32 = 1.0e-5;
 
 /// `Σ a_k b_k` over two slices of the same length, in four interleaved sums (so the compiler
@@ -140,21 +145,21 @@ fn dot(a: &[f32], b: &[f32]) -> f32 {
 impl GroupSystem {
     /// Builds `A = J M⁻¹ Jᵀ` for `rows` and factors it. `A_ij` is non-zero only where rows `i`
     /// and `j` share a moving body, so it is assembled body by body from the rows on each, and
-    /// only each row's profile (from its first non-zero column) is stored and factored.
-    pub fn factor(&mut self) {
+    /// only each row's profile (from its first non-zero column) is stored and factored. A pivot
+    /// that is not there (below [`DEPENDENT_PIVOT`] of `A_ii`) becomes `regularisation · A_ii`:
+    /// the joints' compliance relative to `A_ii`.
+    pub fn factor(&mut self, regularisation: f32) {
         let n = self.rows.len();
         if !self.structure_known {
             self.find_structure();
         }
-        self.factor.resize(n * n, 0.0);
-        for i in 0..n {
-            self.factor[i * n + self.first[i]..=i * n + i].fill(0.0);
-        }
+        self.factor.fill(0.0);
         // `sides` is sorted by body, then row: within a body's run a side's row is at least
         // that of every side before it, so each pair lands in the lower triangle as it comes.
         for run in self.sides.chunk_by(|a, b| a.0 == b.0) {
             for (position, &(_, i, side_i)) in run.iter().enumerate() {
-                let (row_i, factor_i) = (&self.rows[i], &mut self.factor[i * n..]);
+                let row_i = &self.rows[i];
+                let factor_i = &mut self.factor[self.start[i] - self.first[i]..];
                 for &(_, j, side_j) in &run[..=position] {
                     factor_i[j] += row_i.coupling_through(side_i, &self.rows[j], side_j);
                 }
@@ -163,22 +168,25 @@ impl GroupSystem {
         self.inverse_diagonal.clear();
         for i in 0..n {
             let first_i = self.first[i];
-            let (done, rest) = self.factor.split_at_mut(i * n);
-            let row_i = &mut rest[..=i];
+            let (done, rest) = self.factor.split_at_mut(self.start[i]);
+            // Row `i`'s profile: `row_i[j − first_i]` for `first_i ≤ j ≤ i`.
+            let row_i = &mut rest[..=i - first_i];
             for j in first_i..i {
-                let start = first_i.max(self.first[j]);
-                let row_j = &done[j * n + start..j * n + j];
-                let sum = row_i[j] - dot(&row_i[start..j], row_j);
-                row_i[j] = sum * self.inverse_diagonal[j];
+                let first_j = self.first[j];
+                let from = first_i.max(first_j);
+                let row_j = &done[self.start[j] + from - first_j..self.start[j] + j - first_j];
+                let sum = row_i[j - first_i] - dot(&row_i[from - first_i..j - first_i], row_j);
+                row_i[j - first_i] = sum * self.inverse_diagonal[j];
             }
-            let sum = row_i[i] - dot(&row_i[first_i..i], &row_i[first_i..i]);
-            // `L_ii = √sum`, kept as its inverse; a dependent row's is 0, so it gets no impulse.
-            let pivot = if sum > DEPENDENT_PIVOT * row_i[i] && sum > 0.0 {
-                sum.sqrt().recip()
-            } else {
-                0.0
-            };
-            row_i[i] = pivot;
+            let diagonal = row_i[i - first_i];
+            let off_diagonal = &row_i[..i - first_i];
+            let mut sum = diagonal - dot(off_diagonal, off_diagonal);
+            if sum <= DEPENDENT_PIVOT * diagonal {
+                sum = sum.max(0.0) + regularisation * diagonal;
+            }
+            // `L_ii = √sum`, kept as its inverse; a row with nothing to move gets no impulse.
+            let pivot = if sum > 0.0 { sum.sqrt().recip() } else { 0.0 };
+            row_i[i - first_i] = pivot;
             self.inverse_diagonal.push(pivot);
         }
     }
@@ -207,44 +215,44 @@ impl GroupSystem {
                 self.first[row] = self.first[row].min(lowest);
             }
         }
+        self.start.clear();
+        let mut size = 0;
+        for (i, &first) in self.first.iter().enumerate() {
+            self.start.push(size);
+            size += i + 1 - first;
+        }
+        self.factor.resize(size, 0.0);
         self.structure_known = true;
     }
 
-    /// One solve of the group: `λ = −s_m A⁻¹ (J v + b C) − s_i λ_acc` per row, applied to
-    /// `states`; `accumulated(row)` reads a row's accumulated impulse. [`Self::impulses`] then
-    /// gives the impulse of each row, for the caller's accumulators.
-    pub fn solve(
-        &mut self,
-        states: &mut [BodyState],
-        softness: RowSoftness,
-        accumulated: impl Fn(&GroupRow) -> f32,
-    ) {
+    /// One solve of the group: `λ = −A⁻¹ (J v + b C)` per row (the rows are rigid; `softness`
+    /// gives the bias `b C`), applied to `states`. [`Self::impulses`] then gives the impulse of
+    /// each row, for the caller's accumulators.
+    pub fn solve(&mut self, states: &mut [BodyState], softness: RowSoftness) {
         let n = self.rows.len();
         self.work.clear();
         self.work.extend(
             self.rows
                 .iter()
-                .map(|row| row.velocity(states) + softness.bias(row.error)),
+                .map(|row| -(row.velocity(states) + softness.bias(row.error))),
         );
         for i in 0..n {
-            let first = self.first[i];
-            let row = &self.factor[i * n + first..i * n + i];
+            let (first, start) = (self.first[i], self.start[i]);
+            let row = &self.factor[start..start + i - first];
             let sum = self.work[i] - dot(row, &self.work[first..i]);
             self.work[i] = sum * self.inverse_diagonal[i];
         }
         for i in (0..n).rev() {
             let value = self.work[i] * self.inverse_diagonal[i];
             self.work[i] = value;
-            let first = self.first[i];
-            let row = &self.factor[i * n + first..i * n + i];
+            let (first, start) = (self.first[i], self.start[i]);
+            let row = &self.factor[start..start + i - first];
             for (work, factor) in self.work[first..i].iter_mut().zip(row) {
                 *work -= factor * value;
             }
         }
-        for (row, value) in self.rows.iter().zip(&mut self.work) {
-            let impulse = -softness.mass_scale * *value - softness.impulse_scale * accumulated(row);
+        for (row, &impulse) in self.rows.iter().zip(&self.work) {
             row.apply(states, impulse);
-            *value = impulse;
         }
     }
 

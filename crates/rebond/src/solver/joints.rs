@@ -12,7 +12,7 @@
 //! lengths) of joints sharing moving bodies are solved together and exactly
 //! (`joint_groups.rs`); limits, motors, springs and friction one row at a time.
 
-use super::joint_groups::{Accumulator, EliminationOrder, GroupRow, GroupSystem, MAX_GROUP_ROWS};
+use super::joint_groups::{Accumulator, EliminationOrder, GroupRow, GroupSystem};
 use super::joint_parts::{
     AxisPart, JointBodies, PlanePart, PointPart, RotationPart, RowJacobian, RowSoftness, Velocities,
 };
@@ -320,15 +320,6 @@ impl JointConstraint {
         }
     }
 
-    /// The accumulated impulse of one of its holding rows.
-    fn accumulated(&self, accumulator: Accumulator) -> f32 {
-        match accumulator {
-            Accumulator::Linear(axis) => self.impulses.linear.dot(axis),
-            Accumulator::Angular(axis) => self.impulses.angular.dot(axis),
-            Accumulator::Axial => self.impulses.axial,
-        }
-    }
-
     /// Adds `impulse` to one of its holding rows' accumulated impulses.
     fn accumulate(&mut self, accumulator: Accumulator, impulse: f32) {
         match accumulator {
@@ -511,8 +502,8 @@ impl JointConstraints {
     }
 
     /// Sorts the joints into groups linked by moving bodies (union–find over the solver
-    /// bodies, groups numbered in joint order), keeps the groups small enough for the direct
-    /// solve and orders their joints for it ([`EliminationOrder`]).
+    /// bodies, groups numbered in joint order) and orders their joints for the direct solve
+    /// ([`EliminationOrder`]).
     fn group(&mut self, body_count: usize) {
         self.parent.clear();
         self.parent.extend(0..body_count);
@@ -545,7 +536,7 @@ impl JointConstraints {
         }
         for constraint in &mut self.constraints {
             if let Some(group) = constraint.group {
-                if rows_of_group[group] > MAX_GROUP_ROWS || rows_of_group[group] == 0 {
+                if rows_of_group[group] == 0 {
                     constraint.group = None;
                 }
             }
@@ -566,8 +557,8 @@ impl JointConstraints {
         self.order.find(&self.grouped_bodies, body_count);
     }
 
-    /// Refreshes every joint's geometry for the current poses and builds and factors each
-    /// group's system.
+    /// Refreshes every joint's geometry for the current poses and builds each group's rows
+    /// and factors it.
     fn refresh(&mut self, motions: &[BodyMotion]) {
         for group in &mut self.groups[..self.group_count] {
             group.rows.clear();
@@ -581,8 +572,11 @@ impl JointConstraints {
                 constraint.push_holding_rows(index, &mut self.groups[group].rows);
             }
         }
+        // A dependent row's pivot: the soft spring's compliance `γ = A_ii / a₂`, relative to
+        // `A_ii` (`softness.rs`: `mass_scale = a₂ / (1 + a₂)`, `impulse_scale = 1 / (1 + a₂)`).
+        let regularisation = self.softness.impulse_scale / self.softness.mass_scale;
         for group in &mut self.groups[..self.group_count] {
-            group.factor();
+            group.factor(regularisation);
         }
     }
 
@@ -593,10 +587,7 @@ impl JointConstraints {
             if group.rows.is_empty() {
                 continue;
             }
-            let snapshot = &*constraints;
-            group.solve(states, softness, |row| {
-                snapshot[row.joint].accumulated(row.accumulator)
-            });
+            group.solve(states, softness);
             for (row, impulse) in group.impulses() {
                 constraints[row.joint].accumulate(row.accumulator, impulse);
             }
