@@ -7,6 +7,7 @@ mod common;
 mod coordinates;
 mod drives;
 mod friction;
+mod large_groups;
 mod pendulums;
 mod reactions;
 
