@@ -9,7 +9,7 @@
 //! constraint's mass scale `s_m` and impulse scale `s_i` (`softness.rs`).
 
 use super::softness::Softness;
-use crate::math::{skew, Mat3, Vec3};
+use crate::math::{Mat3, Vec3};
 
 /// The two bodies of a joint as its parts see them: inverse masses along the world axes
 /// (kg⁻¹; `1/m` but zero along locked axes, `body/locked_axes.rs`) and world inverse inertias at
@@ -78,11 +78,6 @@ impl RowSoftness {
         (self.bias_rate * error).clamp(-MAX_CORRECTION_SPEED, MAX_CORRECTION_SPEED)
     }
 
-    /// [`RowSoftness::bias`] of three rows' errors, at most [`MAX_CORRECTION_SPEED`] long.
-    pub fn bias_vector(&self, error: Vec3) -> Vec3 {
-        (self.bias_rate * error).clamp_length_max(MAX_CORRECTION_SPEED)
-    }
-
     /// The soft spring in biased passes, rigid otherwise.
     pub fn of_pass(softness: &Softness, use_bias: bool) -> Self {
         if use_bias {
@@ -118,54 +113,22 @@ fn inverse_or_zero(k: Mat3) -> Mat3 {
     }
 }
 
-/// The impulse of one solve of a three-row part with effective mass `mass` (`K⁻¹`), relative
-/// velocity `Ċ` and position error `C`: `λ = −s_m K⁻¹ (Ċ + b C) − s_i λ_acc`, added to
-/// `accumulated`.
-fn block_impulse(
-    mass: Mat3,
-    velocity: Vec3,
-    error: Vec3,
-    softness: RowSoftness,
-    accumulated: &mut Vec3,
-) -> Vec3 {
-    let target = velocity + softness.bias_vector(error);
-    let impulse = -softness.mass_scale * (mass * target) - softness.impulse_scale * *accumulated;
-    *accumulated += impulse;
-    impulse
-}
-
-/// The point part: three rows holding the anchor `p_B` on the anchor `p_A`, `C = p_B − p_A`.
+/// The point part: three rows holding the anchor `p_B` on the anchor `p_A`, `C = p_B − p_A`,
+/// solved with the rest of its group (`joint_groups.rs`).
 ///
 /// - Jacobian: `Ċ = v_B + ω_B × r_B − v_A − ω_A × r_A` (`r` from each centre of mass to its
 ///   anchor).
-/// - Effective mass: `K = (m_A⁻¹ + m_B⁻¹) 1 + [r_A]ₓ I_A⁻¹ [r_A]ₓᵀ + [r_B]ₓ I_B⁻¹ [r_B]ₓᵀ`, a 3×3
-///   matrix kept inverted.
 /// - Impulse `λ` (a vector, N·s, at the anchor): `Δv_B = λ / m_B`, `Δω_B = I_B⁻¹ (r_B × λ)`, and
 ///   the opposite on A.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct PointPart {
     arm_a: Vec3,
     arm_b: Vec3,
-    mass: Mat3,
 }
 
 impl PointPart {
-    pub fn new(bodies: &JointBodies, arm_a: Vec3, arm_b: Vec3) -> Self {
-        let (skew_a, skew_b) = (skew(arm_a), skew(arm_b));
-        let [mass_a, mass_b] = bodies.inverse_mass;
-        let [inertia_a, inertia_b] = bodies.inverse_inertia;
-        let k = Mat3::from_diagonal(mass_a + mass_b)
-            + skew_a * inertia_a * skew_a.transpose()
-            + skew_b * inertia_b * skew_b.transpose();
-        Self {
-            arm_a,
-            arm_b,
-            mass: inverse_or_zero(k),
-        }
-    }
-
-    pub fn velocity(&self, v: &Velocities) -> Vec3 {
-        v.linear[1] + v.angular[1].cross(self.arm_b) - v.linear[0] - v.angular[0].cross(self.arm_a)
+    pub fn new(arm_a: Vec3, arm_b: Vec3) -> Self {
+        Self { arm_a, arm_b }
     }
 
     /// Its three rows, along the world axes (`ω × r · e = ω · (r × e)`).
@@ -182,25 +145,13 @@ impl PointPart {
         v.linear[1] += bodies.inverse_mass[1] * impulse;
         v.angular[1] += bodies.inverse_inertia[1] * self.arm_b.cross(impulse);
     }
-
-    /// One solve towards `C = error` (m) with `softness`, adding to `accumulated`.
-    pub fn solve(
-        &self,
-        bodies: &JointBodies,
-        v: &mut Velocities,
-        error: Vec3,
-        softness: RowSoftness,
-        accumulated: &mut Vec3,
-    ) {
-        let impulse = block_impulse(self.mass, self.velocity(v), error, softness, accumulated);
-        self.apply(bodies, v, impulse);
-    }
 }
 
-/// The rotation part: three rows locking the relative rotation, `C` = the rotation vector of
-/// B's rotation relative to A since the joint was made (world axes).
+/// The rotation part: three rows on the relative rotation, `Ċ = ω_B − ω_A`. Locking it (`C` =
+/// the rotation vector of B's rotation relative to A since the joint was made, world axes), its
+/// rows are solved with the rest of their group (`joint_groups.rs`); as a ball joint's friction,
+/// on their own with the effective mass.
 ///
-/// - Jacobian: `Ċ = ω_B − ω_A`.
 /// - Effective mass: `K = I_A⁻¹ + I_B⁻¹`, kept inverted.
 /// - Impulse `λ` (a couple, N·m·s): `Δω_B = I_B⁻¹ λ`, `Δω_A = −I_A⁻¹ λ`.
 #[derive(Debug, Clone, Copy)]
@@ -227,20 +178,6 @@ impl RotationPart {
     pub fn apply(bodies: &JointBodies, v: &mut Velocities, impulse: Vec3) {
         v.angular[0] -= bodies.inverse_inertia[0] * impulse;
         v.angular[1] += bodies.inverse_inertia[1] * impulse;
-    }
-
-    /// One solve towards `C = error` (rad) with `softness`, adding to `accumulated`.
-    pub fn solve(
-        &self,
-        bodies: &JointBodies,
-        v: &mut Velocities,
-        error: Vec3,
-        softness: RowSoftness,
-        accumulated: &mut Vec3,
-    ) {
-        let velocity = v.angular[1] - v.angular[0];
-        let impulse = block_impulse(self.mass, velocity, error, softness, accumulated);
-        Self::apply(bodies, v, impulse);
     }
 
     /// Joint friction on the relative rotation: drives `ω_B − ω_A` to zero with an accumulated
@@ -331,22 +268,6 @@ impl AxisPart {
         v.linear[1] += bodies.inverse_mass[1] * impulse * self.direction;
         v.angular[0] -= impulse * self.spin_a;
         v.angular[1] += impulse * self.spin_b;
-    }
-
-    /// An equality row towards `C = error` with `softness`.
-    pub fn solve_equality(
-        &self,
-        bodies: &JointBodies,
-        v: &mut Velocities,
-        error: f32,
-        softness: RowSoftness,
-        accumulated: &mut f32,
-    ) {
-        let target = self.velocity(v) + softness.bias(error);
-        let impulse =
-            -softness.mass_scale * self.mass * target - softness.impulse_scale * *accumulated;
-        *accumulated += impulse;
-        self.apply(bodies, v, impulse);
     }
 
     /// A one-sided row keeping `gap ≥ 0`, where the gap grows along `sign · J` (`sign` is +1
@@ -441,39 +362,20 @@ impl AxisPart {
 /// inside symplectic Euler's stability bound `ω h < 2`.
 const SYMPLECTIC_SPRING_LIMIT: f32 = 0.25;
 
-/// Two axis parts solved together (a 2×2 block): the hinge's axis alignment, the prismatic's
-/// perpendicular slide. The accumulated impulse is kept as the world vector `λ₁ d₁ + λ₂ d₂`
-/// (its rows' unit directions or axes), so it survives the rows turning from one substep to
-/// the next.
+/// Two axis parts held together (the hinge's axis alignment, the prismatic's perpendicular
+/// slide), solved with the rest of their group (`joint_groups.rs`). The accumulated impulse is
+/// kept as the world vector `λ₁ d₁ + λ₂ d₂` (its rows' unit directions or axes), so it survives
+/// the rows turning from one substep to the next.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct PlanePart {
     rows: [AxisPart; 2],
     /// The rows' unit directions (linear rows) or axes (angular rows).
     axes: [Vec3; 2],
-    /// `K⁻¹` of the block, `K_ij = J_i M⁻¹ J_jᵀ`.
-    mass: [[f32; 2]; 2],
 }
 
 impl PlanePart {
-    pub fn new(bodies: &JointBodies, rows: [AxisPart; 2], axes: [Vec3; 2]) -> Self {
-        let coupling = |i: &AxisPart, j: &AxisPart| {
-            bodies.linear_coupling(i.direction, j.direction)
-                + i.arm_a.dot(j.spin_a)
-                + i.arm_b.dot(j.spin_b)
-        };
-        let (k11, k22) = (rows[0].k, rows[1].k);
-        let k12 = coupling(&rows[0], &rows[1]);
-        let determinant = k11 * k22 - k12 * k12;
-        let mass = if determinant > f32::MIN_POSITIVE && determinant.is_finite() {
-            let inverse = 1.0 / determinant;
-            [
-                [k22 * inverse, -k12 * inverse],
-                [-k12 * inverse, k11 * inverse],
-            ]
-        } else {
-            [[rows[0].mass, 0.0], [0.0, rows[1].mass]]
-        };
-        Self { rows, axes, mass }
+    pub fn new(rows: [AxisPart; 2], axes: [Vec3; 2]) -> Self {
+        Self { rows, axes }
     }
 
     /// Its two rows and their unit directions or axes.
@@ -481,34 +383,9 @@ impl PlanePart {
         [0, 1].map(|i| (self.rows[i].row(), self.axes[i]))
     }
 
-    /// The world vector of the row impulses `λ₁`, `λ₂`.
-    pub fn vector(&self, impulses: [f32; 2]) -> Vec3 {
-        impulses[0] * self.axes[0] + impulses[1] * self.axes[1]
-    }
-
     pub fn apply(&self, bodies: &JointBodies, v: &mut Velocities, impulse: Vec3) {
         for (row, axis) in self.rows.iter().zip(self.axes) {
             row.apply(bodies, v, impulse.dot(axis));
         }
-    }
-
-    /// One solve towards `C = errors` with `softness`, adding to `accumulated` (world vector).
-    pub fn solve(
-        &self,
-        bodies: &JointBodies,
-        v: &mut Velocities,
-        errors: [f32; 2],
-        softness: RowSoftness,
-        accumulated: &mut Vec3,
-    ) {
-        let target = [0, 1].map(|i| self.rows[i].velocity(v) + softness.bias(errors[i]));
-        let previous = [0, 1].map(|i| accumulated.dot(self.axes[i]));
-        let impulses = [0, 1].map(|i| {
-            -softness.mass_scale * (self.mass[i][0] * target[0] + self.mass[i][1] * target[1])
-                - softness.impulse_scale * previous[i]
-        });
-        let impulse = self.vector(impulses);
-        *accumulated += impulse;
-        self.apply(bodies, v, impulse);
     }
 }

@@ -125,7 +125,8 @@ struct JointConstraint {
     /// not move).
     start_poses: [(Vec3, Quat); 2],
     impulses: JointImpulses,
-    /// The group whose direct solve holds this joint together, if any.
+    /// The group whose direct solve holds this joint together: every joint with a holding row
+    /// has one.
     group: Option<usize>,
     /// Revolute joints: the angle counted across turns at the last refresh, rad.
     angle: f32,
@@ -154,7 +155,8 @@ struct Geometry {
     /// Errors of the two rows of `plane` (hinge axis misalignment, rad; prismatic offset, m).
     plane_errors: [f32; 2],
     point: Option<PointPart>,
-    rotation: Option<RotationPart>,
+    /// Whether the joint locks the relative rotation (a fixed joint).
+    locks_rotation: bool,
     plane: Option<PlanePart>,
     axis_part: Option<AxisPart>,
     swing: Option<AxisPart>,
@@ -192,10 +194,10 @@ impl JointConstraint {
         };
         let options = &self.options;
         if options.joint_type.holds_point() {
-            geometry.point = Some(PointPart::new(bodies, arm_a, arm_b));
+            geometry.point = Some(PointPart::new(arm_a, arm_b));
         }
         if options.joint_type.locks_rotation() {
-            geometry.rotation = Some(RotationPart::new(bodies));
+            geometry.locks_rotation = true;
         }
         match options.joint_type {
             JointType::Fixed => {}
@@ -229,7 +231,7 @@ impl JointConstraint {
                 let misalignment = axis.cross(axis_b);
                 let (first, second) = axis.any_orthonormal_pair();
                 let rows = [first, second].map(|row| AxisPart::angular(bodies, row));
-                geometry.plane = Some(PlanePart::new(bodies, rows, [first, second]));
+                geometry.plane = Some(PlanePart::new(rows, [first, second]));
                 geometry.plane_errors = [misalignment.dot(first), misalignment.dot(second)];
                 geometry.axis_part = Some(AxisPart::angular(bodies, axis));
                 // Limits and position targets are on the angle counted across turns: measured
@@ -241,7 +243,7 @@ impl JointConstraint {
                 let arms = (arm_a + separation, arm_b);
                 let (first, second) = axis.any_orthonormal_pair();
                 let rows = [first, second].map(|row| AxisPart::linear(bodies, arms, row));
-                geometry.plane = Some(PlanePart::new(bodies, rows, [first, second]));
+                geometry.plane = Some(PlanePart::new(rows, [first, second]));
                 geometry.plane_errors = [separation.dot(first), separation.dot(second)];
                 geometry.axis_part = Some(AxisPart::linear(bodies, arms, axis));
                 geometry.position = separation.dot(axis);
@@ -283,7 +285,7 @@ impl JointConstraint {
                 );
             }
         }
-        if geometry.rotation.is_some() {
+        if geometry.locks_rotation {
             for (k, jacobian) in RotationPart::rows().into_iter().enumerate() {
                 let axis = Vec3::AXES[k];
                 push(
@@ -364,7 +366,7 @@ impl JointConstraint {
         if let Some(point) = &geometry.point {
             point.apply(bodies, v, impulses.linear);
         }
-        if geometry.rotation.is_some() {
+        if geometry.locks_rotation {
             RotationPart::apply(bodies, v, impulses.angular);
         }
         if let Some(plane) = &geometry.plane {
@@ -393,8 +395,9 @@ impl JointConstraint {
         }
     }
 
-    /// One pass over the joint's rows: motor and limits first, what holds the joint together
-    /// last, so it is the most nearly met when the pass ends.
+    /// One pass over the joint's rows solved one at a time: motor, friction, spring and limits.
+    /// What holds the joint together is its group's, solved after every joint's pass
+    /// ([`JointConstraints::solve_groups`]), so it is the most nearly met when the pass ends.
     fn solve(&mut self, v: &mut Velocities, softness: RowSoftness, (h, inverse_h): (f32, f32)) {
         let (geometry, impulses, bodies) = (&self.geometry, &mut self.impulses, &self.bodies);
         let options = &self.options;
@@ -453,10 +456,6 @@ impl JointConstraint {
                 axis.solve_limit(bodies, v, (position - min, 1.0), pass, lower);
                 axis.solve_limit(bodies, v, (max - position, -1.0), pass, upper);
             }
-            if options.has_rigid_length() && self.group.is_none() {
-                let error = position - self.frames.length;
-                axis.solve_equality(bodies, v, error, softness, &mut impulses.axial);
-            }
         }
         if let Some(friction) = &geometry.friction {
             let most = options.friction * h;
@@ -465,29 +464,6 @@ impl JointConstraint {
         if let (Some(swing), Some(limit)) = (&geometry.swing, options.swing_limit) {
             let gap = (limit - geometry.swing_angle, -1.0);
             swing.solve_limit(bodies, v, gap, (softness, inverse_h), &mut impulses.swing);
-        }
-        if self.group.is_some() {
-            return;
-        }
-        if let Some(rotation) = &geometry.rotation {
-            let error = geometry.rotation_error;
-            rotation.solve(bodies, v, error, softness, &mut impulses.angular);
-        }
-        if let Some(plane) = &geometry.plane {
-            let accumulated = match options.joint_type {
-                JointType::Revolute => &mut impulses.angular,
-                _ => &mut impulses.linear,
-            };
-            plane.solve(bodies, v, geometry.plane_errors, softness, accumulated);
-        }
-        if let Some(point) = &geometry.point {
-            point.solve(
-                bodies,
-                v,
-                geometry.separation,
-                softness,
-                &mut impulses.linear,
-            );
         }
     }
 }
