@@ -87,12 +87,30 @@ impl GroupRow {
             }
         }
     }
+}
 
-    /// The part of `J_i M⁻¹ J_jᵀ` that body side `side` of this row and side `other_side` of
-    /// `other` (the same body) give.
-    fn coupling_through(&self, side: usize, other: &Self, other_side: usize) -> f32 {
-        self.jacobian.linear[side].dot(other.linear_response[other_side])
-            + self.jacobian.angular[side].dot(other.angular_response[other_side])
+/// One body side of a row: its Jacobian and response on that body.
+#[derive(Debug, Clone, Copy)]
+struct SideTerms {
+    linear: Vec3A,
+    angular: Vec3A,
+    linear_response: Vec3A,
+    angular_response: Vec3A,
+}
+
+impl SideTerms {
+    fn of(row: &GroupRow, side: usize) -> Self {
+        Self {
+            linear: row.jacobian.linear[side].into(),
+            angular: row.jacobian.angular[side].into(),
+            linear_response: row.linear_response[side].into(),
+            angular_response: row.angular_response[side].into(),
+        }
+    }
+
+    /// The part of `J_i M⁻¹ J_jᵀ` that this side and `other` (on the same body) give.
+    fn coupling(&self, other: &Self) -> f32 {
+        self.linear.dot(other.linear_response) + self.angular.dot(other.angular_response)
     }
 }
 
@@ -112,6 +130,9 @@ pub(super) struct GroupSystem {
     /// Scratch: each moving body side of each row, `(body, row, side)`, sorted, so the rows
     /// sharing a body are neighbours: `A` is assembled from them alone.
     sides: Vec<(usize, usize, usize)>,
+    /// Scratch: each of `sides`' Jacobian and response (linear, angular) in SIMD vectors, in
+    /// the same order, so a body's run is one contiguous block when `A` is assembled.
+    side_terms: Vec<SideTerms>,
     /// `1 / L_ii`.
     inverse_diagonal: Vec<f32>,
     /// Whether `sides` and `first` describe `rows`: which rows there are and which bodies they
@@ -154,16 +175,25 @@ impl GroupSystem {
             self.find_structure();
         }
         self.factor.fill(0.0);
+        self.side_terms.clear();
+        self.side_terms.extend(
+            self.sides
+                .iter()
+                .map(|&(_, row, side)| SideTerms::of(&self.rows[row], side)),
+        );
         // `sides` is sorted by body, then row: within a body's run a side's row is at least
         // that of every side before it, so each pair lands in the lower triangle as it comes.
+        let mut run_start = 0;
         for run in self.sides.chunk_by(|a, b| a.0 == b.0) {
-            for (position, &(_, i, side_i)) in run.iter().enumerate() {
-                let row_i = &self.rows[i];
+            let terms = &self.side_terms[run_start..run_start + run.len()];
+            for (position, &(_, i, _)) in run.iter().enumerate() {
                 let factor_i = &mut self.factor[self.start[i] - self.first[i]..];
-                for &(_, j, side_j) in &run[..=position] {
-                    factor_i[j] += row_i.coupling_through(side_i, &self.rows[j], side_j);
+                let term_i = &terms[position];
+                for (&(_, j, _), term_j) in run[..=position].iter().zip(terms) {
+                    factor_i[j] += term_i.coupling(term_j);
                 }
             }
+            run_start += run.len();
         }
         self.inverse_diagonal.clear();
         for i in 0..n {
