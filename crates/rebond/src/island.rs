@@ -1,13 +1,21 @@
-//! Islands and sleeping: which bodies a step moves.
+//! Islands and sleeping: which bodies a step moves, in what order, and which fall asleep.
 //!
-//! After each step, awake dynamic bodies linked by contacts form islands (union–find over the
-//! step's contacts, roots the lowest slot, so the result never depends on anything but the input;
-//! other links, such as joints, are more edges of the same union–find, [`Islands::link`]).
+//! Each step builds its islands once, before the solve, right after the contacts are updated
+//! (`World::step`): a union–find over the awake dynamic bodies, whose links each kind of
+//! constraint adds ([`IslandLinks`]), the joints' first, then the touching contacts'. When the
+//! joints' links are in, each body's group root is recorded: the joint groups the solver solves
+//! directly are the components of the joints alone (a pile of touching ragdolls is one island
+//! but one group per ragdoll). Roots are the lowest slot, so the result depends on the input
+//! alone. The islands are the solver's unit of work: it takes the bodies island by island
+//! ([`Islands::solver_order`], one range per island), and after the solve the same islands fall
+//! asleep or stay awake ([`Islands::update_sleep`]).
+//!
 //! A body is still while `|v| + r_max |ω|` stays below the sleep speed; an island all of whose
 //! bodies have been still for the sleep time falls asleep as one group (both are settings,
 //! [`crate::WorldSettings::sleep_speed`] and [`crate::WorldSettings::sleep_time`]). A group wakes
 //! whole when any member is touched by an awake body, pushed by the user, or loses a body it
-//! rested on.
+//! rested on. A kinematic body never joins an island, and what touches or is jointed to one
+//! moving faster than the sleep speed stays awake.
 //!
 //! Sleeping costs nothing per step (Box3D's solver sets, in the small): the awake bodies are a
 //! list of their own, [`Islands::awake`], which every per-body pass of the step walks; a sleeping
@@ -17,11 +25,14 @@
 //! one of their bodies wakes: a transition costs a pass over the lists it moves between, a step
 //! without one touches nothing asleep.
 
+use std::ops::Range;
+
 use crate::arena::Arena;
 #[cfg(feature = "serde")]
 use crate::body::BodyType;
 use crate::body::RigidBody;
-use crate::collision::contact_cache::Contact;
+use crate::collision::contact_cache::ContactCache;
+use crate::joint::JointSet;
 use crate::math::Vec3;
 use crate::sorted::merge_into;
 
@@ -33,7 +44,7 @@ const END_OF_GROUP: usize = usize::MAX;
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Islands {
     /// Slots of the awake dynamic bodies and of every kinematic body, ascending: the bodies a step
-    /// moves, in the order the solver takes them.
+    /// moves.
     awake: Vec<usize>,
     /// The next member of each sleeping body's group, by slot, or [`END_OF_GROUP`]: a group's list
     /// starts at its root slot (the body's `sleep_group`).
@@ -50,15 +61,24 @@ pub(crate) struct Islands {
     /// sleeping body never joins an island.
     #[cfg_attr(feature = "serde", serde(skip))]
     parent: Vec<usize>,
-    /// Shortest sleep time in the island whose root is the slot.
+    /// Each awake body's group root by slot ([`group_root`](Self::group_root)).
     #[cfg_attr(feature = "serde", serde(skip))]
-    island_sleep_time: Vec<f32>,
-    /// Slots of bodies touching a moving kinematic body this step.
+    group_root: Vec<usize>,
+    /// This step's sleep speed, m/s, for the links' kinematic check.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    sleep_speed: f32,
+    /// Slots of bodies beside a moving kinematic body this step.
     #[cfg_attr(feature = "serde", serde(skip))]
     kept_awake: Vec<usize>,
-    /// Each awake dynamic body's slot with its island's root slot.
+    /// Each awake dynamic body's island root slot with its slot, sorted.
     #[cfg_attr(feature = "serde", serde(skip))]
     members: Vec<(usize, usize)>,
+    /// The bodies the step moves, in the solver's order ([`solver_order`](Self::solver_order)).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    order: Vec<usize>,
+    /// Each island's place in `order`.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    ranges: Vec<Range<usize>>,
     /// Number of islands of awake dynamic bodies after the last step.
     count: usize,
 }
@@ -225,15 +245,26 @@ impl Islands {
         slot
     }
 
-    fn union(&mut self, a: usize, b: usize) {
-        let (root_a, root_b) = (self.find(a), self.find(b));
-        let (low, high) = (root_a.min(root_b), root_a.max(root_b));
-        self.parent[high] = low;
+    /// Starts this step's islands, before the solve: each awake body alone. A body beside a
+    /// kinematic body faster than `sleep_speed` (m/s) is kept awake
+    /// ([`keep_awake_beside_kinematic`](Self::keep_awake_beside_kinematic)).
+    pub fn begin_islands(&mut self, bodies: &Arena<RigidBody>, sleep_speed: f32) {
+        self.sleep_speed = sleep_speed;
+        self.kept_awake.clear();
+        let slots = bodies.slot_count();
+        self.parent.resize(slots, 0);
+        self.group_root.resize(slots, 0);
+        self.next_in_group.resize(slots, END_OF_GROUP);
+        for &slot in &self.awake {
+            self.parent[slot] = slot;
+        }
     }
 
-    /// Puts the bodies in slots `a` and `b` in one island if both are awake and dynamic: called
-    /// for each edge of this step (touching contacts, and any other link between two bodies)
-    /// between [`begin_islands`](Self::begin_islands) and [`update_sleep`](Self::update_sleep).
+    /// Puts the bodies in slots `a` and `b` in one island if both are awake and dynamic: a
+    /// kinematic, static or sleeping body never joins an island. Called by each kind's
+    /// [`IslandLinks::link`] between [`begin_islands`](Self::begin_islands) and
+    /// [`end_islands`](Self::end_islands); roots are the lowest slot, so the islands depend on the
+    /// links alone, not on their order.
     pub fn link(&mut self, bodies: &Arena<RigidBody>, a: usize, b: usize) {
         let awake_dynamic = |slot: usize| {
             bodies
@@ -241,67 +272,97 @@ impl Islands {
                 .is_some_and(|(_, body)| body.is_dynamic() && !body.sleeping)
         };
         if awake_dynamic(a) && awake_dynamic(b) {
-            self.union(a, b);
+            let (root_a, root_b) = (self.find(a), self.find(b));
+            let (low, high) = (root_a.min(root_b), root_a.max(root_b));
+            self.parent[high] = low;
         }
     }
 
-    /// Keeps the body in slot `slot` from counting as still this step (it is jointed to a moving
-    /// kinematic body); called between [`begin_islands`](Self::begin_islands) and
-    /// [`update_sleep`](Self::update_sleep).
-    pub fn keep_awake(&mut self, slot: usize) {
-        self.kept_awake.push(slot);
-    }
-
-    /// Starts this step's islands: each awake body alone.
-    pub fn begin_islands(&mut self, bodies: &Arena<RigidBody>) {
-        self.kept_awake.clear();
-        let slots = bodies.slot_count();
-        self.parent.resize(slots, 0);
-        self.island_sleep_time.resize(slots, f32::INFINITY);
-        self.next_in_group.resize(slots, END_OF_GROUP);
-        for &slot in &self.awake {
-            self.parent[slot] = slot;
-            self.island_sleep_time[slot] = f32::INFINITY;
+    /// Keeps the bodies in slots `a` and `b` from counting as still this step when either is a
+    /// kinematic body faster than the sleep speed: a body it carries or drags stays awake.
+    pub fn keep_awake_beside_kinematic(&mut self, bodies: &Arena<RigidBody>, a: usize, b: usize) {
+        let moving_kinematic = |slot: usize| {
+            bodies
+                .at_slot(slot)
+                .is_some_and(|(_, body)| body.is_kinematic_moving_faster_than(self.sleep_speed))
+        };
+        if moving_kinematic(a) || moving_kinematic(b) {
+            self.kept_awake.extend([a, b]);
         }
     }
 
-    /// Links the bodies of each of `contacts` with a manifold ([`link`](Self::link)).
-    pub fn link_contacts(&mut self, bodies: &Arena<RigidBody>, contacts: &[Contact]) {
-        for contact in contacts {
-            if !contact.manifold.is_empty() {
-                let (slot_a, slot_b) = (contact.key.body_a.slot(), contact.key.body_b.slot());
-                self.link(bodies, slot_a, slot_b);
+    /// Ends the links of the kinds solved in groups (joints): records each awake body's group
+    /// root, the lowest slot of the bodies those links alone join, before the other kinds'
+    /// links join groups into islands.
+    pub fn end_group_links(&mut self) {
+        for index in 0..self.awake.len() {
+            let slot = self.awake[index];
+            self.group_root[slot] = self.find(slot);
+        }
+    }
+
+    /// The root slot of the group of the awake body in `slot`, recorded by
+    /// [`end_group_links`](Self::end_group_links): the bodies of one root are joined by
+    /// constraints solved in groups, through dynamic bodies. A kinematic body is its own root.
+    pub fn group_root(&self, slot: usize) -> usize {
+        self.group_root[slot]
+    }
+
+    /// Ends this step's links: lists the awake bodies in [`solver_order`](Self::solver_order),
+    /// island by island with each island's range in it, then the kinematic bodies.
+    pub fn end_islands(&mut self, bodies: &Arena<RigidBody>) {
+        self.members.clear();
+        for index in 0..self.awake.len() {
+            let slot = self.awake[index];
+            if bodies
+                .at_slot(slot)
+                .is_some_and(|(_, body)| body.is_dynamic())
+            {
+                let root = self.find(slot);
+                self.members.push((root, slot));
             }
         }
+        // Unique pairs: the order is the same whatever sort puts them in it.
+        self.members.sort_unstable();
+        self.order.clear();
+        self.ranges.clear();
+        for (index, &(root, slot)) in self.members.iter().enumerate() {
+            if index == 0 || self.members[index - 1].0 != root {
+                self.ranges.push(index..index);
+            }
+            if let Some(range) = self.ranges.last_mut() {
+                range.end = index + 1;
+            }
+            self.order.push(slot);
+        }
+        let kinematic = |&&slot: &&usize| {
+            bodies
+                .at_slot(slot)
+                .is_some_and(|(_, body)| !body.is_dynamic())
+        };
+        self.order.extend(self.awake.iter().filter(kinematic));
     }
 
-    /// Ends this step's islands, linked since [`begin_islands`](Self::begin_islands): advances by
-    /// `dt` the still time of every awake dynamic body slower than `sleep_speed` (m/s,
-    /// `|v| + r_max |ω|` with `r_max` the distance from its centre of mass to the farthest point of
-    /// its bounding box) and not touching a moving kinematic body in `contacts`, and puts to sleep
-    /// each island still for `sleep_time` seconds, listed in [`fell_asleep`](Self::fell_asleep).
-    /// Returns whether any body fell asleep.
+    /// The bodies the step moves, in the solver's order: each island's awake dynamic bodies
+    /// together (islands by their lowest slot, bodies by ascending slot), then the kinematic
+    /// bodies by ascending slot. Valid from [`end_islands`](Self::end_islands) to the next
+    /// [`begin_islands`](Self::begin_islands).
+    pub fn solver_order(&self) -> &[usize] {
+        &self.order
+    }
+
+    /// After the solve, with this step's islands: advances by `dt` the still time of every awake
+    /// dynamic body slower than `sleep_speed` (m/s, `|v| + r_max |ω|` with `r_max` the distance
+    /// from its centre of mass to the farthest point of its bounding box) and not kept awake by a
+    /// moving kinematic body, and puts to sleep each island still for `sleep_time` seconds,
+    /// listed in [`fell_asleep`](Self::fell_asleep). Returns whether any body fell asleep.
     pub fn update_sleep(
         &mut self,
         bodies: &mut Arena<RigidBody>,
-        contacts: &[Contact],
         dt: f32,
         sleep_speed: f32,
         sleep_time: f32,
     ) -> bool {
-        let moving_kinematic_contacts = contacts.iter().filter(|contact| {
-            [contact.key.body_a, contact.key.body_b]
-                .iter()
-                .any(|handle| {
-                    bodies
-                        .get(handle.0)
-                        .is_some_and(|body| body.is_kinematic_moving_faster_than(sleep_speed))
-                })
-        });
-        for contact in moving_kinematic_contacts {
-            self.kept_awake.push(contact.key.body_a.slot());
-            self.kept_awake.push(contact.key.body_b.slot());
-        }
         for &slot in &self.awake {
             let Some(body) = bodies.at_slot_mut(slot) else {
                 continue;
@@ -320,49 +381,86 @@ impl Islands {
                 body.sleep_time = 0.0;
             }
         }
-        self.members.clear();
-        for index in 0..self.awake.len() {
-            let slot = self.awake[index];
-            let Some((_, body)) = bodies.at_slot(slot) else {
-                continue;
-            };
-            if body.is_dynamic() {
-                let body_sleep_time = body.sleep_time;
-                let root = self.find(slot);
-                self.members.push((slot, root));
-                let time = &mut self.island_sleep_time[root];
-                *time = time.min(body_sleep_time);
-            }
-        }
         self.count = 0;
         self.fell_asleep.clear();
-        for &(slot, root) in &self.members {
-            let falls_asleep = self.island_sleep_time[root] >= sleep_time;
-            if slot == root && !falls_asleep {
+        for range in &self.ranges {
+            let island = &self.order[range.clone()];
+            let still_for = island
+                .iter()
+                .filter_map(|&slot| Some(bodies.at_slot(slot)?.1.sleep_time))
+                .fold(f32::INFINITY, f32::min);
+            if still_for < sleep_time {
                 self.count += 1;
+                continue;
             }
-            if falls_asleep {
+            // The root, the island's lowest slot, comes first: each member joins a list that
+            // starts at the root.
+            let root = island[0];
+            for &slot in island {
                 if let Some(body) = bodies.at_slot_mut(slot) {
                     body.sleeping = true;
                     body.sleep_group = Some(root);
                     body.linear_velocity = Vec3::ZERO;
                     body.angular_velocity = Vec3::ZERO;
                 }
-                // The root comes first among its island's members (slot order), so each member
-                // joins a list that starts at the root.
                 if slot != root {
                     self.next_in_group[slot] = self.next_in_group[root];
                     self.next_in_group[root] = slot;
                 }
-                self.fell_asleep.push(slot);
             }
+            self.fell_asleep.extend_from_slice(island);
         }
         if self.fell_asleep.is_empty() {
             return false;
         }
+        self.fell_asleep.sort_unstable();
         let fell_asleep = &self.fell_asleep;
         self.awake
             .retain(|slot| fell_asleep.binary_search(slot).is_err());
         true
+    }
+}
+
+/// A source of constraints that links bodies into islands: what each kind of constraint keeps
+/// between steps (its `ConstraintKind::Source`, `solver/stages.rs`).
+pub(crate) trait IslandLinks {
+    /// Whether the solver solves these constraints in groups of the bodies they join (the
+    /// joints' direct solve): such kinds link first, and
+    /// [`end_group_links`](Islands::end_group_links) records the groups before the other kinds
+    /// join them into islands.
+    const GROUPED: bool;
+
+    /// Links the bodies each constraint ties together this step ([`Islands::link`]) and keeps
+    /// awake those beside a moving kinematic body
+    /// ([`Islands::keep_awake_beside_kinematic`]).
+    fn link(&self, bodies: &Arena<RigidBody>, islands: &mut Islands);
+}
+
+/// Every joint that still acts between two bodies ties them: a jointed pile sleeps and wakes
+/// as one.
+impl IslandLinks for JointSet {
+    const GROUPED: bool = true;
+
+    fn link(&self, bodies: &Arena<RigidBody>, islands: &mut Islands) {
+        for (slot_a, slot_b) in self.body_links() {
+            islands.link(bodies, slot_a, slot_b);
+            islands.keep_awake_beside_kinematic(bodies, slot_a, slot_b);
+        }
+    }
+}
+
+/// A contact ties its bodies once it has a manifold; a kinematic body keeps awake what it is
+/// about to touch, too.
+impl IslandLinks for ContactCache {
+    const GROUPED: bool = false;
+
+    fn link(&self, bodies: &Arena<RigidBody>, islands: &mut Islands) {
+        for contact in self.contacts() {
+            let (slot_a, slot_b) = (contact.key.body_a.slot(), contact.key.body_b.slot());
+            if !contact.manifold.is_empty() {
+                islands.link(bodies, slot_a, slot_b);
+            }
+            islands.keep_awake_beside_kinematic(bodies, slot_a, slot_b);
+        }
     }
 }

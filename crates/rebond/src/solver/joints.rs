@@ -66,8 +66,7 @@ pub(crate) struct JointConstraints {
     /// only the first `group_count` are this step's (the rest keep their buffers).
     groups: Vec<GroupSystem>,
     group_count: usize,
-    /// Scratch for grouping: union–find parent of each solver body, and the group of each root.
-    parent: Vec<usize>,
+    /// Scratch for grouping: the group of each root.
     group_of_root: Vec<usize>,
     /// Scratch: how many holding rows each group has.
     rows_of_group: Vec<usize>,
@@ -469,38 +468,18 @@ impl JointConstraint {
 }
 
 impl JointConstraints {
-    fn find(parent: &mut [usize], mut body: usize) -> usize {
-        while parent[body] != body {
-            parent[body] = parent[parent[body]];
-            body = parent[body];
-        }
-        body
-    }
-
-    /// Sorts the joints into groups linked by moving bodies (union–find over the solver
-    /// bodies, groups numbered in joint order) and orders their joints for the direct solve
+    /// Sorts the joints into the groups the islands found ([`SolverBodies::group_root`], groups
+    /// numbered in joint order) and orders their joints for the direct solve
     /// ([`EliminationOrder`]).
-    fn group(&mut self, body_count: usize) {
-        self.parent.clear();
-        self.parent.extend(0..body_count);
-        for constraint in &self.constraints {
-            let [a, b] = constraint.solver;
-            if a != 0 && b != 0 {
-                let (root_a, root_b) = (
-                    Self::find(&mut self.parent, a),
-                    Self::find(&mut self.parent, b),
-                );
-                self.parent[root_a.max(root_b)] = root_a.min(root_b);
-            }
-        }
+    fn group(&mut self, solver_bodies: &SolverBodies) {
+        let body_count = solver_bodies.states.len();
         self.group_of_root.clear();
         self.group_of_root.resize(body_count, usize::MAX);
         let rows_of_group = &mut self.rows_of_group;
         rows_of_group.clear();
         self.group_count = 0;
         for constraint in &mut self.constraints {
-            let body = constraint.solver[0].max(constraint.solver[1]);
-            let root = Self::find(&mut self.parent, body);
+            let root = solver_bodies.group_root(constraint.solver);
             if self.group_of_root[root] == usize::MAX {
                 self.group_of_root[root] = self.group_count;
                 self.group_count += 1;
@@ -607,7 +586,6 @@ impl ConstraintKind for JointConstraints {
     fn prepare(&mut self, joints: &JointSet, solver_bodies: &SolverBodies, context: &StepContext) {
         self.constraints.clear();
         self.softness = context.joint.softness(context.h, context.inverse_h);
-        let body_count = solver_bodies.states.len();
         for (slot, joint, data) in joints.acting() {
             let solver = data
                 .poses
@@ -654,7 +632,7 @@ impl ConstraintKind for JointConstraints {
                 geometry: Geometry::default(),
             });
         }
-        self.group(body_count);
+        self.group(solver_bodies);
         self.rows_current = false;
     }
 

@@ -56,13 +56,13 @@ mod wide;
 use crate::arena::Arena;
 use crate::body::{BodyType, RigidBody};
 use crate::collision::FAST_MOTION_REACHES;
+use crate::island::Islands;
 use crate::math::{Mat3, Quat, Vec3, Vec3A};
 pub(crate) use contact_model::ContactSettings;
-use contacts::ContactConstraints;
 use integration::{integrate_pose, integrate_velocities, SpeedLimits};
-use joints::JointConstraints;
 pub(crate) use joints::JointSettings;
-use stages::StepContext;
+pub(crate) use stages::Sources;
+use stages::{Kinds, StepContext};
 
 /// What the contact solver reads and writes of one awake body, kept small and contiguous, in
 /// SIMD vectors (`Vec3A`, 16 bytes) so each vector operation of the solver is one instruction.
@@ -162,8 +162,11 @@ pub(crate) struct StepSettings {
     pub joint: JointSettings,
 }
 
-/// The awake dynamic and kinematic bodies of a step, in solver order, in buffers reused from step
-/// to step. Solver body 0 stands for every static or sleeping body.
+/// The awake dynamic and kinematic bodies of a step, in solver order (island by island, then the
+/// kinematic bodies: [`Islands::solver_order`]), in buffers reused from step to step. Solver
+/// body 0 stands for every static or sleeping body; the body at place `i` of the order is solver
+/// body `i + 1`, so each island's range of places, shifted by one, is its range of solver
+/// indices.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct SolverBodies {
     states: Vec<BodyState>,
@@ -174,12 +177,15 @@ pub(crate) struct SolverBodies {
     slot_of_solver_index: Vec<usize>,
     /// Each solver body's orientation at the start of the step, for the continuous pass.
     start_rotations: Vec<Quat>,
+    /// The solver index of each solver body's group root ([`Islands::group_root`]): the joints
+    /// whose dynamic bodies share a root are solved as one group.
+    group_roots: Vec<usize>,
 }
 
 impl SolverBodies {
-    /// Copies the bodies of `awake` (the slots of the awake dynamic and of the kinematic bodies,
-    /// ascending) into the solver array, in that order.
-    fn gather(&mut self, bodies: &Arena<RigidBody>, awake: &[usize]) {
+    /// Copies the bodies the step moves into the solver array, in the islands' order
+    /// ([`Islands::solver_order`]), with their group roots.
+    fn gather(&mut self, bodies: &Arena<RigidBody>, islands: &Islands) {
         for &slot in self.slot_of_solver_index.iter().skip(1) {
             self.solver_index_of_slot[slot] = 0;
         }
@@ -192,11 +198,14 @@ impl SolverBodies {
         self.slot_of_solver_index.push(0);
         self.start_rotations.clear();
         self.start_rotations.push(Quat::IDENTITY);
-        for &slot in awake {
+        self.group_roots.clear();
+        self.group_roots.push(0);
+        for &slot in islands.solver_order() {
             let Some((_, body)) = bodies.at_slot(slot) else {
                 continue;
             };
-            self.solver_index_of_slot[slot] = self.states.len();
+            let index = self.states.len();
+            self.solver_index_of_slot[slot] = index;
             self.slot_of_solver_index.push(slot);
             self.states.push(BodyState {
                 linear_velocity: body.linear_velocity.into(),
@@ -206,7 +215,24 @@ impl SolverBodies {
             });
             self.motions.push(BodyMotion::from_body(body));
             self.start_rotations.push(body.rotation);
+            // The root is the lowest slot of its group, all in this body's island, which comes
+            // before it in the order: its solver index is set.
+            let root = self.solver_index_of_slot[islands.group_root(slot)];
+            self.group_roots.push(root);
         }
+    }
+
+    /// The group of a constraint between solver bodies `a` and `b`, named by a solver index: its
+    /// dynamic body's group root (both dynamic bodies have the same one when it joins them),
+    /// else that of its moving body. A kinematic body joins no group: its infinite mass leaves
+    /// the groups on either side of it independent.
+    fn group_root(&self, [a, b]: [usize; 2]) -> usize {
+        let body = match (self.motions[a].is_dynamic, self.motions[b].is_dynamic) {
+            (true, _) => a,
+            (false, true) => b,
+            (false, false) => a.max(b),
+        };
+        self.group_roots[body]
     }
 
     /// The solver index of the body in arena slot `slot`: 0 when it does not move this step.
@@ -318,12 +344,12 @@ impl FastMotion {
 }
 
 /// Buffers reused from step to step, so a steady scene allocates nothing: the bodies, and the
-/// constraints of each kind. [`Solver::step`] (`stages.rs`) runs the stages over them.
+/// constraints of each kind. [`Solver::build_islands`] and [`Solver::step`] (`stages.rs`) run
+/// the stages over them.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Solver {
     bodies: SolverBodies,
-    joints: JointConstraints,
-    contacts: ContactConstraints,
+    kinds: Kinds,
     /// The fast bodies of the last step, by ascending slot.
     fast: Vec<FastMotion>,
 }

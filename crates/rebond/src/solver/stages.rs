@@ -1,17 +1,24 @@
 //! The step as a pipeline of stages (Box3D's solver stages): the body stages integrate, the
 //! constraint stages run over every kind of constraint through one interface,
 //! [`ConstraintKind`]: joints (`joints.rs`, their restitution does nothing) and contacts
-//! (`contacts.rs`). [`Solver::run`] is where the order of the kinds in a stage is set: contacts
+//! (`contacts.rs`).
+//!
+//! [`Kinds::each`] is the list of kinds, the one place a kind registers: the islands' links
+//! ([`Solver::build_islands`]), `prepare`, every constraint stage and `store_impulses` go
+//! through it. A new kind is a field of [`Kinds`] and of [`Sources`], a line there, and an
+//! [`IslandLinks`] for its source. The list sets the order of the kinds in a stage: contacts
 //! first, then joints, so the joints, solved last, are the most nearly met when a pass ends (with
 //! the joints first, a pile of ragdolls opened a joint by 3.7 cm; `docs/design-notes/joints.md`).
 
 use super::contact_model::ContactSettings;
+use super::contacts::ContactConstraints;
 use super::integration::{SpeedLimits, MAX_ROTATION_PER_SUBSTEP};
-use super::joints::JointSettings;
+use super::joints::{JointConstraints, JointSettings};
 use super::{BodyMotion, BodyState, Solver, SolverBodies, StepSettings};
 use crate::arena::Arena;
 use crate::body::RigidBody;
 use crate::collision::contact_cache::ContactCache;
+use crate::island::{IslandLinks, Islands};
 use crate::joint::JointSet;
 use crate::math::Vec3;
 
@@ -57,8 +64,9 @@ impl StepContext {
 /// through generics, not `dyn`, so each kind's loops compile to code of their own in the stage
 /// loop, with nothing dispatched per constraint.
 pub(crate) trait ConstraintKind {
-    /// What the constraints are built from and store their impulses in between steps.
-    type Source;
+    /// What the constraints are built from and store their impulses in between steps; it
+    /// links their bodies into the islands.
+    type Source: IslandLinks;
 
     /// Builds this step's constraints from `source` and the solver bodies at the start of the
     /// step, warm-started from the impulses `source` kept.
@@ -105,63 +113,162 @@ enum ConstraintStage {
     Restitution,
 }
 
-impl ConstraintStage {
-    /// Runs this stage over the constraints of one kind. Inlined, as is [`Solver::run`], so the
-    /// `match` folds away where the stage is a constant.
+/// Where each kind's constraints come from and store their impulses between steps: the
+/// world's.
+pub(crate) struct Sources<'a> {
+    pub joints: &'a mut JointSet,
+    pub contacts: &'a mut ContactCache,
+}
+
+/// The constraints of every kind, in buffers reused from step to step.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Kinds {
+    joints: JointConstraints,
+    contacts: ContactConstraints,
+}
+
+/// Work done on every kind of constraint in turn ([`Kinds::each`]): generic over the kind, so
+/// each kind's loops compile to code of their own, with nothing dispatched per constraint.
+trait KindTask {
+    fn run<K: ConstraintKind>(&mut self, kind: &mut K, source: &mut K::Source);
+}
+
+impl Kinds {
+    /// Runs `task` on every kind of constraint with its source, in the order the stages take
+    /// them: the one list of the kinds (module documentation).
     #[inline(always)]
-    fn run<K: ConstraintKind>(
-        self,
-        kind: &mut K,
-        bodies: &mut SolverBodies,
-        context: &StepContext,
-    ) {
+    fn each(&mut self, sources: &mut Sources, task: &mut impl KindTask) {
+        task.run(&mut self.contacts, sources.contacts);
+        task.run(&mut self.joints, sources.joints);
+    }
+}
+
+/// One [`ConstraintStage`] over the constraints of a kind.
+struct StageTask<'a> {
+    stage: ConstraintStage,
+    bodies: &'a mut SolverBodies,
+    context: &'a StepContext,
+}
+
+impl KindTask for StageTask<'_> {
+    /// Inlined, as is [`Kinds::each`], so the `match` folds away where the stage is a constant.
+    #[inline(always)]
+    fn run<K: ConstraintKind>(&mut self, kind: &mut K, _source: &mut K::Source) {
+        let (bodies, context) = (&mut *self.bodies, self.context);
         let states = &mut bodies.states;
-        match self {
-            Self::WarmStart => kind.warm_start(states, &bodies.motions),
-            Self::PrepareBiasedPasses => kind.prepare_biased_passes(states, context),
-            Self::Solve => kind.solve::<true>(states, &bodies.motions, context),
-            Self::Relax => kind.solve::<false>(states, &bodies.motions, context),
-            Self::Restitution => kind.apply_restitution(states),
+        match self.stage {
+            ConstraintStage::WarmStart => kind.warm_start(states, &bodies.motions),
+            ConstraintStage::PrepareBiasedPasses => kind.prepare_biased_passes(states, context),
+            ConstraintStage::Solve => kind.solve::<true>(states, &bodies.motions, context),
+            ConstraintStage::Relax => kind.solve::<false>(states, &bodies.motions, context),
+            ConstraintStage::Restitution => kind.apply_restitution(states),
+        }
+    }
+}
+
+/// Builds each kind's constraints ([`ConstraintKind::prepare`]).
+struct PrepareTask<'a> {
+    bodies: &'a SolverBodies,
+    context: &'a StepContext,
+}
+
+impl KindTask for PrepareTask<'_> {
+    fn run<K: ConstraintKind>(&mut self, kind: &mut K, source: &mut K::Source) {
+        kind.prepare(source, self.bodies, self.context);
+    }
+}
+
+/// Stores each kind's impulses ([`ConstraintKind::store_impulses`]).
+struct StoreTask;
+
+impl KindTask for StoreTask {
+    fn run<K: ConstraintKind>(&mut self, kind: &mut K, source: &mut K::Source) {
+        kind.store_impulses(source);
+    }
+}
+
+/// Links the bodies of the kinds solved in groups, or of the others ([`IslandLinks::GROUPED`]).
+struct LinkTask<'a> {
+    grouped: bool,
+    bodies: &'a Arena<RigidBody>,
+    islands: &'a mut Islands,
+}
+
+impl KindTask for LinkTask<'_> {
+    fn run<K: ConstraintKind>(&mut self, _kind: &mut K, source: &mut K::Source) {
+        if K::Source::GROUPED == self.grouped {
+            source.link(self.bodies, self.islands);
         }
     }
 }
 
 impl Solver {
-    /// Advances the bodies of `awake` (the slots of the awake dynamic and of the kinematic bodies,
-    /// ascending) by one step, with their joints and contacts: the stages in order
-    /// (`solver/mod.rs` lists what each does).
+    /// Builds this step's islands (`island.rs`) from every kind's links, before the solve: first
+    /// the kinds solved in groups (joints), whose groups are recorded then, then the others
+    /// (contacts). A kinematic body faster than `sleep_speed` (m/s) keeps what it touches awake.
+    pub fn build_islands(
+        &mut self,
+        bodies: &Arena<RigidBody>,
+        islands: &mut Islands,
+        sources: &mut Sources,
+        sleep_speed: f32,
+    ) {
+        islands.begin_islands(bodies, sleep_speed);
+        for grouped in [true, false] {
+            let mut task = LinkTask {
+                grouped,
+                bodies,
+                islands,
+            };
+            self.kinds.each(sources, &mut task);
+            if grouped {
+                islands.end_group_links();
+            }
+        }
+        islands.end_islands(bodies);
+    }
+
+    /// Advances the bodies of `islands` ([`Islands::solver_order`], built by
+    /// [`build_islands`](Self::build_islands) this step) by one step, with their constraints: the
+    /// stages in order (`solver/mod.rs` lists what each does).
     pub fn step(
         &mut self,
         bodies: &mut Arena<RigidBody>,
-        awake: &[usize],
-        (joints, contacts): (&mut JointSet, &mut ContactCache),
+        islands: &Islands,
+        sources: &mut Sources,
         settings: StepSettings,
     ) {
         let context = StepContext::new(&settings);
-        self.bodies.gather(bodies, awake);
-        self.joints.prepare(joints, &self.bodies, &context);
-        self.contacts.prepare(contacts, &self.bodies, &context);
+        self.bodies.gather(bodies, islands);
+        let mut prepare = PrepareTask {
+            bodies: &self.bodies,
+            context: &context,
+        };
+        self.kinds.each(sources, &mut prepare);
         for _ in 0..context.substeps {
             self.bodies.integrate_velocities(&context);
-            self.run(ConstraintStage::WarmStart, &context);
-            self.run(ConstraintStage::PrepareBiasedPasses, &context);
+            self.run(ConstraintStage::WarmStart, sources, &context);
+            self.run(ConstraintStage::PrepareBiasedPasses, sources, &context);
             for _ in 0..BIASED_ITERATIONS {
-                self.run(ConstraintStage::Solve, &context);
+                self.run(ConstraintStage::Solve, sources, &context);
             }
             self.bodies.integrate_positions(&context);
-            self.run(ConstraintStage::Relax, &context);
+            self.run(ConstraintStage::Relax, sources, &context);
         }
-        self.run(ConstraintStage::Restitution, &context);
-        self.joints.store_impulses(joints);
-        self.contacts.store_impulses(contacts);
+        self.run(ConstraintStage::Restitution, sources, &context);
+        self.kinds.each(sources, &mut StoreTask);
         self.bodies
             .scatter(bodies, context.limits, settings.dt, &mut self.fast);
     }
 
     /// Runs `stage` over every kind of constraint, one kind after another.
     #[inline(always)]
-    fn run(&mut self, stage: ConstraintStage, context: &StepContext) {
-        stage.run(&mut self.contacts, &mut self.bodies, context);
-        stage.run(&mut self.joints, &mut self.bodies, context);
+    fn run(&mut self, stage: ConstraintStage, sources: &mut Sources, context: &StepContext) {
+        let mut task = StageTask {
+            stage,
+            bodies: &mut self.bodies,
+            context,
+        };
+        self.kinds.each(sources, &mut task);
     }
 }

@@ -1,8 +1,8 @@
 //! The world's joint calls: adding, removing and reading joints, and what a joint changes for
-//! its bodies (waking, islands, collisions between them).
+//! its bodies (waking, collisions between them). Joints join islands through their
+//! `IslandLinks` (`island.rs`).
 
 use super::{stale, stale_joint, World};
-use crate::arena::Arena;
 use crate::body::{BodyHandle, RigidBody};
 use crate::error::{Error, ErrorKind, Result};
 use crate::filter::ordered;
@@ -165,24 +165,6 @@ impl World {
     /// Joints that broke during the last step, in slot order. Valid until the next step.
     pub fn joint_break_events(&self) -> &[JointBreakEvent] {
         self.joints.break_events()
-    }
-
-    /// Adds the joints to this step's islands, and keeps what is jointed to a moving kinematic
-    /// body from counting as still.
-    pub(super) fn link_joints(&mut self) {
-        let sleep_speed = self.settings.sleep_speed;
-        let moving_kinematic = |bodies: &Arena<RigidBody>, slot: usize| {
-            bodies
-                .at_slot(slot)
-                .is_some_and(|(_, body)| body.is_kinematic_moving_faster_than(sleep_speed))
-        };
-        for (slot_a, slot_b) in self.joints.body_links() {
-            self.islands.link(&self.bodies, slot_a, slot_b);
-            if moving_kinematic(&self.bodies, slot_a) || moving_kinematic(&self.bodies, slot_b) {
-                self.islands.keep_awake(slot_a);
-                self.islands.keep_awake(slot_b);
-            }
-        }
     }
 
     /// After a joint between `body_a` and `body_b` came or went: wakes both, and when it keeps

@@ -24,7 +24,7 @@ use crate::joint::{JointHandle, JointSet};
 use crate::limits::{MAX_GRAVITY, MAX_SPEED, MAX_TIMESTEP, MIN_TIMESTEP};
 use crate::material::CombineRule;
 use crate::math::{Aabb, Vec3};
-use crate::solver::{ContactSettings, JointSettings, Solver, StepSettings};
+use crate::solver::{ContactSettings, JointSettings, Solver, Sources, StepSettings};
 use crate::sorted::merged;
 
 /// Default gravity, m/s²: Earth's, along −Y.
@@ -594,10 +594,20 @@ impl World {
             contacts: self.contacts.contacts().len(),
         };
         self.joints.refresh_poses(&self.bodies);
+        let mut sources = Sources {
+            joints: &mut self.joints,
+            contacts: &mut self.contacts,
+        };
+        self.solver.build_islands(
+            &self.bodies,
+            &mut self.islands,
+            &mut sources,
+            self.settings.sleep_speed,
+        );
         self.solver.step(
             &mut self.bodies,
-            self.islands.awake(),
-            (&mut self.joints, &mut self.contacts),
+            &self.islands,
+            &mut sources,
             StepSettings {
                 dt,
                 substeps: self.settings.substeps,
@@ -627,13 +637,8 @@ impl World {
         let awake = |handle: BodyHandle| bodies.get(handle.0).is_some_and(RigidBody::is_awake);
         self.events
             .finish_sensor_step(bodies, |a, b| !awake(a) && !awake(b));
-        self.islands.begin_islands(&self.bodies);
-        self.islands
-            .link_contacts(&self.bodies, self.contacts.contacts());
-        self.link_joints();
         let fell_asleep = self.islands.update_sleep(
             &mut self.bodies,
-            self.contacts.contacts(),
             dt,
             self.settings.sleep_speed,
             self.settings.sleep_time,
