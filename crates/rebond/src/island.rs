@@ -70,7 +70,10 @@ pub(crate) struct Islands {
     /// Slots of bodies beside a moving kinematic body this step.
     #[cfg_attr(feature = "serde", serde(skip))]
     kept_awake: Vec<usize>,
-    /// Each awake dynamic body's island root slot with its slot, sorted.
+    /// Each island's number, by its root's slot, while the order is made.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    island_of_root: Vec<usize>,
+    /// Each awake dynamic body's island number with its slot, by ascending slot.
     #[cfg_attr(feature = "serde", serde(skip))]
     members: Vec<(usize, usize)>,
     /// The bodies the step moves, in the solver's order ([`solver_order`](Self::solver_order)).
@@ -245,48 +248,43 @@ impl Islands {
         slot
     }
 
-    /// Starts this step's islands, before the solve: each awake body alone. A body beside a
-    /// kinematic body faster than `sleep_speed` (m/s) is kept awake
-    /// ([`keep_awake_beside_kinematic`](Self::keep_awake_beside_kinematic)).
+    /// Starts this step's islands, before the solve: each awake body alone. A body linked to a
+    /// kinematic body faster than `sleep_speed` (m/s) is kept awake ([`link`](Self::link)).
     pub fn begin_islands(&mut self, bodies: &Arena<RigidBody>, sleep_speed: f32) {
         self.sleep_speed = sleep_speed;
         self.kept_awake.clear();
         let slots = bodies.slot_count();
         self.parent.resize(slots, 0);
         self.group_root.resize(slots, 0);
+        self.island_of_root.resize(slots, 0);
         self.next_in_group.resize(slots, END_OF_GROUP);
         for &slot in &self.awake {
             self.parent[slot] = slot;
         }
     }
 
-    /// Puts the bodies in slots `a` and `b` in one island if both are awake and dynamic: a
-    /// kinematic, static or sleeping body never joins an island. Called by each kind's
+    /// A link between the bodies in slots `a` and `b`, called by each kind's
     /// [`IslandLinks::link`] between [`begin_islands`](Self::begin_islands) and
-    /// [`end_islands`](Self::end_islands); roots are the lowest slot, so the islands depend on the
-    /// links alone, not on their order.
-    pub fn link(&mut self, bodies: &Arena<RigidBody>, a: usize, b: usize) {
-        let awake_dynamic = |slot: usize| {
-            bodies
-                .at_slot(slot)
-                .is_some_and(|(_, body)| body.is_dynamic() && !body.sleeping)
+    /// [`end_islands`](Self::end_islands). When `joined` (a joint, a touching contact), puts both
+    /// in one island if both are awake and dynamic: a kinematic, static or sleeping body never
+    /// joins an island. Roots are the lowest slot, so the islands depend on the links alone, not
+    /// on their order. Either way, when either body is a kinematic body faster than the sleep
+    /// speed, keeps both from counting as still this step: a body it carries, drags or is about
+    /// to touch stays awake.
+    #[inline]
+    pub fn link(&mut self, bodies: &Arena<RigidBody>, a: usize, b: usize, joined: bool) {
+        let (Some((_, body_a)), Some((_, body_b))) = (bodies.at_slot(a), bodies.at_slot(b)) else {
+            return;
         };
-        if awake_dynamic(a) && awake_dynamic(b) {
+        let awake_dynamic = |body: &RigidBody| body.is_dynamic() && !body.sleeping;
+        if joined && awake_dynamic(body_a) && awake_dynamic(body_b) {
             let (root_a, root_b) = (self.find(a), self.find(b));
             let (low, high) = (root_a.min(root_b), root_a.max(root_b));
             self.parent[high] = low;
         }
-    }
-
-    /// Keeps the bodies in slots `a` and `b` from counting as still this step when either is a
-    /// kinematic body faster than the sleep speed: a body it carries or drags stays awake.
-    pub fn keep_awake_beside_kinematic(&mut self, bodies: &Arena<RigidBody>, a: usize, b: usize) {
-        let moving_kinematic = |slot: usize| {
-            bodies
-                .at_slot(slot)
-                .is_some_and(|(_, body)| body.is_kinematic_moving_faster_than(self.sleep_speed))
-        };
-        if moving_kinematic(a) || moving_kinematic(b) {
+        let sleep_speed = self.sleep_speed;
+        let moving_kinematic = |body: &RigidBody| body.is_kinematic_moving_faster_than(sleep_speed);
+        if moving_kinematic(body_a) || moving_kinematic(body_b) {
             self.kept_awake.extend([a, b]);
         }
     }
@@ -309,31 +307,42 @@ impl Islands {
     }
 
     /// Ends this step's links: lists the awake bodies in [`solver_order`](Self::solver_order),
-    /// island by island with each island's range in it, then the kinematic bodies.
+    /// island by island with each island's range in it, then the kinematic bodies. Costs two
+    /// passes over the awake bodies (a counting sort by island).
     pub fn end_islands(&mut self, bodies: &Arena<RigidBody>) {
+        // Each island's root, its lowest slot, comes first in the ascending awake list: islands
+        // are numbered by it, and counted in their ranges' ends.
         self.members.clear();
+        self.ranges.clear();
         for index in 0..self.awake.len() {
             let slot = self.awake[index];
-            if bodies
+            if !bodies
                 .at_slot(slot)
                 .is_some_and(|(_, body)| body.is_dynamic())
             {
-                let root = self.find(slot);
-                self.members.push((root, slot));
+                continue;
             }
+            let root = self.find(slot);
+            if root == slot {
+                self.island_of_root[slot] = self.ranges.len();
+                self.ranges.push(0..0);
+            }
+            let island = self.island_of_root[root];
+            self.ranges[island].end += 1;
+            self.members.push((island, slot));
         }
-        // Unique pairs: the order is the same whatever sort puts them in it.
-        self.members.sort_unstable();
+        let mut start = 0;
+        for range in &mut self.ranges {
+            let size = range.end;
+            *range = start..start;
+            start += size;
+        }
         self.order.clear();
-        self.ranges.clear();
-        for (index, &(root, slot)) in self.members.iter().enumerate() {
-            if index == 0 || self.members[index - 1].0 != root {
-                self.ranges.push(index..index);
-            }
-            if let Some(range) = self.ranges.last_mut() {
-                range.end = index + 1;
-            }
-            self.order.push(slot);
+        self.order.resize(start, 0);
+        for &(island, slot) in &self.members {
+            let range = &mut self.ranges[island];
+            self.order[range.end] = slot;
+            range.end += 1;
         }
         let kinematic = |&&slot: &&usize| {
             bodies
@@ -430,9 +439,7 @@ pub(crate) trait IslandLinks {
     /// join them into islands.
     const GROUPED: bool;
 
-    /// Links the bodies each constraint ties together this step ([`Islands::link`]) and keeps
-    /// awake those beside a moving kinematic body
-    /// ([`Islands::keep_awake_beside_kinematic`]).
+    /// Links the bodies of each constraint this step ([`Islands::link`]).
     fn link(&self, bodies: &Arena<RigidBody>, islands: &mut Islands);
 }
 
@@ -443,8 +450,7 @@ impl IslandLinks for JointSet {
 
     fn link(&self, bodies: &Arena<RigidBody>, islands: &mut Islands) {
         for (slot_a, slot_b) in self.body_links() {
-            islands.link(bodies, slot_a, slot_b);
-            islands.keep_awake_beside_kinematic(bodies, slot_a, slot_b);
+            islands.link(bodies, slot_a, slot_b, true);
         }
     }
 }
@@ -457,10 +463,7 @@ impl IslandLinks for ContactCache {
     fn link(&self, bodies: &Arena<RigidBody>, islands: &mut Islands) {
         for contact in self.contacts() {
             let (slot_a, slot_b) = (contact.key.body_a.slot(), contact.key.body_b.slot());
-            if !contact.manifold.is_empty() {
-                islands.link(bodies, slot_a, slot_b);
-            }
-            islands.keep_awake_beside_kinematic(bodies, slot_a, slot_b);
+            islands.link(bodies, slot_a, slot_b, !contact.manifold.is_empty());
         }
     }
 }

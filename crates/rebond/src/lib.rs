@@ -31,10 +31,11 @@
 //! nothing a user passes in makes the engine panic or puts NaN or infinity into a body.
 //!
 //! The modules, in pipeline order: [`shape`] (geometry and mass), bodies ([`BodyDesc`],
-//! [`RigidBody`]), [`joint`]s between them, collision detection and the solver (private),
-//! [`World`] (owns everything and
-//! steps it), with [`query`] (rays, shape casts, overlaps), [`events`] (contacts, forces,
-//! sensors), [`scene`] (scene files) and [`state`] (saving and restoring whole worlds, exactly).
+//! [`RigidBody`]), [`joint`]s between them, collision detection, islands and the solver
+//! (private: `collision/`, `island.rs`, `solver/`), [`World`] (owns everything and steps it;
+//! `world/mod.rs` lists the step's stages in order, with where each lives), with [`query`]
+//! (rays, shape casts, overlaps), [`events`] (contacts, forces, sensors), [`scene`] (scene
+//! files) and [`state`] (saving and restoring whole worlds, exactly).
 
 mod arena;
 mod body;

@@ -2,7 +2,17 @@
 //! a pipeline of stages over the kinds of constraint (`stages.rs`): joints (`joints.rs`) and
 //! contacts (`contacts.rs`).
 //!
-//! The stages of a step, and what each does to the velocities `v`, `ω` and the positions `c`, `q`
+//! Where a kind of constraint registers: the one list of kinds, `Kinds::each` in `stages.rs`
+//! (with a field of `Kinds` and of `Sources` beside it); a kind's source links its bodies into
+//! the islands through `IslandLinks` (`island.rs`).
+//!
+//! The island is the solver's unit of work: `Solver::build_islands` builds the step's islands
+//! (`island.rs`) before the solve, and the solver takes the bodies island by island (each
+//! island a range of solver indices, the kinematic bodies after them). The joints' groups,
+//! solved directly (`joint_groups.rs`), are the components of the joints' links alone, recorded
+//! while the islands are built.
+//!
+//! The stages of a solve, and what each does to the velocities `v`, `ω` and the positions `c`, `q`
 //! of the moving bodies (`h = dt / n` for `n` substeps; `Δc`, `Δθ` the motion since the step
 //! began):
 //!

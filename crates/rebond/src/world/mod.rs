@@ -1,5 +1,22 @@
 //! The world: owns bodies and settings, and advances them in time. Its joint calls are in
 //! `joints.rs`.
+//!
+//! [`World::step`] is the list of the step's stages, in order, each with where it lives:
+//!
+//! 1. kinematic bodies take the velocity that carries them to their targets (`body/kinematic.rs`);
+//! 2. sleeping groups touched or pushed since the last step wake (`island.rs`);
+//! 3. contacts: broad phase, narrow phase, the contact cache, and the groups new contacts wake
+//!    (`contact_update.rs`, `collision/`);
+//! 4. islands: one union–find over the awake bodies' joints and touching contacts, which also
+//!    gives the joint groups (`island.rs`, built through `Solver::build_islands`);
+//! 5. the solve, island by island: substeps of the soft step over every kind of constraint
+//!    (`solver/`: `stages.rs` runs them, `solver/mod.rs` lists them);
+//! 6. kinematic bodies land exactly on their targets (`body/kinematic.rs`);
+//! 7. the continuous pass puts back fast bodies that went through another (`continuous.rs`);
+//! 8. joints measure their forces and break (`joint/set.rs`, `joints.rs`);
+//! 9. contact, force and sensor events (`events.rs`);
+//! 10. sleep: the same islands fall asleep or stay awake, and what no awake body uses is parked
+//!     (`island.rs`).
 
 mod contact_update;
 mod continuous;
@@ -560,7 +577,8 @@ impl World {
         self.step_work
     }
 
-    /// Number of islands (groups of awake dynamic bodies linked by contacts) after the last step.
+    /// Number of islands (groups of awake dynamic bodies linked by contacts and joints) awake
+    /// after the last step.
     pub fn island_count(&self) -> usize {
         self.islands.count()
     }
@@ -583,17 +601,33 @@ impl World {
     /// ([`RigidBody::set_kinematic_target`]).
     pub fn step(&mut self, dt: f32) -> Result<()> {
         check_range("dt", dt, MIN_TIMESTEP, MAX_TIMESTEP)?;
-        // Before the contacts are made: they and the broad phase's sweep read the velocities.
+        // The stages in order (module documentation). Kinematic velocities come first: the
+        // contacts and the broad phase's sweep read them.
         self.for_each_kinematic(|body| body.begin_kinematic_step(dt));
         self.wake_groups(false);
         self.update_contacts(dt);
         self.wake_groups(true);
+        self.solve(dt);
+        // Before anything reads the poses the step ended with.
+        self.for_each_kinematic(|body| body.finish_kinematic_step(dt));
+        self.stop_fast_bodies();
+        self.joints.finish_step(dt);
+        self.refilter_broken_joints();
+        self.update_events(dt);
+        self.update_sleep(dt);
+        Ok(())
+    }
+
+    /// Builds this step's islands from its joints and contacts, and solves them: the bodies'
+    /// new velocities and poses.
+    fn solve(&mut self, dt: f32) {
         self.step_work = StepWork {
             bodies: self.islands.awake().len(),
             pairs: self.broad_phase.pairs().len(),
             contacts: self.contacts.contacts().len(),
         };
         self.joints.refresh_poses(&self.bodies);
+        let settings = &self.settings;
         let mut sources = Sources {
             joints: &mut self.joints,
             contacts: &mut self.contacts,
@@ -602,7 +636,7 @@ impl World {
             &self.bodies,
             &mut self.islands,
             &mut sources,
-            self.settings.sleep_speed,
+            settings.sleep_speed,
         );
         self.solver.step(
             &mut self.bodies,
@@ -610,26 +644,25 @@ impl World {
             &mut sources,
             StepSettings {
                 dt,
-                substeps: self.settings.substeps,
-                gravity: self.settings.gravity,
-                max_linear_speed: self.settings.max_linear_speed,
+                substeps: settings.substeps,
+                gravity: settings.gravity,
+                max_linear_speed: settings.max_linear_speed,
                 contact: ContactSettings {
-                    hertz: self.settings.contact_hertz,
-                    damping_ratio: self.settings.contact_damping_ratio,
-                    push_speed: self.settings.contact_push_speed,
-                    restitution_threshold: self.settings.restitution_threshold,
+                    hertz: settings.contact_hertz,
+                    damping_ratio: settings.contact_damping_ratio,
+                    push_speed: settings.contact_push_speed,
+                    restitution_threshold: settings.restitution_threshold,
                 },
                 joint: JointSettings {
-                    hertz: self.settings.joint_hertz,
-                    damping_ratio: self.settings.joint_damping_ratio,
+                    hertz: settings.joint_hertz,
+                    damping_ratio: settings.joint_damping_ratio,
                 },
             },
         );
-        // Before anything reads the poses the step ended with.
-        self.for_each_kinematic(|body| body.finish_kinematic_step(dt));
-        self.stop_fast_bodies();
-        self.joints.finish_step(dt);
-        self.refilter_broken_joints();
+    }
+
+    /// The step's contact, force and sensor events, from its contacts as solved.
+    fn update_events(&mut self, dt: f32) {
         let substep_length = dt / self.settings.substeps as f32;
         self.events
             .update_contacts(self.contacts.contacts(), &self.bodies, substep_length);
@@ -637,6 +670,11 @@ impl World {
         let awake = |handle: BodyHandle| bodies.get(handle.0).is_some_and(RigidBody::is_awake);
         self.events
             .finish_sensor_step(bodies, |a, b| !awake(a) && !awake(b));
+    }
+
+    /// Puts to sleep the islands still for long enough (the islands this step solved), and parks
+    /// what no awake body uses any more.
+    fn update_sleep(&mut self, dt: f32) {
         let fell_asleep = self.islands.update_sleep(
             &mut self.bodies,
             dt,
@@ -646,7 +684,6 @@ impl World {
         if fell_asleep {
             self.park_sleeping();
         }
-        Ok(())
     }
 }
 
