@@ -39,6 +39,9 @@ use crate::sorted::merge_into;
 /// Ends a sleeping group's list of members.
 const END_OF_GROUP: usize = usize::MAX;
 
+/// The island number of an awake body in no island (a kinematic body).
+const NOT_IN_ISLAND: usize = usize::MAX;
+
 /// The awake bodies, the sleeping groups, and the reused buffers of the island pass.
 #[derive(Debug, Clone, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -73,7 +76,8 @@ pub(crate) struct Islands {
     /// Each island's number, by its root's slot, while the order is made.
     #[cfg_attr(feature = "serde", serde(skip))]
     island_of_root: Vec<usize>,
-    /// Each awake dynamic body's island number with its slot, by ascending slot.
+    /// Each awake body's island number ([`NOT_IN_ISLAND`] for a kinematic body) with its slot,
+    /// by ascending slot.
     #[cfg_attr(feature = "serde", serde(skip))]
     members: Vec<(usize, usize)>,
     /// The bodies the step moves, in the solver's order ([`solver_order`](Self::solver_order)).
@@ -314,12 +318,15 @@ impl Islands {
         // are numbered by it, and counted in their ranges' ends.
         self.members.clear();
         self.ranges.clear();
+        let mut kinematic_count = 0;
         for index in 0..self.awake.len() {
             let slot = self.awake[index];
             if !bodies
                 .at_slot(slot)
                 .is_some_and(|(_, body)| body.is_dynamic())
             {
+                self.members.push((NOT_IN_ISLAND, slot));
+                kinematic_count += 1;
                 continue;
             }
             let root = self.find(slot);
@@ -338,18 +345,21 @@ impl Islands {
             start += size;
         }
         self.order.clear();
-        self.order.resize(start, 0);
+        self.order.resize(start + kinematic_count, 0);
+        let mut next_kinematic = start;
         for &(island, slot) in &self.members {
-            let range = &mut self.ranges[island];
-            self.order[range.end] = slot;
-            range.end += 1;
+            let place = match self.ranges.get_mut(island) {
+                Some(range) => {
+                    range.end += 1;
+                    range.end - 1
+                }
+                None => {
+                    next_kinematic += 1;
+                    next_kinematic - 1
+                }
+            };
+            self.order[place] = slot;
         }
-        let kinematic = |&&slot: &&usize| {
-            bodies
-                .at_slot(slot)
-                .is_some_and(|(_, body)| !body.is_dynamic())
-        };
-        self.order.extend(self.awake.iter().filter(kinematic));
     }
 
     /// The bodies the step moves, in the solver's order: each island's awake dynamic bodies
