@@ -477,3 +477,57 @@ impl IslandLinks for ContactCache {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::arena::new_world;
+    use crate::body::{BodyDesc, BodyType};
+    use crate::shape::Shape;
+
+    /// Bodies of `types` in slots 0, 1, … (spheres at rest), with islands that have them awake.
+    fn bodies_of(types: &[BodyType]) -> (Arena<RigidBody>, Islands) {
+        let mut bodies = Arena::new(new_world());
+        let mut islands = Islands::default();
+        for &body_type in types {
+            let shape = Shape::sphere(0.5).expect("valid sphere");
+            let desc = match body_type {
+                BodyType::Dynamic => BodyDesc::dynamic(shape),
+                BodyType::Kinematic => BodyDesc::kinematic(shape),
+                BodyType::Static => BodyDesc::static_body(shape),
+            };
+            let body = RigidBody::from_desc(desc).expect("valid body");
+            let slot = bodies.insert(body).slot();
+            if body_type != BodyType::Static {
+                islands.add_body(slot);
+            }
+        }
+        (bodies, islands)
+    }
+
+    #[test]
+    fn joints_make_the_groups_and_contacts_join_them_into_islands() {
+        use BodyType::{Dynamic as D, Kinematic as K, Static as S};
+        // Two jointed pairs, 1–3 and 0–4, touching at 3–4; body 2 touches the kinematic body 5
+        // and the static body 6, which join nothing; 7 is near 2 without touching it.
+        let (bodies, mut islands) = bodies_of(&[D, D, D, D, D, K, S, D]);
+        islands.begin_islands(&bodies, 0.05);
+        islands.link(&bodies, 3, 1, true);
+        islands.link(&bodies, 0, 4, true);
+        islands.end_group_links();
+        islands.link(&bodies, 3, 4, true);
+        islands.link(&bodies, 2, 5, true);
+        islands.link(&bodies, 6, 2, true);
+        islands.link(&bodies, 2, 7, false);
+        islands.end_islands(&bodies);
+        let group_roots: Vec<usize> = [0, 1, 2, 3, 4, 5, 7]
+            .map(|slot| islands.group_root(slot))
+            .to_vec();
+        assert_eq!(group_roots, [0, 1, 2, 1, 0, 5, 7]);
+        // Islands by lowest slot, bodies ascending within each, the kinematic body last.
+        assert_eq!(islands.solver_order(), [0, 1, 3, 4, 2, 7, 5]);
+        assert_eq!(islands.ranges, [0..4, 4..5, 5..6]);
+        // The kinematic body is at rest: it keeps nothing awake.
+        assert!(islands.kept_awake.is_empty());
+    }
+}

@@ -5,7 +5,7 @@ mod common;
 
 use common::{add_ground, run, unit_box, world, DT, G};
 use rebond::internals::solver::contact_model::CONTACT_HERTZ_PER_SUBSTEP_RATE;
-use rebond::{BodyDesc, BodyHandle, Quat, Shape, Vec3, World, WorldSettings};
+use rebond::{BodyDesc, BodyHandle, JointDesc, Quat, Shape, Vec3, World, WorldSettings};
 
 /// Largest distance any body moved from its start over `seconds`.
 /// The largest distance any of `bodies` gets from its start position over `seconds` of steps,
@@ -461,6 +461,42 @@ fn a_resting_stack_falls_asleep_and_wakes_when_struck() {
     assert!(boxes
         .iter()
         .all(|(handle, _)| !world.body(*handle).unwrap().is_sleeping()));
+}
+
+#[test]
+fn joints_and_touching_contacts_join_islands_and_kinematic_bodies_join_none() {
+    // Without gravity the boxes stay where they are put: four in a row, 3 m apart.
+    let mut world = world(Vec3::ZERO);
+    let boxes: Vec<BodyHandle> = (0..4)
+        .map(|i| {
+            let position = Vec3::new(3.0 * i as f32, 0.0, 0.0);
+            world.add_body(unit_box(position)).unwrap()
+        })
+        .collect();
+    run(&mut world, 1);
+    assert_eq!(world.island_count(), 4);
+    let midpoint = Vec3::new(1.5, 0.0, 0.0);
+    world
+        .add_joint(JointDesc::ball(boxes[0], boxes[1], midpoint))
+        .unwrap();
+    run(&mut world, 1);
+    assert_eq!(world.island_count(), 3);
+    // A 2 m kinematic box fills the 2 m gap between the last two boxes and touches both: they
+    // are still two islands.
+    let kinematic = BodyDesc::kinematic(Shape::cuboid(Vec3::splat(1.0)).unwrap())
+        .position(Vec3::new(7.5, 0.0, 0.0));
+    let kinematic = world.add_body(kinematic).unwrap();
+    run(&mut world, 1);
+    assert_eq!(world.touching_pairs().count(), 2);
+    assert_eq!(world.island_count(), 3);
+    // A dynamic box in its place joins them.
+    world.remove_body(kinematic).unwrap();
+    let dynamic = BodyDesc::dynamic(Shape::cuboid(Vec3::splat(1.0)).unwrap())
+        .position(Vec3::new(7.5, 0.0, 0.0));
+    world.add_body(dynamic).unwrap();
+    run(&mut world, 1);
+    assert_eq!(world.touching_pairs().count(), 2);
+    assert_eq!(world.island_count(), 2);
 }
 
 #[test]
