@@ -354,8 +354,8 @@ impl FastMotion {
 }
 
 /// Buffers reused from step to step, so a steady scene allocates nothing: the bodies, and the
-/// constraints of each kind. [`Solver::build_islands`] and [`Solver::step`] (`stages.rs`) run
-/// the stages over them.
+/// constraints of each kind. [`Solver::step`] (`stages.rs`) runs the stages over them;
+/// [`Solver::build_islands`] links the islands through the same list of kinds.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Solver {
     bodies: SolverBodies,

@@ -130,6 +130,7 @@ pub(crate) struct Kinds {
 /// Work done on every kind of constraint in turn ([`Kinds::each`]): generic over the kind, so
 /// each kind's loops compile to code of their own, with nothing dispatched per constraint.
 trait KindTask {
+    /// Does the work on the constraints of one kind, `kind`, built from `source`.
     fn run<K: ConstraintKind>(&mut self, kind: &mut K, source: &mut K::Source);
 }
 
