@@ -112,7 +112,7 @@ pub fn sphere_capsule(
 
 /// Parameters `(s, t)` of the closest points `p₁ + s d₁` and `p₂ + t d₂` of two segments, both
 /// clamped to `[0, 1]` (the classic clamped solution of the 2×2 normal equations).
-fn closest_segment_parameters(p1: Vec3, d1: Vec3, p2: Vec3, d2: Vec3) -> (f32, f32) {
+pub(super) fn closest_segment_parameters(p1: Vec3, d1: Vec3, p2: Vec3, d2: Vec3) -> (f32, f32) {
     let r = p1 - p2;
     let a = d1.length_squared();
     let e = d2.length_squared();

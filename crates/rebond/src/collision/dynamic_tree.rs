@@ -820,7 +820,7 @@ impl SweepSlabs {
 
 #[cfg(test)]
 #[path = "../../tests/common/random.rs"]
-mod random;
+pub(super) mod random;
 
 #[cfg(test)]
 mod tests;

@@ -19,6 +19,7 @@ pub mod polyhedron;
 pub mod polyhedron_contact;
 mod separating_axis;
 pub(crate) mod time_of_impact;
+mod triangle_closest;
 pub mod triangle_contact;
 
 pub use manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};

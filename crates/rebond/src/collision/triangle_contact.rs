@@ -4,9 +4,10 @@
 //! an edge normal is often a "ghost" of a surface that goes on flat. The contact is therefore
 //! built in three steps:
 //!
-//! 1. The closest points of the triangle and of the shape's core (GJK; a sphere's by the closed
-//!    form). When the cores overlap, or the shape lies behind a heightfield's surface, the normal
-//!    is the face normal and the depth is the shape's deepest point below the triangle's plane.
+//! 1. The closest points of the triangle and of the shape's core: in closed form for a sphere, a
+//!    capsule and a box (`triangle_closest`), by GJK for cylinders and hulls. When the cores
+//!    overlap, or the shape lies behind a heightfield's surface, the normal is the face normal
+//!    and the depth is the shape's deepest point below the triangle's plane.
 //! 2. Internal edges: when the closest point of the triangle is on an edge or corner that is not
 //!    active on that side (see [`Triangle`]) and the normal is not the face normal, the normal
 //!    becomes the face normal, with the separation measured along it from the triangle's closest
@@ -29,6 +30,7 @@ use super::feature_contact::{
 };
 use super::gjk;
 use super::manifold::{ContactPoint, Manifold};
+use super::triangle_closest;
 use super::{PosedCore, SupportMap};
 use crate::math::{Pose, Vec3};
 use crate::shape::line::line_entry;
@@ -201,15 +203,25 @@ fn closest_cores(
     face: Vec3,
     limit: f32,
 ) -> Option<Option<(Vec3, Vec3)>> {
-    let (on_triangle, on_core) = if let Shape::Sphere(_) = shape {
-        let (on_triangle, _) = triangle.closest_point(core.pose.position);
-        (on_triangle, core.pose.position)
-    } else {
-        let found = gjk::distance_within(triangle, core, &[], face, limit)?;
-        if found.overlapping {
-            return Some(None);
+    let found = match shape {
+        Shape::Sphere(_) => {
+            let (on_triangle, _) = triangle.closest_point(core.pose.position);
+            Some((on_triangle, core.pose.position))
         }
-        (found.point_a, found.point_b)
+        Shape::Capsule(capsule) => {
+            let segment = capsule.segment().map(|end| core.pose.transform_point(end));
+            triangle_closest::segment_triangle(triangle, segment, limit)?
+        }
+        Shape::Cuboid(cuboid) => {
+            triangle_closest::box_triangle(triangle, cuboid.half_extents(), core.pose, limit)?
+        }
+        _ => {
+            let found = gjk::distance_within(triangle, core, &[], face, limit)?;
+            (!found.overlapping).then_some((found.point_a, found.point_b))
+        }
+    };
+    let Some((on_triangle, on_core)) = found else {
+        return Some(None);
     };
     let offset = on_core - on_triangle;
     if offset.length_squared() > limit * limit {

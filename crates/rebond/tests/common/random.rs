@@ -1,6 +1,6 @@
 //! SplitMix64: a tiny deterministic generator, so every run of a test or benchmark sees the same
 //! cases. Shared by the integration tests, the benchmarks (through `#[path]`) and the unit tests
-//! of the dynamic tree.
+//! of the collision module (through the dynamic tree's).
 #![allow(dead_code)]
 
 use glam::Vec3;
