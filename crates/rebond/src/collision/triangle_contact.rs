@@ -31,7 +31,7 @@ use super::feature_contact::{
 use super::gjk;
 use super::manifold::{ContactPoint, Manifold};
 use super::triangle_closest;
-use super::{PosedCore, SupportMap};
+use super::{LocalCore, PosedCore, SupportMap};
 use crate::math::{Pose, Vec3};
 use crate::shape::line::line_entry;
 use crate::shape::{Shape, Triangle, ACTIVE_EDGE_ANGLE};
@@ -216,8 +216,23 @@ fn closest_cores(
             triangle_closest::box_triangle(triangle, cuboid.half_extents(), core.pose, limit)?
         }
         _ => {
-            let found = gjk::distance_within(triangle, core, &[], face, limit)?;
-            (!found.overlapping).then_some((found.point_a, found.point_b))
+            // In the shape's own frame its supports need no rotation: the triangle is turned
+            // once instead of every support point.
+            let pose = core.pose;
+            let local = Triangle {
+                vertices: triangle
+                    .vertices
+                    .map(|corner| pose.inverse_transform_point(corner)),
+                edge_flags: triangle.edge_flags,
+            };
+            let toward = pose.inverse_transform_vector(face);
+            let found = gjk::distance_within(&local, &LocalCore(shape), &[], toward, limit)?;
+            (!found.overlapping).then(|| {
+                (
+                    pose.transform_point(found.point_a),
+                    pose.transform_point(found.point_b),
+                )
+            })
         }
     };
     let Some((on_triangle, on_core)) = found else {
