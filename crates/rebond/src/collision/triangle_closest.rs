@@ -72,7 +72,8 @@ pub(crate) fn segment_triangle(
 }
 
 /// The closest points `(on_triangle, on_box)` of `triangle` and the box of `half_extents` at
-/// `pose`, as [`segment_triangle`] gives them for a segment.
+/// `pose`, as [`segment_triangle`] gives them for a segment; `None` for a triangle of zero area
+/// (which `collide_triangle` never passes).
 pub(crate) fn box_triangle(
     triangle: &Triangle,
     half_extents: Vec3,
