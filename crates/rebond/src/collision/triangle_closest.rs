@@ -1,18 +1,21 @@
 //! Closest points of a triangle and the core of a capsule (a segment) or of a box, in closed
-//! form: what GJK finds for those pairs, for a tenth of its cost and without its tolerance.
+//! form: what GJK finds for those pairs, for about a fifth of its cost (650 to 850 instructions
+//! a query against 3,500) and without its tolerance.
 //!
 //! Two convex sets are closest along a unique vector, reached (when they do not meet) at a pair
-//! of features; it is enough to look at one pair of each kind and keep the nearest:
+//! of features; it is enough to try the candidates below and keep the nearest:
 //!
 //! - segment and triangle: an end of the segment against the triangle, or the segment against
 //!   one of the triangle's edges. A segment crossing the face meets the triangle.
 //! - box and triangle: an edge of the triangle against the box (exact, see [`edge_toward_box`]),
-//!   or the box's corner nearest the triangle's plane against the triangle. When the plane cuts
-//!   the box and no edge meets it, the box meets the triangle exactly when the plane's section
-//!   of the box lies inside the triangle, which one point of it tells.
+//!   or, when the triangle's plane misses the box, the box's corner nearest the plane against the
+//!   triangle. When the plane cuts the box and no edge meets it, the box meets the triangle
+//!   exactly when the plane's section of the box lies inside the triangle, which one point of it
+//!   tells.
 //!
 //! Both work in a frame near the pair (the triangle's first corner, the box's own frame), so
-//! their rounding is relative to the pair's size, not to its distance from the world origin.
+//! that the distance's rounding is relative to the pair's size, not to its distance from the
+//! world origin; the points are then placed back in the world.
 
 use super::closed_form::closest_segment_parameters;
 use super::gjk;
