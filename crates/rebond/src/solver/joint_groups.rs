@@ -38,6 +38,9 @@ pub(super) struct GroupRow {
     pub accumulator: Accumulator,
     /// Solver indices of the row's bodies (0 for one that does not move).
     pub bodies: [usize; 2],
+    /// Whether each side's body takes impulses: not body 0, not a kinematic body (no inverse
+    /// mass or inertia). Rows couple only through such bodies.
+    takes_impulses: [bool; 2],
     pub jacobian: RowJacobian,
     /// `M⁻¹ Jᵀ` per side: the velocity change a unit impulse gives.
     pub linear_response: [Vec3; 2],
@@ -58,6 +61,10 @@ impl GroupRow {
             joint,
             accumulator,
             bodies,
+            takes_impulses: [0, 1].map(|side| {
+                bodies[side] != 0
+                    && (inverse_mass[side] != Vec3::ZERO || inverse_inertia[side] != Mat3::ZERO)
+            }),
             jacobian,
             linear_response: [0, 1].map(|side| inverse_mass[side] * jacobian.linear[side]),
             angular_response: [0, 1].map(|side| inverse_inertia[side] * jacobian.angular[side]),
@@ -231,7 +238,7 @@ impl GroupSystem {
         self.sides.clear();
         for (index, row) in self.rows.iter().enumerate() {
             for side in 0..2 {
-                if row.bodies[side] != 0 {
+                if row.takes_impulses[side] {
                     self.sides.push((row.bodies[side], index, side));
                 }
             }

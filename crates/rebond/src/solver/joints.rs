@@ -119,6 +119,9 @@ struct JointConstraint {
     frames: JointFrames,
     /// Solver indices of bodies A and B (0 for a side that does not move this step).
     solver: [usize; 2],
+    /// The same for the dynamic sides only, 0 for a kinematic one, for the order of the group's
+    /// joints: a kinematic body takes no impulse, so nothing couples through it.
+    dynamic: [usize; 2],
     bodies: JointBodies,
     /// Centre of mass and rotation of each side as the step starts (read for a side that does
     /// not move).
@@ -507,7 +510,7 @@ impl JointConstraints {
         self.grouped_bodies.extend(
             self.constraints
                 .iter()
-                .map(|constraint| constraint.group.map(|_| constraint.solver)),
+                .map(|constraint| constraint.group.map(|_| constraint.dynamic)),
         );
         self.order.find(&self.grouped_bodies, body_count);
     }
@@ -619,6 +622,13 @@ impl ConstraintKind for JointConstraints {
                 },
                 frames: joint.frames,
                 solver,
+                dynamic: [0, 1].map(|side| {
+                    if motions[side].is_dynamic {
+                        solver[side]
+                    } else {
+                        0
+                    }
+                }),
                 bodies: JointBodies {
                     inverse_mass: motions.map(BodyMotion::inverse_mass_diagonal),
                     inverse_inertia: motions.map(|motion| motion.world_inverse_inertia),
