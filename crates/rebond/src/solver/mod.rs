@@ -22,7 +22,7 @@
 //! | integrate velocities | per substep | `v += h (g + F/m)`, `ω += h I⁻¹τ`, damped, limited | — |
 //! | warm start | per substep | the accumulated impulses applied again | read: joints follow the poses; `Δc`, `Δθ` set the contacts' targets for the biased passes |
 //! | prepare biased passes | per substep | read: which contacts meet an impact as a block | — |
-//! | solve (biased, ×2) | per substep | normal impulses, then joint rows, towards the targets (soft push-out) | — |
+//! | solve (biased, ×2) | per substep | normal impulses, then joint rows (the groups' exact solve in the second pass only), towards the targets (soft push-out) | — |
 //! | integrate positions | per substep | — | `c += h v`, `q` turned by `h ω`, `Δc`, `Δθ` |
 //! | relax | per substep | normal impulses without push-out, then friction, then rolling resistance (`rolling.rs`); then joint rows, rigid | read: `Δc`, `Δθ` |
 //! | restitution | once | the contacts with restitution collide again in sequence (`contacts.rs`) | — |

@@ -25,7 +25,7 @@ use crate::math::Vec3;
 /// Biased passes per substep. Lane sets converge more slowly than solving the contacts strictly
 /// one after another: with one pass the bench's stacks keep moving instead of coming to rest
 /// (`docs/design-notes/contact-model.md`).
-const BIASED_ITERATIONS: usize = 2;
+pub(super) const BIASED_ITERATIONS: usize = 2;
 
 /// What the stages of one step share.
 #[derive(Debug, Clone, Copy)]
