@@ -252,6 +252,11 @@ fn core_distance(a: &Solid, b: &Solid) -> Distance {
     gjk::distance(&a.core(), &b.core())
 }
 
+/// GJK's distance between the cores less their roundings: the distance between the surfaces.
+fn surface_distance(a: &Solid, b: &Solid) -> f32 {
+    core_distance(a, b).distance - a.shape.core_radius() - b.shape.core_radius()
+}
+
 fn contact(a: &Solid, b: &Solid) -> ContactInfo {
     epa::contact(&a.core(), &b.core(), f32::INFINITY).expect("an infinite margin always reports")
 }
@@ -404,7 +409,7 @@ fn box_against_sphere_and_cylinders() {
 
     let standing = Solid::at(cylinder(1.0, 1.0), Vec3::new(0.3, 3.0, 0.0));
     assert_close(
-        core_distance(&a, &standing).distance,
+        surface_distance(&a, &standing),
         1.0,
         CLOSED_FORM,
         "cap on face",
@@ -416,7 +421,7 @@ fn box_against_sphere_and_cylinders() {
         Quat::from_rotation_x(FRAC_PI_2),
     );
     assert_close(
-        core_distance(&a, &lying).distance,
+        surface_distance(&a, &lying),
         0.5,
         CLOSED_FORM,
         "rim on face",
@@ -430,7 +435,7 @@ fn box_against_sphere_and_cylinders() {
     );
     let expected = 1.5 * SQRT_2 - 0.5;
     assert_close(
-        core_distance(&a, &edge).distance,
+        surface_distance(&a, &edge),
         expected,
         CLOSED_FORM,
         "rim on edge",

@@ -171,6 +171,13 @@ pub(crate) fn supporting_feature(shape: &Shape, pose: &Pose, direction: Vec3) ->
             }
         }
         Shape::Cylinder(cylinder) => {
+            // The sharp cylinder's feature moved in by the convex radius along the direction:
+            // with the radius added back along the normal, its clipped points are the sharp
+            // cylinder's. Lying flat, the rounded cylinder touches there too; tilted, the sharp
+            // rim reaches a little deeper than the rounded one, and no clipped point is deeper
+            // than GJK/EPA's depth (see `SeparationLimits`).
+            let inward = -direction * cylinder.convex_radius();
+            let place = |point: Vec3| pose.transform_point(point) + inward;
             let (radius, half_height) = (cylinder.radius(), cylinder.half_height());
             let cap_y = if local.y >= 0.0 {
                 half_height
@@ -187,7 +194,7 @@ pub(crate) fn supporting_feature(shape: &Shape, pose: &Pose, direction: Vec3) ->
                     Vec3::new(radius * angle.cos(), cap_y, winding * radius * angle.sin())
                 });
                 for point in rim {
-                    feature.push(pose.transform_point(point));
+                    feature.push(place(point));
                 }
                 let step = CAP_VERTICES / CAP_SQUARE_CORNERS;
                 let mut square: [Vec3; CAP_SQUARE_CORNERS] =
@@ -200,17 +207,17 @@ pub(crate) fn supporting_feature(shape: &Shape, pose: &Pose, direction: Vec3) ->
                         square[nearest] = farthest;
                     }
                 }
-                feature.cap_square = Some(square.map(|corner| pose.transform_point(corner)));
+                feature.cap_square = Some(square.map(place));
                 feature.face_normal = pose.transform_vector(Vec3::new(0.0, cap_y.signum(), 0.0));
                 feature
             } else if local.y.abs() <= SIDE_SINE {
                 let mut feature = Feature::new(0);
-                feature.push(pose.transform_point(radial - Vec3::new(0.0, half_height, 0.0)));
-                feature.push(pose.transform_point(radial + Vec3::new(0.0, half_height, 0.0)));
+                feature.push(place(radial - Vec3::new(0.0, half_height, 0.0)));
+                feature.push(place(radial + Vec3::new(0.0, half_height, 0.0)));
                 feature
             } else {
                 let mut feature = Feature::new(3);
-                feature.push(pose.transform_point(radial + Vec3::new(0.0, cap_y, 0.0)));
+                feature.push(place(radial + Vec3::new(0.0, cap_y, 0.0)));
                 feature
             }
         }
@@ -269,15 +276,22 @@ pub fn collide_features(
     margin: f32,
     simplex: &mut SimplexCache,
 ) -> Option<Manifold> {
-    let core_a = PosedCore::new(shape_a, pose_a);
-    let core_b = PosedCore::new(shape_b, pose_b);
+    // Solved with A's origin at the world origin, then moved back: far from the origin a world
+    // coordinate is rounded to a millimetre (at 10 km), which the heights of clipped points would
+    // pick up, a cylinder's moved in by its convex radius most of all.
+    let origin = pose_a.position;
+    let pose_a = Pose::new(Vec3::ZERO, pose_a.rotation);
+    let pose_b = Pose::new(pose_b.position - origin, pose_b.rotation);
+    let core_a = PosedCore::new(shape_a, &pose_a);
+    let core_b = PosedCore::new(shape_b, &pose_b);
     let deepest = polytope.contact_from(&core_a, &core_b, margin, simplex)?;
-    let feature_a = supporting_feature(shape_a, pose_a, deepest.normal);
-    let feature_b = supporting_feature(shape_b, pose_b, -deepest.normal);
+    let feature_a = supporting_feature(shape_a, &pose_a, deepest.normal);
+    let feature_b = supporting_feature(shape_b, &pose_b, -deepest.normal);
     let radii = [shape_a.core_radius(), shape_b.core_radius()];
-    Some(manifold_from_features(
-        &deepest, &feature_a, &feature_b, radii, margin, None,
-    ))
+    Some(
+        manifold_from_features(&deepest, &feature_a, &feature_b, radii, margin, None)
+            .translated(origin),
+    )
 }
 
 /// The manifold of two shapes whose deepest point is `deepest`, from their supporting features
@@ -328,14 +342,15 @@ pub(crate) fn manifold_from_features(
             feature_a,
             feature_b,
             incident,
-            radii[1],
+            radii,
             0,
             &limits,
             dropped_sides,
         )
     } else if use_b {
         let incident = feature_a.incident_points();
-        clip_against_face(feature_b, feature_a, incident, radii[0], 1, &limits, 0)
+        let radii = [radii[1], radii[0]];
+        clip_against_face(feature_b, feature_a, incident, radii, 1, &limits, 0)
             .map(Manifold::flipped)
     } else {
         None
@@ -386,10 +401,12 @@ struct SeparationLimits {
     margin: f32,
 }
 
-/// Clips the `incident` feature's polygon `incident_points` (on a shape of rounding
-/// `incident_radius`) against the `reference` face. The manifold normal is the reference face's
-/// normal, pointing from the reference shape toward the incident one; each point's separation is its incident surface
-/// point's height above the reference plane, but never deeper than `limits.deepest`: the reference
+/// Clips the `incident` feature's polygon `incident_points` against the `reference` face, both on
+/// their shapes' cores, of roundings `radii` (reference, incident). The manifold normal is the
+/// reference face's normal, pointing from the reference shape toward the incident one; each
+/// point's separation is its incident surface point's height above the reference surface (the
+/// face's plane moved out by its rounding: a rounded cylinder's flat cap), but never deeper than
+/// `limits.deepest`: the reference
 /// normal may be up to 11° off the contact normal, along which the shapes overlap least, and
 /// would overstate the depth of a point near the reference face's rim. `side` (0: A holds the
 /// reference face, 1: B) and the feature indices go into the ids. Points made by the reference's
@@ -398,13 +415,14 @@ fn clip_against_face(
     reference: &Feature,
     incident: &Feature,
     incident_points: &[Vec3],
-    incident_radius: f32,
+    radii: [f32; 2],
     side: u32,
     limits: &SeparationLimits,
     dropped_sides: u8,
 ) -> Option<Manifold> {
     let normal = reference.face_normal;
     let plane_point = reference.points[0];
+    let [reference_radius, incident_radius] = radii;
     let mut candidates = [ContactPoint::default(); 2 * MAX_FEATURE_VERTICES];
     let mut count = 0;
     let dropped = |side: u8| side < 8 && dropped_sides & (1 << side) != 0;
@@ -417,7 +435,7 @@ fn clip_against_face(
         if made_by_dropped_sides {
             return;
         }
-        let height = normal.dot(vertex.position - plane_point) - incident_radius;
+        let height = normal.dot(vertex.position - plane_point) - reference_radius - incident_radius;
         let separation = height.max(limits.deepest);
         if separation <= limits.margin && count < candidates.len() {
             candidates[count] = ContactPoint {

@@ -215,6 +215,17 @@ impl SimplexCache {
         }
     }
 
+    /// The same vertices with each point of A (`side` 0) or of B (`side` 1) replaced by
+    /// `map(point)`: to carry the simplex into another frame of that shape, or onto another
+    /// shape that holds those points.
+    pub(crate) fn with_points(&self, side: usize, map: impl Fn(Vec3) -> Vec3) -> Self {
+        let mut moved = *self;
+        for vertex in &mut moved.local_points[..usize::from(self.len)] {
+            vertex[side] = map(vertex[side]);
+        }
+        moved
+    }
+
     /// The kept vertices with B placed as `b` now (A's frame): the first `len` of the array.
     pub(crate) fn placed(&self, b: &RelativeCore) -> ([SupportPoint; 4], usize) {
         let points = self.local_points.map(|[on_a, on_b]| {

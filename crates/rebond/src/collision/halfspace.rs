@@ -51,7 +51,8 @@ impl Candidates {
 /// The contact of halfspace A (at `pose_a`) with the convex shape B (at `pose_b`; never a
 /// compound or a halfspace), with the normal from A toward B: the plane's outward normal.
 /// Points: a sphere's lowest point; a capsule's two lowest segment ends; a box's or hull's
-/// vertices; a cylinder's four fixed rim samples on each cap, the one nearest a cap's deepest rim
+/// vertices; a cylinder's four fixed samples on each rounded rim (on its core's rim, lowered by
+/// the convex radius), the one nearest a cap's deepest rim
 /// point moved there when it lies deeper by more than `DEEPEST_SNAP_DISTANCE` (so a cylinder
 /// keeps the same ids whether it stands flat, wobbles or lies on its side). More than four are
 /// reduced to four by depth and spread.
@@ -95,8 +96,11 @@ pub fn collide_halfspace(
             }
         }
         Shape::Cylinder(cylinder) => {
+            // The core's rim, each sample then moved down by the convex radius: the lowest points
+            // of the rounded rim.
+            let cylinder = cylinder.core();
             let local_normal = pose_b.inverse_transform_vector(normal);
-            let down = Vec3::new(-local_normal.x, 0.0, -local_normal.z).normalize_or_zero();
+            let downhill = Vec3::new(-local_normal.x, 0.0, -local_normal.z).normalize_or_zero();
             let rim_direction = |sample: u32| {
                 let angle = TAU * sample as f32 / CYLINDER_RIM_SAMPLES as f32;
                 Vec3::new(angle.cos(), 0.0, angle.sin())
@@ -104,19 +108,19 @@ pub fn collide_halfspace(
             let samples = 0..CYLINDER_RIM_SAMPLES as u32;
             let nearest = samples.clone().max_by(|&i, &j| {
                 rim_direction(i)
-                    .dot(down)
-                    .total_cmp(&rim_direction(j).dot(down))
+                    .dot(downhill)
+                    .total_cmp(&rim_direction(j).dot(downhill))
             });
             for (cap, y) in (0u32..).zip([-cylinder.half_height(), cylinder.half_height()]) {
                 let center = Vec3::new(0.0, y, 0.0);
-                let deepest = center + down * cylinder.radius();
+                let deepest = center + downhill * cylinder.radius();
                 for sample in samples.clone() {
                     let rim = center + rim_direction(sample) * cylinder.radius();
                     let snapped = Some(sample) == nearest
                         && local_normal.dot(rim - deepest) > DEEPEST_SNAP_DISTANCE;
                     let point = if snapped { deepest } else { rim };
                     let id = cap * CYLINDER_RIM_SAMPLES as u32 + sample;
-                    candidates.offer(pose_b.transform_point(point), id);
+                    candidates.offer(pose_b.transform_point(point) + down, id);
                 }
             }
         }

@@ -99,4 +99,13 @@ impl Manifold {
         self.normal = -self.normal;
         self
     }
+
+    /// The manifold with every point moved by `offset`: found about a local origin, placed back
+    /// in the world.
+    pub(crate) fn translated(mut self, offset: Vec3) -> Self {
+        for point in self.points_mut() {
+            point.position += offset;
+        }
+        self
+    }
 }

@@ -46,7 +46,8 @@ pub trait SupportMap {
 }
 
 /// The core of a convex shape placed in the world: the shape without its rounding radius (a
-/// sphere's centre point, a capsule's segment; boxes, cylinders and hulls are their own core).
+/// sphere's centre point, a capsule's segment, a cylinder shrunk by its convex radius; boxes and
+/// hulls are their own core).
 /// Distance algorithms run on cores; the radius is added back afterwards, which keeps rounded
 /// shapes exact and the algorithms away from curved surfaces.
 #[derive(Debug, Clone, Copy)]

@@ -188,22 +188,40 @@ impl NarrowPhase {
                 } else {
                     (pose_b, pose_a)
                 };
-                let (part, part_pose) = near_part(cuboid, box_pose, other, other_pose, margin)?;
+                let (part, center) = near_part(cuboid, box_pose, other, other_pose, margin)?;
+                let half_extents = part.half_extents();
+                let part = Shape::Cuboid(part);
+                // Placed about the box's origin, not in the world: the part's faces on the box's
+                // faces stay where the box's are, where a world position far from the origin
+                // would round them by up to half a millimetre at 10 km.
+                let origin = box_pose.position;
+                let part_pose = Pose::new(box_pose.rotation * center, box_pose.rotation);
+                let other_pose = &Pose::new(other_pose.position - origin, other_pose.rotation);
                 let (part_a, part_pose_a, part_b, part_pose_b) = if box_is_a {
                     (&part, &part_pose, other, other_pose)
                 } else {
                     (other, other_pose, &part, &part_pose)
                 };
-                *cache = PartCache::Cold;
-                collide_features(
+                // The simplex is kept with its points of the box in the box's frame, where they
+                // stay put while the part moves with `other`; each is taken into this part's
+                // frame and clamped to it, a point of the part whether or not the part still
+                // holds it.
+                let box_side = usize::from(!box_is_a);
+                let mut simplex = cache.simplex().with_points(box_side, |point| {
+                    (point - center).clamp(-half_extents, half_extents)
+                });
+                let manifold = collide_features(
                     &mut self.polytope,
                     part_a,
                     part_pose_a,
                     part_b,
                     part_pose_b,
                     margin,
-                    &mut SimplexCache::default(),
-                )
+                    &mut simplex,
+                );
+                *cache =
+                    PartCache::of_simplex(simplex.with_points(box_side, |point| point + center));
+                manifold.map(|manifold| manifold.translated(origin))
             }
             _ => {
                 let mut simplex = cache.simplex();
@@ -387,8 +405,9 @@ pub(crate) fn for_each_part(shape: &Shape, pose: &Pose, mut visit: impl FnMut(u3
 const NEAR_PART_RATIO: f32 = 8.0;
 
 /// The part of a box near `other`: the box cut to `other`'s bounding box in the box's frame,
-/// grown by `margin` and by `other`'s bounding radius, as a smaller box with its pose; `None`
-/// when nothing of the box lies that near, so the two are more than `margin` apart.
+/// grown by `margin` and by `other`'s bounding radius, as a smaller box with its centre in the
+/// box's frame (its axes are the box's); `None` when nothing of the box lies that near, so the
+/// two are more than `margin` apart.
 ///
 /// GJK and EPA work with differences of support points, which for a large box are its far
 /// corners: their rounding, about 1e-7 of their distance, unsettles a cylinder resting on a box
@@ -401,7 +420,7 @@ fn near_part(
     other: &Shape,
     other_pose: &Pose,
     margin: f32,
-) -> Option<(Shape, Pose)> {
+) -> Option<(Cuboid, Vec3)> {
     let half_extents = cuboid.half_extents();
     let other_in_box = pose.inverse().mul_pose(other_pose);
     let reach = Vec3::splat(margin + other.bounding_radius());
@@ -411,9 +430,7 @@ fn near_part(
     if min.cmpge(max).any() {
         return None;
     }
-    let part = Cuboid::part((max - min) * 0.5);
-    let center = pose.transform_point((min + max) * 0.5);
-    Some((Shape::Cuboid(part), Pose::new(center, pose.rotation)))
+    Some((Cuboid::part((max - min) * 0.5), (min + max) * 0.5))
 }
 
 /// Whether the balls about the shapes' origins that hold them (see [`Shape::bounding_radius`]),

@@ -287,22 +287,25 @@ impl Shape {
         }
     }
 
-    /// Rounding radius around the shape's core, metres: a sphere's or capsule's radius, zero
-    /// for every other shape.
+    /// Rounding radius around the shape's core, metres: a sphere's or capsule's radius, a
+    /// cylinder's convex radius ([`Cylinder::convex_radius`]), zero for every other shape.
     pub fn core_radius(&self) -> f32 {
         match self {
             Shape::Sphere(sphere) => sphere.radius(),
             Shape::Capsule(capsule) => capsule.radius(),
+            Shape::Cylinder(cylinder) => cylinder.convex_radius(),
             _ => 0.0,
         }
     }
 
     /// Support point of the shape's core (the shape shrunk by [`Shape::core_radius`]): a
-    /// sphere's centre, an end of a capsule's segment, or the shape's own support point. A
-    /// halfspace, mesh or heightfield has no core and gives the origin.
+    /// sphere's centre, an end of a capsule's segment, a point of a cylinder's core cylinder, or
+    /// the shape's own support point. A halfspace, mesh or heightfield has no core and gives the
+    /// origin.
     pub fn core_support(&self, direction: Vec3) -> Vec3 {
         match self {
             Shape::Sphere(_) => Vec3::ZERO,
+            Shape::Cylinder(cylinder) => cylinder.core_support(direction),
             Shape::Capsule(capsule) => {
                 let [bottom, top] = capsule.segment();
                 if direction.y >= 0.0 {

@@ -260,14 +260,17 @@ fn shapes_poured_on_terrain_never_sink_below_it() {
 #[test]
 fn shapes_poured_on_terrain_come_to_rest() {
     // Balls, capsules and cylinders with the rolling resistance of the built-in scene, boxes and
-    // hulls held by friction: every body asleep by 8 s (seeds 1 to 16: all asleep by step 460,
-    // 7.7 s; without rolling resistance the round ones roll on in the bowls for ever, and
-    // cylinders standing on a cap across bent triangles rocked on at 1 to 6 cm/s).
+    // hulls held by friction: every body asleep by 9.7 s, before the run's end (seeds 1 to 16:
+    // all asleep by step 444 but for seed 3, where a cylinder lands on its side on a slope and
+    // rolls on into a bowl until step 564, 9.4 s; with sharp cylinder rims, before the rims were
+    // rounded, seeds 1 to 16 were all asleep by step 485; without rolling resistance the round
+    // ones roll on in the bowls for ever, and cylinders standing on a cap across bent triangles
+    // rocked on at 1 to 6 cm/s).
     for seed in 1..=4 {
         let pour = pour(&mixed_shapes(), seed, ROLLING_RESISTANCE, true);
         let asleep_from = pour.all_asleep_from.unwrap_or(usize::MAX);
         assert!(
-            asleep_from < 480,
+            asleep_from < 580,
             "seed {seed}: all asleep only from step {asleep_from}"
         );
     }

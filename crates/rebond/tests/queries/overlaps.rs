@@ -29,6 +29,24 @@ fn signed_distance(shape: &Shape, pose: &Pose, point: Vec3) -> Option<f64> {
     }
 }
 
+/// Signed distance from `point` to the surface that shape overlaps are measured on: the shape's
+/// own, but for a cylinder, whose rims are rounded by its convex radius `r_c` there, the core
+/// cylinder's (`r − r_c`, `h − r_c`) less `r_c`.
+fn rounded_signed_distance(shape: &Shape, pose: &Pose, point: Vec3) -> Option<f64> {
+    match shape {
+        Shape::Cylinder(cylinder) => {
+            let rounding = cylinder.convex_radius();
+            let core = Shape::cylinder(
+                cylinder.radius() - rounding,
+                cylinder.half_height() - rounding,
+            )
+            .unwrap();
+            signed_distance(&core, pose, point).map(|distance| distance - f64::from(rounding))
+        }
+        _ => signed_distance(shape, pose, point),
+    }
+}
+
 /// The hull's own faces as a containment reference, with the face planes pushed out by `grow`.
 fn hull_contains(shape: &Shape, pose: &Pose, point: Vec3, grow: f64) -> Option<bool> {
     let Shape::ConvexHull(hull) = shape else {
@@ -151,7 +169,7 @@ fn point_box_and_shape_overlaps_match_closed_forms() {
             .unwrap();
         overlapping += found.len();
         for (handle, shape, pose) in &bodies {
-            let Some(distance) = signed_distance(shape, pose, centre) else {
+            let Some(distance) = rounded_signed_distance(shape, pose, centre) else {
                 continue;
             };
             let gap = distance - f64::from(radius);
