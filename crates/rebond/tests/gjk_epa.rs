@@ -10,11 +10,14 @@
 //! point by about 6e-8 of its magnitude. Closed-form scenes here are at most ~6 m across, so 1e-4 m
 //! covers both with margin; random scenes are at most ~15 m across, so 3e-4 m.
 
+#[path = "common/random.rs"]
+mod random;
 #[path = "common/spiral.rs"]
 mod spiral;
 
 use glam::DVec3;
 use proptest::prelude::*;
+use random::Random;
 use rebond::internals::collision::epa::{self, ContactInfo, Penetration, Polytope};
 use rebond::internals::collision::gjk::{self, Distance, SimplexCache};
 use rebond::internals::collision::{PosedCore, SupportMap};
@@ -826,4 +829,59 @@ fn check_contact(a: &Solid, b: &Solid, tolerance: f32) {
     assert_inside(b, found.point_b, tolerance, "point on B");
     assert_on_support_plane(a, found.point_a, found.normal, tolerance, "A's surface");
     assert_on_support_plane(b, found.point_b, -found.normal, tolerance, "B's surface");
+}
+
+// ---------------------------------------------------------------- shallow contacts of round shapes
+
+/// A sphere, capsule or cylinder touching a hull shallower than its rounding: the contact query
+/// measures it with GJK on the cores, never EPA (asserted: the cores are apart), and must find the
+/// depth and normal that EPA finds on the whole shapes (the rounded cylinder's support included),
+/// for seeded random shapes, turns and directions of approach.
+#[test]
+fn shallow_round_contacts_with_a_hull_match_epa_on_the_whole_shapes() {
+    let mut random = Random(0x5a11);
+    let hull = Shape::convex_hull(&[
+        Vec3::new(0.6, -0.3, 0.1),
+        Vec3::new(-0.5, -0.4, 0.3),
+        Vec3::new(-0.2, -0.35, -0.55),
+        Vec3::new(0.1, 0.5, 0.05),
+        Vec3::new(0.45, 0.2, -0.4),
+        Vec3::new(-0.4, 0.3, 0.45),
+        Vec3::new(0.05, -0.1, 0.7),
+    ])
+    .unwrap();
+    let a = Solid::new(hull, Vec3::new(0.3, -0.2, 0.1), Quat::from_rotation_y(0.4));
+    let mut compared = 0;
+    for case in 0..600 {
+        let shape = match case % 3 {
+            0 => sphere(random.range(0.1, 0.6)),
+            1 => capsule(random.range(0.1, 0.4), random.range(0.1, 0.5)),
+            _ => cylinder(random.range(0.2, 0.6), random.range(0.2, 0.6)),
+        };
+        let rounding = shape.core_radius();
+        let rotation = Quat::from_axis_angle(random.unit_vector(), random.range(0.0, 3.1));
+        // B's point farthest against `direction` put on A's farthest along it, then moved in by
+        // a fraction of the rounding: the extents along `direction` overlap by less than the
+        // rounding, so the shapes overlap by less and their cores are apart.
+        let direction = random.unit_vector();
+        let depth = random.range(0.1, 0.9) * rounding;
+        let mut b = Solid::new(shape, Vec3::ZERO, rotation);
+        b.pose.position = a.support(direction) - b.support(-direction) - depth * direction;
+        let cores = core_distance(&a, &b);
+        assert!(!cores.overlapping, "case {case}: cores overlap, {b:?}");
+        let Some(reference) = epa::penetration(&a, &b) else {
+            continue;
+        };
+        let found = contact(&a, &b);
+        assert_close(found.separation, -reference.depth, RANDOM, "depth");
+        // Near a curved contact of radius ρ, a search stopped within the 0.1 mm of
+        // `gjk::CONTACT_PRECISION` leaves the normal within √(2·1e-4 / ρ) (its documented bound),
+        // ρ being at least the rounding here.
+        let normal_tolerance = (2.0 * gjk::CONTACT_PRECISION / rounding).sqrt();
+        assert_vec_close(found.normal, reference.normal, normal_tolerance, "normal");
+        compared += 1;
+    }
+    // Most placements overlap; those that do not (A's extreme point is a vertex that B's
+    // rounded extreme point may miss once moved in) are left out.
+    assert!(compared > 400, "only {compared} overlapping cases");
 }
