@@ -52,10 +52,9 @@ impl Candidates {
 /// compound or a halfspace), with the normal from A toward B: the plane's outward normal.
 /// Points: a sphere's lowest point; a capsule's two lowest segment ends; a box's or hull's
 /// vertices; a cylinder's four fixed samples on each rounded rim (on its core's rim, lowered by
-/// the convex radius), the one nearest a cap's deepest rim
-/// point moved there when it lies deeper by more than `DEEPEST_SNAP_DISTANCE` (so a cylinder
-/// keeps the same ids whether it stands flat, wobbles or lies on its side). More than four are
-/// reduced to four by depth and spread.
+/// the convex radius), the one nearest a cap's deepest rim point moved there when it lies deeper
+/// by more than `DEEPEST_SNAP_DISTANCE` (so a cylinder keeps the same ids whether it stands flat,
+/// wobbles or lies on its side). More than four are reduced to four by depth and spread.
 pub fn collide_halfspace(
     halfspace: &Halfspace,
     pose_a: &Pose,

@@ -92,8 +92,8 @@ impl Cylinder {
         Aabb::from_center_half_extents(pose.position, half_extents)
     }
 
-    /// The point of the rounded cylinder farthest along `d`: the core's
-    /// ([`Cylinder::core_support`]) moved by `r_c` along `d`.
+    /// The point of the rounded cylinder farthest along `d`: the core cylinder's (its cap farther
+    /// along `d`, then its rim point farthest along `d`'s XZ part) moved by `r_c` along `d`.
     pub fn support(&self, direction: Vec3) -> Vec3 {
         self.core_support(direction) + self.convex_radius() * direction.normalize_or_zero()
     }
