@@ -17,6 +17,7 @@
 
 use super::joint_parts::{RowJacobian, RowSoftness};
 use super::BodyState;
+use crate::limits::MAX_SOLVER_IMPULSE;
 use crate::math::{Mat3, Vec3, Vec3A};
 
 /// Where a row's accumulated impulse lives in its joint's `JointImpulses`.
@@ -264,7 +265,9 @@ impl GroupSystem {
 
     /// One solve of the group: `λ = −A⁻¹ (J v + b C)` per row (the rows are rigid; `softness`
     /// gives the bias `b C`), applied to `states`. [`Self::impulses`] then gives the impulse of
-    /// each row, for the caller's accumulators.
+    /// each row, for the caller's accumulators. A solve that asks any row for more than
+    /// [`MAX_SOLVER_IMPULSE`], or for an impulse that is not finite, applies nothing and gives
+    /// every row zero.
     pub fn solve(&mut self, states: &mut [BodyState], softness: RowSoftness) {
         let n = self.rows.len();
         self.work.clear();
@@ -287,6 +290,20 @@ impl GroupSystem {
             for (work, factor) in self.work[first..i].iter_mut().zip(row) {
                 *work -= factor * value;
             }
+        }
+        // `A` squares the rows' lever arms: a joint anchored kilometres from its bodies has
+        // entries 1e8 times its neighbours', its rows nearly dependent on each other, and in `f32`
+        // their rounding swamps the pivots of the rows factored after them. The factor is then
+        // wrong and its answer unbounded: speeds of 1e3 m/s asked for impulses of 1e27, which
+        // overflowed within the pass (a car's axle anchored 9 km away, `tests/validation.rs`).
+        // An impulse past what bodies within the limits can exchange is no answer; the pass
+        // leaves the group's velocities as they are, as the warm start drops such impulses.
+        if !self
+            .work
+            .iter()
+            .all(|impulse| impulse.abs() <= MAX_SOLVER_IMPULSE)
+        {
+            self.work.fill(0.0);
         }
         for (row, &impulse) in self.rows.iter().zip(&self.work) {
             row.apply(states, impulse);
@@ -412,7 +429,64 @@ impl EliminationOrder {
 
 #[cfg(test)]
 mod tests {
-    use super::EliminationOrder;
+    use super::{Accumulator, EliminationOrder, GroupRow, GroupSystem};
+    use crate::math::{Mat3, Vec3, Vec3A};
+    use crate::solver::joint_parts::{RowJacobian, RowSoftness};
+    use crate::solver::BodyState;
+
+    /// A group of one row that holds body 1 (1 kg, unit inertia) to the world along X at the
+    /// point `arm` from its centre, factored, and the bodies' states with body 1 moving at
+    /// `linear` and `angular`.
+    fn held_along_x(arm: Vec3, linear: Vec3, angular: Vec3) -> (GroupSystem, [BodyState; 2]) {
+        let mut system = GroupSystem::default();
+        system.rows.push(GroupRow::new(
+            (0, Accumulator::Linear(Vec3::X)),
+            [0, 1],
+            ([Vec3::ZERO, Vec3::ONE], [Mat3::ZERO, Mat3::IDENTITY]),
+            RowJacobian {
+                linear: [-Vec3::X, Vec3::X],
+                angular: [Vec3::ZERO, arm.cross(Vec3::X)],
+            },
+            0.0,
+        ));
+        system.factor(0.25);
+        let moving = BodyState {
+            linear_velocity: Vec3A::from(linear),
+            angular_velocity: Vec3A::from(angular),
+            ..BodyState::default()
+        };
+        (system, [BodyState::default(), moving])
+    }
+
+    #[test]
+    fn a_group_stops_its_rows_with_the_impulse_they_ask() {
+        // At the centre `A = 1/m = 1`: the row moving at 2 m/s takes `λ = −2` N·s and stops.
+        let (mut system, mut states) = held_along_x(Vec3::ZERO, Vec3::X * 2.0, Vec3::ZERO);
+        system.solve(&mut states, RowSoftness::RIGID);
+        assert_eq!(system.impulses().next().unwrap().1, -2.0);
+        assert_eq!(states[1].linear_velocity, Vec3A::ZERO);
+    }
+
+    #[test]
+    fn a_group_asked_past_the_impulse_limit_applies_nothing() {
+        // Speeds no step leaves but a badly rounded factor can make within one (a joint
+        // anchored 9 km away asked for 1e27 N·s): 1e30 m/s asks for 1e30 N·s, past the limit;
+        // 1e38 rad/s at a 9 km arm overflows `J v` to infinity. Neither solve moves the body,
+        // and neither impulse reaches the joint's accumulators.
+        let far = Vec3::new(0.0, 9.0e3, 0.0);
+        for (arm, linear, angular) in [
+            (Vec3::ZERO, Vec3::X * 1.0e30, Vec3::ZERO),
+            (far, Vec3::ZERO, Vec3::Z * -1.0e38),
+        ] {
+            let (mut system, mut states) = held_along_x(arm, linear, angular);
+            let before = states[1];
+            system.solve(&mut states, RowSoftness::RIGID);
+            let impulse = system.impulses().next().unwrap().1;
+            assert_eq!(impulse, 0.0);
+            assert_eq!(states[1].linear_velocity, before.linear_velocity);
+            assert_eq!(states[1].angular_velocity, before.angular_velocity);
+        }
+    }
 
     #[test]
     fn joints_come_after_the_bodies_below_them_each_once() {
