@@ -7,7 +7,8 @@
 //! exactly: `A λ = −(J v + b C)` with `A = J M⁻¹ Jᵀ`, factored once per pose (`A = L Lᵀ`, Cholesky
 //! over each row's profile, so a chain costs what a band matrix does). Only the profiles are
 //! stored, so a group of any size is solved exactly: a net of hundreds of joints costs its
-//! profiles, not `n²`. Limits, motors and springs stay one row at a time (`joints.rs`): they are
+//! profiles, not `n²`. A joint's rows share their profile and are factored together, one SIMD
+//! lane a row ([`Block`]). Limits, motors and springs stay one row at a time (`joints.rs`): they are
 //! inequalities or soft by design.
 //!
 //! A row that depends on the ones before it (a bridge fixed at both ends, a four-bar linkage)
@@ -16,6 +17,7 @@
 //! it depends on instead of being dropped.
 
 use super::joint_parts::{RowJacobian, RowSoftness};
+use super::wide::{F32x4, LANES};
 use super::BodyState;
 use crate::limits::MAX_SOLVER_IMPULSE;
 use crate::math::{Mat3, Vec3, Vec3A};
@@ -122,17 +124,41 @@ impl SideTerms {
     }
 }
 
+/// Up to [`LANES`] consecutive rows whose profiles start at the same column, factored
+/// together: column `k` of the block (`first ≤ k < start + len`) holds `L_ik` of each of its
+/// rows `i`, one lane a row, so one pass over an earlier row's profile serves every row of the
+/// block. A joint's rows share their bodies, so they share their profile and make a block.
+#[derive(Debug, Clone, Copy)]
+struct Block {
+    /// The block's rows: `start..start + len`.
+    start: usize,
+    len: usize,
+    /// The first column of the rows' profiles: `A_ij = 0` for `j < first`.
+    first: usize,
+    /// Where column `first` of the block lies in the factor.
+    columns: usize,
+}
+
+impl Block {
+    /// Where column `k` of the block lies in the factor.
+    fn column(&self, k: usize) -> usize {
+        self.columns + k - self.first
+    }
+}
+
 /// A group's rows and the Cholesky factor of its `A`, in buffers the caller reuses.
 #[derive(Debug, Clone, Default)]
 pub(super) struct GroupSystem {
     pub rows: Vec<GroupRow>,
-    /// `L` by rows, each row's profile only: `L_ij` for `first[i] ≤ j ≤ i` is
-    /// `factor[start[i] + j − first[i]]`.
-    factor: Vec<f32>,
-    /// The first column of each row's profile: `A_ij = 0` for `j < first[i]`.
-    first: Vec<usize>,
-    /// Where each row's profile starts in `factor`.
-    start: Vec<usize>,
+    /// `L` below the diagonal, by blocks of rows ([`Block`]), a column's lanes an array (read
+    /// and written lane by lane, loaded into [`F32x4`] for the arithmetic); zero on and above
+    /// the diagonal.
+    factor: Vec<[f32; LANES]>,
+    /// `1 / L_ii`.
+    inverse_diagonal: Vec<f32>,
+    blocks: Vec<Block>,
+    /// The block of each row.
+    block_of_row: Vec<usize>,
     /// Scratch: right-hand side, then solution, then the rows' impulses.
     work: Vec<f32>,
     /// Scratch: each moving body side of each row, `(body, row, side)`, sorted, so the rows
@@ -141,35 +167,16 @@ pub(super) struct GroupSystem {
     /// Scratch: each of `sides`' Jacobian and response (linear, angular) in SIMD vectors, in
     /// the same order, so a body's run is one contiguous block when `A` is assembled.
     side_terms: Vec<SideTerms>,
-    /// `1 / L_ii`.
-    inverse_diagonal: Vec<f32>,
-    /// Whether `sides` and `first` describe `rows`: which rows there are and which bodies they
-    /// join stays the same through a step, only their Jacobians change.
+    /// Scratch: the first column of each row's profile.
+    first: Vec<usize>,
+    /// Whether `sides` and `blocks` describe `rows`: which rows there are and which bodies
+    /// they join stays the same through a step, only their Jacobians change.
     structure_known: bool,
 }
 
 /// Relative size below which a pivot is taken for zero: the row depends on the ones before it,
 /// and gets the joints' compliance as its pivot.
 const DEPENDENT_PIVOT: f32 = 1.0e-5;
-
-/// `Σ a_k b_k` over two slices of the same length, in four interleaved sums (so the compiler
-/// can keep them in one vector register), then added pairwise.
-fn dot(a: &[f32], b: &[f32]) -> f32 {
-    let mut sums = [0.0_f32; 4];
-    let (a_chunks, b_chunks) = (a.chunks_exact(4), b.chunks_exact(4));
-    let tail: f32 = a_chunks
-        .remainder()
-        .iter()
-        .zip(b_chunks.remainder())
-        .map(|(x, y)| x * y)
-        .sum();
-    for (x, y) in a_chunks.zip(b_chunks) {
-        for lane in 0..4 {
-            sums[lane] += x[lane] * y[lane];
-        }
-    }
-    (sums[0] + sums[1]) + (sums[2] + sums[3]) + tail
-}
 
 impl GroupSystem {
     /// Builds `A = J M⁻¹ Jᵀ` for `rows` and factors it. `A_ij` is non-zero only where rows `i`
@@ -178,11 +185,10 @@ impl GroupSystem {
     /// that is not there (below [`DEPENDENT_PIVOT`] of `A_ii`) becomes `regularisation · A_ii`:
     /// the joints' compliance relative to `A_ii`.
     pub fn factor(&mut self, regularisation: f32) {
-        let n = self.rows.len();
         if !self.structure_known {
             self.find_structure();
         }
-        self.factor.fill(0.0);
+        self.factor.fill([0.0; LANES]);
         self.side_terms.clear();
         self.side_terms.extend(
             self.sides
@@ -195,37 +201,54 @@ impl GroupSystem {
         for run in self.sides.chunk_by(|a, b| a.0 == b.0) {
             let terms = &self.side_terms[run_start..run_start + run.len()];
             for (position, &(_, i, _)) in run.iter().enumerate() {
-                let factor_i = &mut self.factor[self.start[i] - self.first[i]..];
+                let block = &self.blocks[self.block_of_row[i]];
+                let lane = i - block.start;
                 let term_i = &terms[position];
                 for (&(_, j, _), term_j) in run[..=position].iter().zip(terms) {
-                    factor_i[j] += term_i.coupling(term_j);
+                    self.factor[block.column(j)][lane] += term_i.coupling(term_j);
                 }
             }
             run_start += run.len();
         }
         self.inverse_diagonal.clear();
-        for i in 0..n {
-            let first_i = self.first[i];
-            let (done, rest) = self.factor.split_at_mut(self.start[i]);
-            // Row `i`'s profile: `row_i[j − first_i]` for `first_i ≤ j ≤ i`.
-            let row_i = &mut rest[..=i - first_i];
-            for j in first_i..i {
-                let first_j = self.first[j];
-                let from = first_i.max(first_j);
-                let row_j = &done[self.start[j] + from - first_j..self.start[j] + j - first_j];
-                let sum = row_i[j - first_i] - dot(&row_i[from - first_i..j - first_i], row_j);
-                row_i[j - first_i] = sum * self.inverse_diagonal[j];
+        for block in &self.blocks {
+            let end = block.start + block.len;
+            for j in block.first..end {
+                // Row `j`'s `L_jk` for `k < j` lie in lane `j − start` of the columns of its
+                // own block: this block, or an earlier one already factored.
+                let (source, from) = if j >= block.start {
+                    (block, block.first)
+                } else {
+                    let source = &self.blocks[self.block_of_row[j]];
+                    (source, block.first.max(source.first))
+                };
+                let lane_j = j - source.start;
+                let mut column = F32x4::from_array(self.factor[block.column(j)]);
+                let assembled = column;
+                for k in from..j {
+                    let l_jk = self.factor[source.column(k)][lane_j];
+                    column -= F32x4::from_array(self.factor[block.column(k)]) * F32x4::splat(l_jk);
+                }
+                self.factor[block.column(j)] = if j < block.start {
+                    (column * F32x4::splat(self.inverse_diagonal[j])).to_array()
+                } else {
+                    let lane = j - block.start;
+                    let diagonal = assembled.lane(lane);
+                    let mut sum = column.lane(lane);
+                    if sum <= DEPENDENT_PIVOT * diagonal {
+                        sum = sum.max(0.0) + regularisation * diagonal;
+                    }
+                    // `L_jj = √sum`, kept as its inverse; a row with nothing to move gets no
+                    // impulse. The column keeps the rows below `j` only, the others exactly
+                    // zero: the back substitution multiplies whole columns, and what the sums
+                    // left there can be large enough to make `0 · ∞`.
+                    let pivot = if sum > 0.0 { sum.sqrt().recip() } else { 0.0 };
+                    self.inverse_diagonal.push(pivot);
+                    let mut below = (column * F32x4::splat(pivot)).to_array();
+                    below[..=lane].fill(0.0);
+                    below
+                };
             }
-            let diagonal = row_i[i - first_i];
-            let off_diagonal = &row_i[..i - first_i];
-            let mut sum = diagonal - dot(off_diagonal, off_diagonal);
-            if sum <= DEPENDENT_PIVOT * diagonal {
-                sum = sum.max(0.0) + regularisation * diagonal;
-            }
-            // `L_ii = √sum`, kept as its inverse; a row with nothing to move gets no impulse.
-            let pivot = if sum > 0.0 { sum.sqrt().recip() } else { 0.0 };
-            row_i[i - first_i] = pivot;
-            self.inverse_diagonal.push(pivot);
         }
     }
 
@@ -234,7 +257,8 @@ impl GroupSystem {
         self.structure_known = false;
     }
 
-    /// Lists each row's moving bodies, sorted by body, and each row's first non-zero column.
+    /// Lists each row's moving bodies, sorted by body, finds each row's first non-zero column
+    /// and puts the rows into blocks.
     fn find_structure(&mut self) {
         self.sides.clear();
         for (index, row) in self.rows.iter().enumerate() {
@@ -253,13 +277,30 @@ impl GroupSystem {
                 self.first[row] = self.first[row].min(lowest);
             }
         }
-        self.start.clear();
+        self.blocks.clear();
+        self.block_of_row.clear();
         let mut size = 0;
-        for (i, &first) in self.first.iter().enumerate() {
-            self.start.push(size);
-            size += i + 1 - first;
+        for (row, &first) in self.first.iter().enumerate() {
+            match self.blocks.last_mut() {
+                Some(block) if block.first == first && block.len < LANES => block.len += 1,
+                _ => {
+                    if let Some(block) = self.blocks.last() {
+                        size += block.start + block.len - block.first;
+                    }
+                    self.blocks.push(Block {
+                        start: row,
+                        len: 1,
+                        first,
+                        columns: size,
+                    });
+                }
+            }
+            self.block_of_row.push(self.blocks.len() - 1);
         }
-        self.factor.resize(size, 0.0);
+        if let Some(block) = self.blocks.last() {
+            size += block.start + block.len - block.first;
+        }
+        self.factor.resize(size, [0.0; LANES]);
         self.structure_known = true;
     }
 
@@ -269,26 +310,43 @@ impl GroupSystem {
     /// [`MAX_SOLVER_IMPULSE`], or for an impulse that is not finite, applies nothing and gives
     /// every row zero.
     pub fn solve(&mut self, states: &mut [BodyState], softness: RowSoftness) {
-        let n = self.rows.len();
         self.work.clear();
         self.work.extend(
             self.rows
                 .iter()
                 .map(|row| -(row.velocity(states) + softness.bias(row.error))),
         );
-        for i in 0..n {
-            let (first, start) = (self.first[i], self.start[i]);
-            let row = &self.factor[start..start + i - first];
-            let sum = self.work[i] - dot(row, &self.work[first..i]);
-            self.work[i] = sum * self.inverse_diagonal[i];
+        // `L y = r`, a block at a time: the block's rows less what the earlier rows give them,
+        // then its own rows in order.
+        for block in &self.blocks {
+            let mut rest = [0.0; LANES];
+            rest[..block.len].copy_from_slice(&self.work[block.start..block.start + block.len]);
+            let mut rest = F32x4::from_array(rest);
+            for k in block.first..block.start {
+                rest -=
+                    F32x4::from_array(self.factor[block.column(k)]) * F32x4::splat(self.work[k]);
+            }
+            for lane in 0..block.len {
+                let j = block.start + lane;
+                let y = rest.lane(lane) * self.inverse_diagonal[j];
+                self.work[j] = y;
+                rest -= F32x4::from_array(self.factor[block.column(j)]) * F32x4::splat(y);
+            }
         }
-        for i in (0..n).rev() {
-            let value = self.work[i] * self.inverse_diagonal[i];
-            self.work[i] = value;
-            let (first, start) = (self.first[i], self.start[i]);
-            let row = &self.factor[start..start + i - first];
-            for (work, factor) in self.work[first..i].iter_mut().zip(row) {
-                *work -= factor * value;
+        // `Lᵀ x = y`, blocks in reverse: its own rows last to first, then what they take
+        // from the earlier rows.
+        for block in self.blocks.iter().rev() {
+            let mut solved = [0.0; LANES];
+            for lane in (0..block.len).rev() {
+                let j = block.start + lane;
+                let column = &self.factor[block.column(j)];
+                let below: f32 = (lane + 1..block.len).map(|i| column[i] * solved[i]).sum();
+                solved[lane] = (self.work[j] - below) * self.inverse_diagonal[j];
+                self.work[j] = solved[lane];
+            }
+            let solved = F32x4::from_array(solved);
+            for k in block.first..block.start {
+                self.work[k] -= (F32x4::from_array(self.factor[block.column(k)]) * solved).sum();
             }
         }
         // `A` squares the rows' lever arms: a joint anchored kilometres from its bodies has

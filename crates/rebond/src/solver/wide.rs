@@ -31,15 +31,24 @@ impl F32x4 {
         Self(Vec4::splat(value))
     }
 
-    /// Lane `i` holds `values[i]` (the tests build lanes with it).
-    #[cfg(test)]
-    pub fn from_array(values: [f32; 4]) -> Self {
+    /// Lane `i` holds `values[i]`.
+    pub const fn from_array(values: [f32; 4]) -> Self {
         Self(Vec4::from_array(values))
+    }
+
+    /// The lanes as an array.
+    pub fn to_array(self) -> [f32; LANES] {
+        self.0.to_array()
     }
 
     /// The value of lane `lane`.
     pub fn lane(self, lane: usize) -> f32 {
         self.0[lane]
+    }
+
+    /// The sum of the four lanes, `(l₀ + l₁) + (l₂ + l₃)`.
+    pub fn sum(self) -> f32 {
+        (self.0.x + self.0.y) + (self.0.z + self.0.w)
     }
 
     /// `max(self, other)` per lane.
