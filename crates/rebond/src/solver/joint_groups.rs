@@ -307,9 +307,9 @@ impl GroupSystem {
     /// One solve of the group: `λ = −A⁻¹ (J v + b C)` per row (the rows are rigid; `softness`
     /// gives the bias `b C`), applied to `states`. [`Self::impulses`] then gives the impulse of
     /// each row, for the caller's accumulators. A solve that asks any row for more than
-    /// [`MAX_SOLVER_IMPULSE`], or for an impulse that is not finite, applies nothing and gives
-    /// every row zero.
-    pub fn solve(&mut self, states: &mut [BodyState], softness: RowSoftness) {
+    /// [`MAX_SOLVER_IMPULSE`], or for an impulse that is not finite, applies nothing, gives
+    /// every row zero and returns `false`.
+    pub fn solve(&mut self, states: &mut [BodyState], softness: RowSoftness) -> bool {
         self.work.clear();
         self.work.extend(
             self.rows
@@ -356,16 +356,17 @@ impl GroupSystem {
         // overflowed within the pass (a car's axle anchored 9 km away, `tests/validation.rs`).
         // An impulse past what bodies within the limits can exchange is no answer; the pass
         // leaves the group's velocities as they are, as the warm start drops such impulses.
-        if !self
+        let answered = self
             .work
             .iter()
-            .all(|impulse| impulse.abs() <= MAX_SOLVER_IMPULSE)
-        {
+            .all(|impulse| impulse.abs() <= MAX_SOLVER_IMPULSE);
+        if !answered {
             self.work.fill(0.0);
         }
         for (row, &impulse) in self.rows.iter().zip(&self.work) {
             row.apply(states, impulse);
         }
+        answered
     }
 
     /// Each row with the impulse the last [`Self::solve`] gave it.
@@ -520,7 +521,7 @@ mod tests {
     fn a_group_stops_its_rows_with_the_impulse_they_ask() {
         // At the centre `A = 1/m = 1`: the row moving at 2 m/s takes `λ = −2` N·s and stops.
         let (mut system, mut states) = held_along_x(Vec3::ZERO, Vec3::X * 2.0, Vec3::ZERO);
-        system.solve(&mut states, RowSoftness::RIGID);
+        assert!(system.solve(&mut states, RowSoftness::RIGID));
         assert_eq!(system.impulses().next().unwrap().1, -2.0);
         assert_eq!(states[1].linear_velocity, Vec3A::ZERO);
     }
@@ -538,7 +539,7 @@ mod tests {
         ] {
             let (mut system, mut states) = held_along_x(arm, linear, angular);
             let before = states[1];
-            system.solve(&mut states, RowSoftness::RIGID);
+            assert!(!system.solve(&mut states, RowSoftness::RIGID));
             let impulse = system.impulses().next().unwrap().1;
             assert_eq!(impulse, 0.0);
             assert_eq!(states[1].linear_velocity, before.linear_velocity);

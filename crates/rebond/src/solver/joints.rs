@@ -80,6 +80,8 @@ pub(crate) struct JointConstraints {
     rows_current: bool,
     /// Biased passes run so far in this substep: the groups are solved in the last.
     biased_passes: usize,
+    /// Group solves this step that asked for impulses past the limit and applied nothing.
+    refused_solves: usize,
 }
 
 /// What of a joint's description the solve reads.
@@ -540,6 +542,12 @@ impl JointConstraints {
         }
     }
 
+    /// Group solves this step that asked any row for an impulse past [`MAX_SOLVER_IMPULSE`], or
+    /// one not finite, and applied nothing.
+    pub fn refused_solves(&self) -> usize {
+        self.refused_solves
+    }
+
     /// One direct solve of every group's holding rows.
     fn solve_groups(&mut self, states: &mut [BodyState], softness: RowSoftness) {
         let constraints = &mut self.constraints;
@@ -547,7 +555,9 @@ impl JointConstraints {
             if group.rows.is_empty() {
                 continue;
             }
-            group.solve(states, softness);
+            if !group.solve(states, softness) {
+                self.refused_solves += 1;
+            }
             for (row, impulse) in group.impulses() {
                 constraints[row.joint].accumulate(row.accumulator, impulse);
             }
@@ -646,6 +656,7 @@ impl ConstraintKind for JointConstraints {
         }
         self.group(solver_bodies);
         self.rows_current = false;
+        self.refused_solves = 0;
     }
 
     /// Applies each joint's accumulated impulses, with rows at the substep's poses (built here in

@@ -371,4 +371,10 @@ impl Solver {
     pub fn fast_bodies(&self) -> &[FastMotion] {
         &self.fast
     }
+
+    /// The joints' group solves refused in the last step: see
+    /// [`World::refused_joint_solves`](crate::World::refused_joint_solves).
+    pub fn refused_joint_solves(&self) -> usize {
+        self.kinds.refused_joint_solves()
+    }
 }

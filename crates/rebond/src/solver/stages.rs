@@ -135,6 +135,11 @@ trait KindTask {
 }
 
 impl Kinds {
+    /// The joints' group solves refused in the last step ([`JointConstraints::refused_solves`]).
+    pub fn refused_joint_solves(&self) -> usize {
+        self.joints.refused_solves()
+    }
+
     /// Runs `task` on every kind of constraint with its source, in the order the stages take
     /// them: the one list of the kinds (module documentation).
     #[inline(always)]

@@ -570,6 +570,16 @@ impl World {
         self.narrow_phase_pair_tests
     }
 
+    /// How many times in the last step the exact solve of a group of joints (the rows that hold
+    /// jointed bodies together, `docs/joints.md`) was refused, because it asked some row for an
+    /// impulse past what bodies within the limits can exchange (`docs/limits.md`) or for one that
+    /// is not finite: such a pass applies nothing to the group, whose joints then hold by their
+    /// warm start alone. Zero in a world within the documented limits; above zero, its joints are
+    /// likely anchored far outside their bodies or its masses far apart. Diagnostics.
+    pub fn refused_joint_solves(&self) -> usize {
+        self.solver.refused_joint_solves()
+    }
+
     /// What the last step walked over. Diagnostics, for tests that a step's work follows what is
     /// awake.
     #[doc(hidden)]

@@ -15,11 +15,17 @@ fn worst_gap(world: &World, joints: &[JointHandle]) -> f32 {
         .fold(0.0, f32::max)
 }
 
-/// Steps `world` for `steps` steps and returns the worst gap of `joints` over all of them.
+/// Steps `world` for `steps` steps and returns the worst gap of `joints` over all of them;
+/// every step's group solves must all have been answered.
 fn worst_gap_over(world: &mut World, joints: &[JointHandle], steps: usize) -> f32 {
     let mut worst = 0.0_f32;
-    for _ in 0..steps {
+    for step in 0..steps {
         world.step(DT).unwrap();
+        assert_eq!(
+            world.refused_joint_solves(),
+            0,
+            "a group solve refused in step {step}"
+        );
         worst = worst.max(worst_gap(world, joints));
     }
     worst
@@ -174,4 +180,18 @@ fn a_four_bar_linkage_driven_round_stays_closed() {
         "the crank turned {turned} times in 2 s, driven at {turns_per_second} a second"
     );
     assert!(worst < 5.0e-3, "a hinge of the linkage opened by {worst} m");
+}
+
+#[test]
+fn a_net_past_what_the_factor_holds_is_reported() {
+    // 30 × 30 balls, 1,741 ball joints, 5,226 rows: in `f32` the rounding of the loops'
+    // near-dependent rows swamps their pivots, and the first factor overflows
+    // (`docs/joints.md`, known limits). The step refuses the solve rather than apply it, says
+    // so, and leaves every body finite.
+    let (mut world, _) = net(30);
+    world.step(DT).unwrap();
+    assert!(world.refused_joint_solves() > 0);
+    for (_, body) in world.bodies() {
+        assert!(body.position().is_finite() && body.linear_velocity().is_finite());
+    }
 }
