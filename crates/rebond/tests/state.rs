@@ -8,7 +8,8 @@ use rebond::World;
 /// A scene with every shape and every joint kind, things falling, sliding, rolling, hanging,
 /// driven and asleep: a static floor, a sphere, a box, a capsule, a cylinder, a hull and a
 /// compound (one child with rolling resistance) dropped on it; a heightfield and a triangle-mesh
-/// ramp with bodies rolling on them (one with rolling resistance); a fixed, a ball (limits,
+/// ramp with bodies rolling on them (one with rolling resistance) and a hull and a lying
+/// cylinder on them (whose triangle queries start from last step's simplices); a fixed, a ball (limits,
 /// friction), a revolute (limits, motor), a prismatic (limits, motor) and two distance joints
 /// (spring, rope).
 const EVERY_KIND: &str = r#"{
@@ -48,7 +49,11 @@ const EVERY_KIND: &str = r#"{
      "vertices": [[-2, 0, -2], [2, 1, -2], [2, 1, 2], [-2, 0, 2], [0, 0.5, 0]],
      "indices": [[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]}, "position": [0, 0, 12]},
     {"name": "skid", "shape": {"type": "capsule", "radius": 0.15, "half_height": 0.2},
-     "position": [0.5, 1.5, 12]}
+     "position": [0.5, 1.5, 12]},
+    {"name": "nugget", "shape": {"type": "convex_hull", "points": [[-0.2, 0, -0.2], [0.2, 0, -0.2],
+     [0.2, 0, 0.2], [-0.2, 0, 0.2], [0, 0.3, 0]]}, "position": [-0.8, 1.2, 12.6]},
+    {"name": "can", "shape": {"type": "cylinder", "radius": 0.2, "half_height": 0.15},
+     "position": [12.6, 1.6, -0.6], "rotation": [0.0, 0.0, 0.7071068, 0.7071068]}
   ],
   "joints": [
     {"type": "fixed", "body_a": "crate", "body_b": "glued", "anchor": [-1.5, 1.0, 1]},
@@ -95,13 +100,14 @@ fn stepped(mut world: World, steps: usize) -> World {
 
 #[test]
 fn a_restored_world_steps_bit_for_bit_as_the_saved_one() {
-    // N + M steps in one go against N, save, restore, M, at several N: mid-fall, in the first
-    // contacts, and once things have come to rest (bodies asleep, contacts parked).
+    // N + M steps in one go against N, save, restore, M, at several N: mid-fall, as the hull
+    // and the cylinder land on the ramp and the hill (their triangle simplices kept), in the
+    // first contacts, and once things have come to rest (bodies asleep, contacts parked).
     let start = Scene::from_json(EVERY_KIND.as_bytes())
         .unwrap()
         .world()
         .clone();
-    for (saved_at, then) in [(1, 60), (45, 90), (400, 60)] {
+    for (saved_at, then) in [(1, 60), (25, 60), (45, 90), (400, 60)] {
         let straight = stepped(start.clone(), saved_at + then);
         let bytes = stepped(start.clone(), saved_at).save_state();
         let restored = World::load_state(&bytes).unwrap();

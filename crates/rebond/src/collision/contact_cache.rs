@@ -6,6 +6,7 @@ use std::ops::Range;
 
 use super::manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
 use super::manifold_frame::{CenterPose, ManifoldFrame, PlacedBody};
+use super::mesh_contact::KeptSimplex;
 use super::narrow_phase::{PartCache, PartContacts};
 use crate::body::BodyHandle;
 use crate::filter::Colliders;
@@ -159,6 +160,10 @@ pub struct ContactCache {
     /// changes under its handle.
     part_caches: Vec<PartCache>,
     previous_part_caches: Vec<PartCache>,
+    /// The triangle simplices of parts against meshes that [`PartCache::Triangles`] in
+    /// `part_caches` and `previous_part_caches` point into, this step's and last step's.
+    triangle_simplices: Vec<KeptSimplex>,
+    previous_triangle_simplices: Vec<KeptSimplex>,
 }
 
 impl ContactCache {
@@ -169,6 +174,11 @@ impl ContactCache {
         self.current.clear();
         std::mem::swap(&mut self.part_caches, &mut self.previous_part_caches);
         self.part_caches.clear();
+        std::mem::swap(
+            &mut self.triangle_simplices,
+            &mut self.previous_triangle_simplices,
+        );
+        self.triangle_simplices.clear();
         self.previous_cursor = 0;
         self.previous_pair_start = 0;
     }
@@ -252,7 +262,14 @@ impl ContactCache {
             contact
                 .frame
                 .rebuild(&mut contact.manifold, &placed_a, &placed_b);
-            carry_part_cache(contact, &self.previous_part_caches, &mut self.part_caches);
+            carry_part_cache(
+                contact,
+                (
+                    &self.previous_part_caches,
+                    &self.previous_triangle_simplices,
+                ),
+                (&mut self.part_caches, &mut self.triangle_simplices),
+            );
         }
         true
     }
@@ -265,7 +282,14 @@ impl ContactCache {
         let start = self.current.len();
         self.current.extend_from_slice(&self.previous[previous]);
         for contact in &mut self.current[start..] {
-            carry_part_cache(contact, &self.previous_part_caches, &mut self.part_caches);
+            carry_part_cache(
+                contact,
+                (
+                    &self.previous_part_caches,
+                    &self.previous_triangle_simplices,
+                ),
+                (&mut self.part_caches, &mut self.triangle_simplices),
+            );
         }
     }
 
@@ -393,11 +417,15 @@ impl ContactCache {
         current.retain(|contact| {
             let moves = parks(contact.key.body_a, contact.key.body_b);
             if moves {
-                let part_cache = contact
+                let part_cache = match contact
                     .part_cache
                     .and_then(|index| part_caches.get(index as usize))
-                    .copied()
-                    .unwrap_or_default();
+                {
+                    // Triangle simplices live in a list rebuilt every step: a parked contact
+                    // wakes cold against its mesh.
+                    Some(PartCache::Triangles { .. }) | None => PartCache::Cold,
+                    Some(part_cache) => *part_cache,
+                };
                 moving_parked.push(ParkedContact {
                     contact: *contact,
                     part_cache,
@@ -459,16 +487,56 @@ fn keep_part_cache(part_caches: &mut Vec<PartCache>, part_cache: PartCache) -> O
     Some(index)
 }
 
-/// Moves the part cache of `contact`, carried over from last step, from `previous` to
-/// `part_caches`.
+/// Keeps the triangle simplices `kept` at the end of `triangle_simplices`, and returns the
+/// part cache naming them (cold when there are none).
+fn keep_triangle_simplices(
+    triangle_simplices: &mut Vec<KeptSimplex>,
+    kept: &[KeptSimplex],
+) -> PartCache {
+    let (Ok(start), Ok(len)) = (
+        u32::try_from(triangle_simplices.len()),
+        u32::try_from(kept.len()),
+    ) else {
+        return PartCache::Cold;
+    };
+    if len == 0 {
+        return PartCache::Cold;
+    }
+    triangle_simplices.extend_from_slice(kept);
+    PartCache::Triangles { start, len }
+}
+
+/// The triangle simplices a [`PartCache::Triangles`] names in `triangle_simplices`; none for
+/// another cache, or a range out of the list (of a decoded state).
+fn triangle_simplices_of(
+    part_cache: PartCache,
+    triangle_simplices: &[KeptSimplex],
+) -> &[KeptSimplex] {
+    let PartCache::Triangles { start, len } = part_cache else {
+        return &[];
+    };
+    let start = start as usize;
+    triangle_simplices
+        .get(start..start.saturating_add(len as usize))
+        .unwrap_or_default()
+}
+
+/// Moves the part cache of `contact`, carried over from last step, from `previous` (part caches
+/// and triangle simplices) to `current`.
 fn carry_part_cache(
     contact: &mut Contact,
-    previous: &[PartCache],
-    part_caches: &mut Vec<PartCache>,
+    previous: (&[PartCache], &[KeptSimplex]),
+    current: (&mut Vec<PartCache>, &mut Vec<KeptSimplex>),
 ) {
     if let Some(index) = contact.part_cache {
-        let kept = previous.get(index as usize).copied().unwrap_or_default();
-        contact.part_cache = keep_part_cache(part_caches, kept);
+        let kept = previous.0.get(index as usize).copied().unwrap_or_default();
+        let kept = match kept {
+            PartCache::Triangles { .. } => {
+                keep_triangle_simplices(current.1, triangle_simplices_of(kept, previous.1))
+            }
+            _ => kept,
+        };
+        contact.part_cache = keep_part_cache(current.0, kept);
     }
 }
 
@@ -512,6 +580,31 @@ impl PartContacts for PairContacts<'_> {
             .unwrap_or_default();
         self.previous.start += passed;
         kept
+    }
+
+    fn previous_triangle_simplices(
+        &mut self,
+        child_a: u32,
+        child_b: u32,
+        simplices: &mut Vec<KeptSimplex>,
+    ) {
+        let kept = self.previous_cache(child_a, child_b);
+        simplices.clear();
+        simplices.extend_from_slice(triangle_simplices_of(
+            kept,
+            &self.cache.previous_triangle_simplices,
+        ));
+    }
+
+    fn add_on_mesh(
+        &mut self,
+        child_a: u32,
+        child_b: u32,
+        manifold: Manifold,
+        simplices: &[KeptSimplex],
+    ) {
+        let part_cache = keep_triangle_simplices(&mut self.cache.triangle_simplices, simplices);
+        self.add(child_a, child_b, manifold, part_cache);
     }
 
     fn add(&mut self, child_a: u32, child_b: u32, manifold: Manifold, part_cache: PartCache) {

@@ -478,8 +478,25 @@ where
     }
 }
 
+/// [`distance_within`], ending with [`Search::Beyond`] and the simplex reached so far, rather
+/// than `None`, when the solids are more than `limit` apart: a start for the next query between
+/// the same two, which then most often rejects them again with its first support point.
+pub(crate) fn search_within<A, B>(
+    a: &A,
+    b: &B,
+    start: &[SupportPoint],
+    direction: Vec3,
+    limit: f32,
+) -> Search
+where
+    A: SupportMap + ?Sized,
+    B: SupportMap + ?Sized,
+{
+    search(a, b, start, direction, limit, CONTACT_PRECISION)
+}
+
 /// How a GJK search ended.
-enum Search {
+pub(crate) enum Search {
     /// With the distance, to tolerance.
     Done(Distance),
     /// Early, with the simplex so far, once a lower bound on the distance exceeded the limit.

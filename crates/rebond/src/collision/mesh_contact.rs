@@ -15,7 +15,7 @@
 use super::clipping::reduce_contacts_on_face;
 use super::feature_contact::DEEPEST_POINT_ID;
 use super::manifold::{ContactPoint, Manifold};
-use super::triangle_contact::collide_triangle;
+use super::triangle_contact::{collide_triangle_from, TriangleSimplex};
 use crate::math::{Aabb, Pose, Vec3};
 use crate::shape::{Shape, Triangle, ACTIVE_EDGE_ANGLE};
 
@@ -44,6 +44,9 @@ struct Group {
     len: usize,
 }
 
+/// The GJK simplex a query left for one triangle (by index), to start the next from.
+pub type KeptSimplex = (u32, TriangleSimplex);
+
 /// Scratch space of mesh contacts, kept from query to query so that a steady step allocates
 /// nothing.
 #[derive(Debug, Clone, Default)]
@@ -53,21 +56,27 @@ pub struct MeshScratch {
     manifolds: Vec<(u32, Manifold)>,
     groups: Vec<Group>,
     points: Vec<ContactPoint>,
+    /// What the last query of the same part left, by triangle index (filled by the caller).
+    pub(crate) previous_simplices: Vec<KeptSimplex>,
+    /// What this query leaves, by triangle index.
+    simplices: Vec<KeptSimplex>,
 }
 
 impl MeshScratch {
     /// The manifolds between `mesh` and the convex `part` at `part_pose` (normals from the mesh
-    /// toward the part), each handed to `emit(group, manifold)` with `group` counting the merged
-    /// manifolds from 0, in a deterministic order: triangles by index, groups by their first
-    /// triangle.
+    /// toward the part), each handed to `emit(group, manifold, simplices)` with `group` counting
+    /// the merged manifolds from 0, in a deterministic order: triangles by index, groups by their
+    /// first triangle. Each triangle's GJK query starts from its simplex in `previous_simplices`,
+    /// and `simplices` holds those this query leaves, by triangle index (passed with every group).
     pub(crate) fn collide(
         &mut self,
         mesh: &PlacedMesh,
         part: &Shape,
         part_pose: &Pose,
         margin: f32,
-        mut emit: impl FnMut(u32, Manifold),
+        mut emit: impl FnMut(u32, Manifold, &[KeptSimplex]),
     ) {
+        self.simplices.clear();
         if part.is_triangulated() || !part.is_bounded() {
             return;
         }
@@ -84,18 +93,28 @@ impl MeshScratch {
         self.triangles.sort_unstable();
         let one_sided = matches!(mesh.shape, Shape::HeightField(_));
         self.manifolds.clear();
+        // Both lists run by triangle index: the previous simplices are walked alongside.
+        let mut previous = self.previous_simplices.iter().peekable();
         for &index in &self.triangles {
             let Some(local) = mesh.shape.triangle(index) else {
                 continue;
             };
+            while previous.next_if(|(kept, _)| *kept < index).is_some() {}
+            let mut simplex = previous
+                .next_if(|(kept, _)| *kept == index)
+                .map_or_else(TriangleSimplex::default, |(_, simplex)| *simplex);
             let triangle = Triangle {
                 vertices: local
                     .vertices
                     .map(|vertex| mesh.pose.transform_point(vertex)),
                 edge_flags: local.edge_flags,
             };
-            if let Some(manifold) = collide_triangle(&triangle, one_sided, part, part_pose, margin)
-            {
+            let manifold =
+                collide_triangle_from(&triangle, one_sided, part, part_pose, margin, &mut simplex);
+            if !simplex.is_empty() {
+                self.simplices.push((index, simplex));
+            }
+            if let Some(manifold) = manifold {
                 self.manifolds.push((index, manifold));
             }
         }
@@ -114,6 +133,7 @@ impl MeshScratch {
             emit(
                 group_index,
                 reduce_contacts_on_face(normal, tangent, points, true),
+                &self.simplices,
             );
         }
     }

@@ -15,7 +15,7 @@ use super::feature_contact::collide_features;
 use super::gjk::{self, SimplexCache};
 use super::halfspace::collide_halfspace;
 use super::manifold::Manifold;
-use super::mesh_contact::{MeshScratch, PlacedMesh};
+use super::mesh_contact::{KeptSimplex, MeshScratch, PlacedMesh};
 use super::polyhedron::Polyhedron;
 use super::polyhedron_contact::collide_polyhedra;
 use super::{LocalCore, PosedCore, RelativeCore};
@@ -50,6 +50,14 @@ pub enum PartCache {
     /// skips GJK's pre-test (`apart_beyond`), which would let them through, and goes straight to
     /// the separating-axis test.
     Touching,
+    /// A part against a mesh: the simplices its triangles' GJK queries left, `len` of them from
+    /// `start` in the contact cache's list of triangle simplices.
+    Triangles {
+        /// Where the part's simplices start.
+        start: u32,
+        /// How many there are.
+        len: u32,
+    },
 }
 
 impl PartCache {
@@ -57,7 +65,9 @@ impl PartCache {
     fn simplex(&self) -> SimplexCache {
         match self {
             PartCache::Simplex(simplex) => *simplex,
-            PartCache::Cold | PartCache::Touching => SimplexCache::default(),
+            PartCache::Cold | PartCache::Touching | PartCache::Triangles { .. } => {
+                SimplexCache::default()
+            }
         }
     }
 
@@ -80,6 +90,30 @@ pub trait PartContacts {
 
     /// A manifold between parts `child_a` and `child_b`, with what the query leaves for the next.
     fn add(&mut self, child_a: u32, child_b: u32, manifold: Manifold, cache: PartCache);
+
+    /// Fills `simplices` with the GJK simplices, by triangle index, that the last query of a
+    /// part against a mesh left with its first manifold, between parts `child_a` and `child_b`
+    /// (on the mesh's side, that manifold's group: 0). The default: none.
+    fn previous_triangle_simplices(
+        &mut self,
+        _child_a: u32,
+        _child_b: u32,
+        simplices: &mut Vec<KeptSimplex>,
+    ) {
+        simplices.clear();
+    }
+
+    /// A manifold between a part and a mesh (as [`PartContacts::add`]), the query having left
+    /// `simplices` for the mesh's triangles. The default drops them.
+    fn add_on_mesh(
+        &mut self,
+        child_a: u32,
+        child_b: u32,
+        manifold: Manifold,
+        _simplices: &[KeptSimplex],
+    ) {
+        self.add(child_a, child_b, manifold, PartCache::Cold);
+    }
 
     /// Whether collider `collider_a` of A and `collider_b` of B may touch (a compound's child is
     /// a collider of its own, which may be a sensor or have its own groups; 0 for a shape that is
@@ -344,13 +378,33 @@ impl NarrowPhase {
             if !touch {
                 return;
             }
-            scratch.collide(&mesh, part, &part_pose, margin, |group, manifold| {
-                if mesh_is_a {
-                    contacts.add(group, child, manifold, PartCache::Cold);
-                } else {
-                    contacts.add(child, group, manifold.flipped(), PartCache::Cold);
-                }
-            });
+            // The simplices ride with the part's first manifold (group 0), which exists whenever
+            // any does.
+            let (first_a, first_b) = if mesh_is_a { (0, child) } else { (child, 0) };
+            contacts.previous_triangle_simplices(first_a, first_b, &mut scratch.previous_simplices);
+            scratch.collide(
+                &mesh,
+                part,
+                &part_pose,
+                margin,
+                |group, manifold, simplices| {
+                    let manifold = if mesh_is_a {
+                        manifold
+                    } else {
+                        manifold.flipped()
+                    };
+                    let (child_a, child_b) = if mesh_is_a {
+                        (group, child)
+                    } else {
+                        (child, group)
+                    };
+                    if group == 0 {
+                        contacts.add_on_mesh(child_a, child_b, manifold, simplices);
+                    } else {
+                        contacts.add(child_a, child_b, manifold, PartCache::Cold);
+                    }
+                },
+            );
         });
     }
 }
