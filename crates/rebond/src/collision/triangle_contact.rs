@@ -412,6 +412,20 @@ mod tests {
     /// follow the features, not the distance (4e-7 m is the most seen).
     const POINT_TOLERANCE: f32 = 1e-4;
 
+    /// A pose within 0.6 m along each axis of a random point of the triangle `vertices`,
+    /// turned any way.
+    fn random_pose_near(random: &mut Random, vertices: [Vec3; 3]) -> Pose {
+        let (u, v) = (random.range(0.0, 1.0), random.range(0.0, 1.0));
+        let (u, v) = if u + v > 1.0 {
+            (1.0 - u, 1.0 - v)
+        } else {
+            (u, v)
+        };
+        let [a, b, c] = vertices;
+        let centre = a + (b - a) * u + (c - a) * v + random.vec3(-0.6, 0.6);
+        Pose::new(centre, Quat::from_scaled_axis(random.vec3(-1.8, 1.8)))
+    }
+
     /// A box's manifold with a triangle, found with the closed form, against the same box as a
     /// hull of its eight corners, which goes through GJK: random triangles (half with active
     /// edges), boxes within 0.6 m along each axis, turned any way, some against one-sided
@@ -436,15 +450,7 @@ mod tests {
                 )
             });
             let hull = Shape::convex_hull(&corners).unwrap();
-            let (u, v) = (random.range(0.0, 1.0), random.range(0.0, 1.0));
-            let (u, v) = if u + v > 1.0 {
-                (1.0 - u, 1.0 - v)
-            } else {
-                (u, v)
-            };
-            let [a, b, c] = vertices;
-            let centre = a + (b - a) * u + (c - a) * v + random.vec3(-0.6, 0.6);
-            let pose = Pose::new(centre, Quat::from_scaled_axis(random.vec3(-1.8, 1.8)));
+            let pose = random_pose_near(&mut random, vertices);
             let one_sided = random.chance(0.3);
             let margin = SPECULATIVE_DISTANCE;
             let closed = collide_triangle(&triangle, one_sided, &cuboid, &pose, margin);
@@ -504,19 +510,11 @@ mod tests {
                 let shape = Shape::convex_hull(&points).unwrap();
                 (shape, NORMAL_TOLERANCE, POINT_TOLERANCE)
             };
-            let (u, v) = (random.range(0.0, 1.0), random.range(0.0, 1.0));
-            let (u, v) = if u + v > 1.0 {
-                (1.0 - u, 1.0 - v)
-            } else {
-                (u, v)
-            };
-            let [a, b, c] = vertices;
-            let centre = a + (b - a) * u + (c - a) * v + random.vec3(-0.6, 0.6);
-            let rotation = Quat::from_scaled_axis(random.vec3(-1.8, 1.8));
+            let pose = random_pose_near(&mut random, vertices);
+            let (centre, rotation) = (pose.position, pose.rotation);
             let one_sided = random.chance(0.3);
             let margin = SPECULATIVE_DISTANCE;
             let mut simplex = TriangleSimplex::default();
-            let pose = Pose::new(centre, rotation);
             collide_triangle_from(&triangle, one_sided, &shape, &pose, margin, &mut simplex);
             warm += usize::from(!simplex.is_empty());
             let moved = Pose::new(

@@ -32,7 +32,7 @@ impl F32x4 {
     }
 
     /// Lane `i` holds `values[i]`.
-    pub const fn from_array(values: [f32; 4]) -> Self {
+    pub fn from_array(values: [f32; LANES]) -> Self {
         Self(Vec4::from_array(values))
     }
 
