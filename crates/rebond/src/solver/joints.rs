@@ -404,7 +404,20 @@ impl JointConstraint {
     /// One pass over the joint's rows solved one at a time: motor, friction, spring and limits.
     /// What holds the joint together is its group's, solved after every joint's pass
     /// ([`JointConstraints::solve_groups`]), so it is the most nearly met when the pass ends.
-    fn solve(&mut self, v: &mut Velocities, softness: RowSoftness, (h, inverse_h): (f32, f32)) {
+    ///
+    /// Springs (and position motors, springs towards a target) pull in the biased passes only,
+    /// with the force of the substep's starting pose, which makes them symplectic Euler. Solved
+    /// again in the relax pass at the pose the substep ended on, the substep's impulse became
+    /// `−h k C` at the end pose while the bodies had moved with the one at the start: a drag of
+    /// `h² k` times the speed a substep, which took 17 % off an undamped spring's amplitude in
+    /// five periods (`tests/joints/drives.rs`).
+    fn solve(
+        &mut self,
+        v: &mut Velocities,
+        softness: RowSoftness,
+        (h, inverse_h): (f32, f32),
+        biased: bool,
+    ) {
         let (geometry, impulses, bodies) = (&self.geometry, &mut self.impulses, &self.bodies);
         let options = &self.options;
         if let Some(axis) = &geometry.axis_part {
@@ -425,7 +438,7 @@ impl JointConstraint {
                     stiffness,
                     damping,
                     max_force,
-                }) => axis.solve_spring(
+                }) if biased => axis.solve_spring(
                     bodies,
                     v,
                     position - target_position,
@@ -433,13 +446,13 @@ impl JointConstraint {
                     max_force * h,
                     &mut impulses.motor,
                 ),
-                Some(Motor::Torque { .. }) | None => {}
+                Some(Motor::Position { .. } | Motor::Torque { .. }) | None => {}
             }
             if options.friction > 0.0 && options.joint_type != JointType::Ball {
                 let most = options.friction * h;
                 axis.solve_velocity_motor(bodies, v, 0.0, most, &mut impulses.friction);
             }
-            if let Some(spring) = options.spring {
+            if let (Some(spring), true) = (options.spring, biased) {
                 axis.solve_spring(
                     bodies,
                     v,
@@ -685,7 +698,9 @@ impl ConstraintKind for JointConstraints {
         if !USE_BIAS {
             self.refresh(motions);
         }
-        self.for_each_joint(states, |constraint, v| constraint.solve(v, softness, times));
+        self.for_each_joint(states, |constraint, v| {
+            constraint.solve(v, softness, times, USE_BIAS)
+        });
         // The groups are solved exactly in the last biased pass only; in the ones before, the
         // contacts meet the joints' warm-started impulses and one-row parts alone. Solving the
         // groups in every biased pass costs half again as many solves and leaves the joints
