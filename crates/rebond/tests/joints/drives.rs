@@ -4,26 +4,41 @@ use super::{add, angle_about_z, mean_period, rod, upward_crossings, world, DT, G
 use rebond::{BodyDesc, JointDesc, Motor, Quat, Shape, Vec3};
 use std::f32::consts::PI;
 
+/// The spring tests' ball, kg, spring, N/m, and how far it starts pulled out, m.
+const SPRING_MASS: f32 = 1.0;
+const SPRING_STIFFNESS: f32 = 40.0;
+const SPRING_PULL: f32 = 0.2;
+
+/// A ball of [`SPRING_MASS`] held to the origin by a distance joint of rest length 1 m, a spring
+/// of [`SPRING_STIFFNESS`] and `damping` N·s/m, released at rest [`SPRING_PULL`] past it along
+/// X, no gravity.
+fn ball_on_a_spring(damping: f32) -> (rebond::World, rebond::BodyHandle) {
+    let start = Vec3::new(1.0 + SPRING_PULL, 0.0, 0.0);
+    let mut world = world(Vec3::ZERO);
+    let ball = add(
+        &mut world,
+        BodyDesc::dynamic(Shape::sphere(0.1).unwrap())
+            .mass(SPRING_MASS)
+            .position(start),
+    );
+    world
+        .add_joint(
+            JointDesc::distance(None, ball, Vec3::ZERO, start)
+                .length(1.0)
+                .spring(SPRING_STIFFNESS, damping),
+        )
+        .unwrap();
+    (world, ball)
+}
+
 #[test]
 fn a_spring_joint_oscillates_at_its_natural_frequency_and_keeps_its_amplitude() {
     // A 1 kg ball on a 40 N/m undamped spring of rest length 1 m, pulled out 0.2 m, no gravity:
     // x(t) = 1 + 0.2 cos(ω t), ω = √(k/m). The substep is 1/480 s, so ω h = 0.013 and the
     // symplectic step's period error (ω h)²/24 is 7e-6; 1 % leaves room for sampling.
-    let (mass, stiffness, amplitude) = (1.0_f32, 40.0_f32, 0.2_f32);
-    let mut world = world(Vec3::ZERO);
-    let ball = add(
-        &mut world,
-        BodyDesc::dynamic(Shape::sphere(0.1).unwrap())
-            .mass(mass)
-            .position(Vec3::new(1.0 + amplitude, 0.0, 0.0)),
-    );
-    world
-        .add_joint(
-            JointDesc::distance(None, ball, Vec3::ZERO, Vec3::new(1.0 + amplitude, 0.0, 0.0))
-                .length(1.0)
-                .spring(stiffness, 0.0),
-        )
-        .unwrap();
+    let (mass, stiffness) = (SPRING_MASS, SPRING_STIFFNESS);
+    let (mut world, ball) = ball_on_a_spring(0.0);
+    let amplitude = SPRING_PULL;
     let expected = 2.0 * PI * (mass / stiffness).sqrt();
     let steps = (5.5 * expected / DT) as usize;
     let stretch: Vec<f32> = (0..steps)
@@ -59,21 +74,9 @@ fn a_damped_spring_joint_follows_the_closed_form() {
     // substep ahead, `x(t + h/2)` (against `x(t)` they are off by `A ω h / 2` = 1.3 mm). Against
     // that, the damping taken at each substep's end velocity and the second-order terms leave
     // 0.47 mm over five periods; 1 mm of the 20 cm swing is the bound.
-    let (mass, stiffness, damping, amplitude) = (1.0_f32, 40.0_f32, 0.4_f32, 0.2_f32);
-    let mut world = world(Vec3::ZERO);
-    let ball = add(
-        &mut world,
-        BodyDesc::dynamic(Shape::sphere(0.1).unwrap())
-            .mass(mass)
-            .position(Vec3::new(1.0 + amplitude, 0.0, 0.0)),
-    );
-    world
-        .add_joint(
-            JointDesc::distance(None, ball, Vec3::ZERO, Vec3::new(1.0 + amplitude, 0.0, 0.0))
-                .length(1.0)
-                .spring(stiffness, damping),
-        )
-        .unwrap();
+    let (mass, stiffness, damping) = (SPRING_MASS, SPRING_STIFFNESS, 0.4_f32);
+    let (mut world, ball) = ball_on_a_spring(damping);
+    let amplitude = SPRING_PULL;
     let omega = (stiffness / mass).sqrt();
     let zeta = damping / (2.0 * (stiffness * mass).sqrt());
     let omega_d = omega * (1.0 - zeta * zeta).sqrt();
