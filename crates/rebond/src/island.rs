@@ -371,9 +371,8 @@ impl Islands {
     }
 
     /// After the solve, with this step's islands: advances by `dt` the still time of every awake
-    /// dynamic body slower than `sleep_speed` (m/s, `|v| + r_max |ω|` with `r_max` the distance
-    /// from its centre of mass to the farthest point of its bounding box) and not kept awake by a
-    /// moving kinematic body, and puts to sleep each island still for `sleep_time` seconds,
+    /// dynamic body that is still (`RigidBody::is_still`: slower than `sleep_speed`, m/s, and
+    /// pushed by no constant force or torque) and not kept awake by a moving kinematic body, and puts to sleep each island still for `sleep_time` seconds,
     /// listed in [`fell_asleep`](Self::fell_asleep). Returns whether any body fell asleep.
     pub fn update_sleep(
         &mut self,
@@ -389,7 +388,7 @@ impl Islands {
             if !body.is_dynamic() {
                 continue;
             }
-            if !body.can_sleep || body.max_point_speed() > sleep_speed {
+            if !body.can_sleep || !body.is_still(sleep_speed) {
                 body.sleep_time = 0.0;
             } else {
                 body.sleep_time += dt;

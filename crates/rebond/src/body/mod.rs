@@ -29,6 +29,11 @@ pub use desc::BodyDesc;
 pub use locked_axes::LockedAxes;
 pub use path::{KinematicPath, PathPoint};
 
+/// How long a small body's fastest point may take to cross its reach `r_max` and the body still
+/// count as still, s: a marble 1 cm across is still below 0.9 cm/s, not at the world's 5 cm/s,
+/// five of its diameters a second ([`RigidBody::is_still`]).
+const STILL_REACH_TIME: f32 = 1.0;
+
 /// How a body moves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -477,6 +482,20 @@ impl RigidBody {
         self.linear_velocity.length() + self.max_extent * self.angular_velocity.length()
     }
 
+    /// Whether the body counts as still this step, with `sleep_speed` the world's
+    /// [`sleep_speed`](crate::world::WorldSettings::sleep_speed), m/s: its fastest point moves
+    /// slower than `min(sleep_speed, r_max / 1 s)` ([`STILL_REACH_TIME`]), and no constant force or torque of
+    /// its own pushes it along or about an axis it is free on: the engine cannot tell before the
+    /// solve whether a contact holds such a push, and a push nothing holds starts from rest too
+    /// slowly for speed alone to tell it from rest (0.02 N on a 1 kg box on ice reaches the
+    /// default 5 cm/s after 2.5 s, long after half a second of stillness).
+    pub(crate) fn is_still(&self, sleep_speed: f32) -> bool {
+        let (force, torque) = self.applied_constant_force_and_torque();
+        let pushed = self.locked_axes.free_linear(force) != Vec3::ZERO
+            || self.locked_axes.free_angular(torque) != Vec3::ZERO;
+        !pushed && self.max_point_speed() <= sleep_speed.min(self.max_extent / STILL_REACH_TIME)
+    }
+
     /// Moves the body origin to `position` (finite), keeping its rotation and velocities.
     ///
     /// On a kinematic body this is a teleport: the pose jumps, and contacts see no velocity, so
@@ -636,13 +655,20 @@ impl RigidBody {
     /// the constant ones, with `r × F` of a constant force off the centre of mass
     /// (`r = R (p − c_local)`), N and N·m.
     pub(crate) fn applied_force_and_torque(&self) -> (Vec3, Vec3) {
-        let force = self.force + self.constant_force;
-        let mut torque = self.torque + self.constant_torque;
+        let (force, torque) = self.applied_constant_force_and_torque();
+        (self.force + force, self.torque + torque)
+    }
+
+    /// The constant force and torque alone, as [`applied_force_and_torque`] counts them.
+    ///
+    /// [`applied_force_and_torque`]: Self::applied_force_and_torque
+    fn applied_constant_force_and_torque(&self) -> (Vec3, Vec3) {
+        let mut torque = self.constant_torque;
         if let Some(point) = self.constant_force_point {
             let arm = self.rotation * (point - self.local_center_of_mass);
             torque += arm.cross(self.constant_force);
         }
-        (force, torque)
+        (self.constant_force, torque)
     }
 
     /// Sets the torque applied during every step.

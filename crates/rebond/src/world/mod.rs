@@ -89,7 +89,10 @@ pub struct WorldSettings {
     /// meets another (the continuous pass).
     pub speculative_distance: f32,
     /// A body slower than this counts as still, m/s, ≥ 0, default 0.05: the speed of its
-    /// fastest point, `|v| + r_max |ω|`.
+    /// fastest point, `|v| + r_max |ω|` (`r_max` its centre of mass's farthest reach), and
+    /// below `r_max` per second for a body that small (a 1 cm marble is still below 0.9 cm/s).
+    /// A body pushed by a constant force or torque of its own on an axis it is free on never
+    /// counts as still, whether or not a contact holds the push: clear the force to let it sleep.
     pub sleep_speed: f32,
     /// How long an island must stay still before it falls asleep, s, ≥ 0, default 0.5.
     pub sleep_time: f32,
