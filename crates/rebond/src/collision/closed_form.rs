@@ -184,8 +184,10 @@ pub fn capsule_capsule(
 }
 
 /// Two points for parallel capsules: B's segment clipped to the stretch of A's, each end paired
-/// with the point of A's line across from it. `None` when the overlap is a single point.
-fn parallel_capsules(
+/// with the point of A's line across from it. `None` when the overlap is a single point. Also
+/// the feature manifold's two rounded lines lying along each other (a cylinder's side on a
+/// capsule or another cylinder's side, `feature_contact`).
+pub(super) fn parallel_capsules(
     segment_a: [Vec3; 2],
     radius_a: f32,
     segment_b: [Vec3; 2],

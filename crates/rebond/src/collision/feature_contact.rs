@@ -10,6 +10,7 @@
 use std::f32::consts::TAU;
 
 use super::clipping::{clip_polygon, clip_segment, reduce_contacts, ClipFeature, ClipVertex};
+use super::closed_form::parallel_capsules;
 use super::epa::{ContactInfo, Polytope};
 use super::gjk::SimplexCache;
 use super::manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
@@ -51,6 +52,13 @@ const SIDE_SINE: f32 = 0.5;
 /// A face is used as the reference for clipping only when its normal is within this cosine (11°)
 /// of the contact normal: otherwise the contact is on an edge or vertex and one point is right.
 const FACE_COSINE: f32 = 0.98;
+
+/// Two side lines (a cylinder's side, a capsule's segment) touch along their length when the sine
+/// of the angle between them is at most this (11°, as [`FACE_COSINE`]): each end of their
+/// overlap is then a point, with its own separation, so a wheel across a bar is held at both
+/// edges of its tread and not at one point GJK happens to pick between them, which a mirrored
+/// wheel would get on its other side.
+const PARALLEL_LINES_SINE: f32 = 0.2;
 
 /// When both supporting features are faces, the better aligned with the contact normal is the
 /// reference only when it is better by more than this cosine difference (as when one face is
@@ -352,6 +360,8 @@ pub(crate) fn manifold_from_features(
         let radii = [radii[1], radii[0]];
         clip_against_face(feature_b, feature_a, incident, radii, 1, &limits, 0)
             .map(Manifold::flipped)
+    } else if triangle_sides.is_none() {
+        lines_along_each_other(deepest, feature_a, feature_b, radii, &limits)
     } else {
         None
     };
@@ -365,6 +375,42 @@ pub(crate) fn manifold_from_features(
         add_deepest_point(&mut manifold, deepest);
     }
     manifold
+}
+
+/// The two-point manifold of two side lines lying along each other
+/// ([`PARALLEL_LINES_SINE`]), on the shapes' cores of roundings `radii`, with the ids of the
+/// features and each end; `None` unless both features are lines and overlap along their length.
+fn lines_along_each_other(
+    deepest: &ContactInfo,
+    feature_a: &Feature,
+    feature_b: &Feature,
+    radii: [f32; 2],
+    limits: &SeparationLimits,
+) -> Option<Manifold> {
+    let (&[start_a, end_a], &[start_b, end_b]) = (feature_a.points(), feature_b.points()) else {
+        return None;
+    };
+    let (axis_a, axis_b) = (
+        (end_a - start_a).normalize_or_zero(),
+        (end_b - start_b).normalize_or_zero(),
+    );
+    if axis_a.cross(axis_b).length() > PARALLEL_LINES_SINE {
+        return None;
+    }
+    let mut manifold = parallel_capsules(
+        [start_a, end_a],
+        radii[0],
+        [start_b, end_b],
+        radii[1],
+        deepest.normal,
+        limits.margin,
+    )?;
+    let features = ((feature_a.index & 0x7F) << 23) | ((feature_b.index & 0x7F) << 16);
+    for point in manifold.points_mut() {
+        point.separation = point.separation.max(limits.deepest);
+        point.id |= features;
+    }
+    Some(manifold)
 }
 
 fn midpoint(deepest: &ContactInfo) -> Vec3 {
