@@ -64,8 +64,9 @@ fn worst_of(windows: &[Worst]) -> Worst {
         })
 }
 
-/// How a stack starts: every box at its place, or each moved by up to 2 mm and turned by up to
-/// 1° about an axis, both uniform and drawn from the seed, as a stack built by hand would be.
+/// How a stack starts: every box at its place, or, as a stack built by hand would be, each
+/// moved by up to 2 mm and turned by up to 1° (distance and angle uniform, direction and axis
+/// uniform on the sphere), drawn from the seed.
 #[derive(Clone, Copy, Debug)]
 enum Start {
     Aligned,
@@ -92,6 +93,7 @@ fn start_poses(start: Start, positions: impl IntoIterator<Item = Vec3>) -> Vec<(
         .collect()
 }
 
+/// Unit boxes at `positions` from `start`, each with the position it starts at.
 fn add_boxes(
     world: &mut World,
     positions: impl IntoIterator<Item = Vec3>,
