@@ -398,14 +398,11 @@ fn bodies_asleep_on_a_floor_that_stops_interacting_wake_and_fall() {
         .contacts()
         .iter()
         .any(|contact| contact.bodies() == pair));
-    // The floor, which no longer interacts with the boxes, touches nothing.
-    assert!(
-        !world
-            .touching_pairs()
-            .any(|(a, b)| a == ground || b == ground),
-        "the floor still touches a box"
-    );
-    assert!(world.touching_pairs().all(|touching| touching == pair));
+    // Nothing touches: the floor no longer interacts with the boxes, and the boxes, which
+    // carry no load in free fall, part by a hair (measured 0.86 mm, their contact's impulses
+    // all 0).
+    let touching: Vec<_> = world.touching_pairs().collect();
+    assert_eq!(touching, [], "the floor or the falling boxes still touch");
 }
 
 #[test]
