@@ -496,6 +496,45 @@ fn a_fast_kinematic_paddle_pushes_a_ball_ahead_and_never_passes_it() {
 }
 
 #[test]
+fn a_fast_kinematic_paddle_leaves_a_ball_beside_its_path_alone() {
+    // A 2.5 cm ball whose surface lies 1 cm beyond the paddle's edge is never met: it keeps its
+    // pose and rest exactly, whether it is awake or asleep.
+    for can_sleep in [false, true] {
+        let start = Vec3::new(0.8, PADDLE_HALF.y + 0.025 + 0.01, 0.0);
+        let (mut world, _, ball) = paddle_and_ball(0.025, 0.0, start, 100.0);
+        world.body_mut(ball).unwrap().set_can_sleep(can_sleep);
+        common::run(&mut world, 4);
+        let body = world.body(ball).unwrap();
+        assert_eq!(body.position(), start, "can sleep: {can_sleep}");
+        assert_eq!(body.linear_velocity(), Vec3::ZERO, "can sleep: {can_sleep}");
+    }
+}
+
+#[test]
+fn a_fast_kinematic_paddle_wakes_a_sleeping_ball_and_pushes_it_ahead() {
+    // The ball falls asleep at rest, then the paddle is set off at 100 m/s toward it. Bounds
+    // as for the awake ball: ahead of the face by its radius, at the paddle's velocity.
+    let (mut world, paddle, ball) = paddle_and_ball(0.025, 0.0, Vec3::new(0.8, 0.0, 0.0), 0.0);
+    world.body_mut(ball).unwrap().set_can_sleep(true);
+    common::run(&mut world, 120);
+    assert!(world.body(ball).unwrap().is_sleeping());
+    world
+        .body_mut(paddle)
+        .unwrap()
+        .set_linear_velocity(Vec3::new(100.0, 0.0, 0.0))
+        .unwrap();
+    common::run(&mut world, 3);
+    let front = world.body(paddle).unwrap().position().x + PADDLE_HALF.x;
+    let body = world.body(ball).unwrap();
+    let (ahead, v) = (body.position().x - front, body.linear_velocity());
+    assert!((0.0..=0.02).contains(&(ahead - 0.025)), "{ahead} ahead");
+    assert!(
+        (v - Vec3::new(100.0, 0.0, 0.0)).length() <= 1.0e-3,
+        "v = {v}"
+    );
+}
+
+#[test]
 fn a_fast_kinematic_paddle_bounces_an_elastic_ball_off_at_twice_its_speed() {
     // Restitution 1 off a body of infinite mass moving at u: the ball leaves at 2u.
     let speed = 100.0f32;
