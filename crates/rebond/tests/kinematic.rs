@@ -361,3 +361,47 @@ fn a_box_asleep_on_a_waiting_platform_wakes_when_the_path_sets_off() {
         cube.position().x
     );
 }
+
+#[test]
+fn a_pose_target_is_swept_and_a_teleport_is_not() {
+    // A 4 cm paddle moved 1.6 m a step toward a resting ball, by pose targets (motion at
+    // 102 m/s, which the continuous pass sweeps) and by set_position (a teleport: no velocity,
+    // nothing swept). The target pushes the ball ahead at its speed; the teleport jumps over
+    // it and leaves it where it was, untouched.
+    for teleport in [false, true] {
+        let mut world = world();
+        let paddle = world
+            .add_body(BodyDesc::kinematic(
+                Shape::cuboid(Vec3::new(0.02, 0.15, 0.15)).unwrap(),
+            ))
+            .unwrap();
+        let ball = world
+            .add_body(
+                BodyDesc::dynamic(Shape::sphere(0.025).unwrap())
+                    .position(Vec3::new(2.5, 0.0, 0.0))
+                    .can_sleep(false),
+            )
+            .unwrap();
+        let step_length = 1.6;
+        for step in 1..=3 {
+            let to = Vec3::new(step as f32 * step_length, 0.0, 0.0);
+            let body = world.body_mut(paddle).unwrap();
+            if teleport {
+                body.set_position(to).unwrap();
+            } else {
+                body.set_kinematic_target(Pose::from_position(to)).unwrap();
+            }
+            stepped(&mut world, 1);
+        }
+        let body = world.body(ball).unwrap();
+        let (x, v) = (body.position().x, body.linear_velocity().x);
+        if teleport {
+            assert!(x == 2.5 && v == 0.0, "teleport: ball at {x} m, {v} m/s");
+        } else {
+            // Ahead of the paddle's front face (x = 4.82) by its radius, at the paddle's speed,
+            // 1.6 m / DT, to 1e-5 of it (f32 rounding).
+            assert!(x >= 4.82 + 0.025, "target: ball at {x}");
+            assert!((v - 1.6 / DT).abs() < 1.0e-5 * 1.6 / DT, "target: {v} m/s");
+        }
+    }
+}

@@ -12,7 +12,8 @@
 //! 5. the solve, island by island: substeps of the soft step over every kind of constraint
 //!    (`solver/`: `stages.rs` runs them, `solver/mod.rs` lists them);
 //! 6. kinematic bodies land exactly on their targets (`body/kinematic.rs`);
-//! 7. the continuous pass puts back fast bodies that went through another (`continuous.rs`);
+//! 7. the continuous pass puts back fast bodies that went through another, and pushes ahead of
+//!    a moving kinematic body what it would pass (`continuous.rs`);
 //! 8. joints measure their forces and break (`joint/set.rs`, `joints.rs`);
 //! 9. contact, force and sensor events (`events.rs`);
 //! 10. sleep: the same islands fall asleep or stay awake, and what no awake body uses is parked
@@ -29,7 +30,6 @@ use crate::body::{BodyDesc, BodyHandle, BodyType, RigidBody};
 use crate::collision::broad_phase::BroadPhase;
 use crate::collision::contact_cache::{Contact, ContactCache};
 use crate::collision::narrow_phase::NarrowPhase;
-use crate::collision::time_of_impact::Impact;
 use crate::collision::SPECULATIVE_DISTANCE;
 use crate::error::{
     check_length, check_non_negative, check_positive, check_range, Error, ErrorKind, Result,
@@ -212,9 +212,9 @@ pub struct World {
     /// Arena slots of static bodies lent out by [`World::body_mut`] since the last step, whose
     /// bounding boxes the next step refreshes in case they were moved.
     touched_static_slots: Vec<usize>,
-    /// The continuous pass's bodies to put back, by slot, with where.
+    /// The continuous pass's bodies to put back or push, by slot, with where and against what.
     #[cfg_attr(feature = "serde", serde(skip))]
-    impacts: Vec<(usize, Impact)>,
+    impacts: Vec<continuous::Stop>,
 }
 
 /// Marks the broad-phase proxies of the bodies in arena `slots` asleep or awake.
@@ -623,7 +623,7 @@ impl World {
         self.solve(dt);
         // Before anything reads the poses the step ended with.
         self.for_each_kinematic(|body| body.finish_kinematic_step(dt));
-        self.stop_fast_bodies();
+        self.stop_fast_bodies(dt);
         self.joints.finish_step(dt);
         self.refilter_broken_joints();
         self.update_events(dt);
