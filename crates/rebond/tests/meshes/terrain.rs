@@ -1,5 +1,5 @@
 //! Heightfields: a box sliding down a tilted one, a fast ball against a wall of two triangles,
-//! and shapes poured on hilly terrain.
+//! shapes poured on hilly terrain, and shapes resting across a valley's crease.
 
 use rebond::shape::HeightField;
 use rebond::{BodyDesc, Quat, Shape, Vec3};
@@ -152,8 +152,14 @@ const ROLLING_RESISTANCE: f32 = 0.3;
 
 /// 100 bodies of `shapes` (in turn) poured from 1 to 5 m above random points of the hills
 /// (generator seeded with `seed`), with rolling resistance `rolling_resistance` and sleeping on
-/// or off, run for 10 s.
-fn pour(shapes: &[Shape], seed: u64, rolling_resistance: f32, sleeping: bool) -> Pour {
+/// or off, run for `steps` steps.
+fn pour(
+    shapes: &[Shape],
+    seed: u64,
+    rolling_resistance: f32,
+    sleeping: bool,
+    steps: usize,
+) -> Pour {
     let (heights, scale) = hills();
     let terrain = HeightField::new(&heights, scale).unwrap();
     let mut world = world(Vec3::new(0.0, -G, 0.0));
@@ -177,7 +183,7 @@ fn pour(shapes: &[Shape], seed: u64, rolling_resistance: f32, sleeping: bool) ->
             .unwrap();
         bodies.push(body);
     }
-    let (steps, settled, window) = (600, 300, 60);
+    let (settled, window) = (300, 60);
     let mut pour = Pour {
         deepest: 0.0,
         deepest_settled: 0.0,
@@ -244,7 +250,7 @@ fn mixed_shapes() -> [Shape; 5] {
 fn shapes_poured_on_terrain_never_sink_below_it() {
     // Eight pours, sleeping off, so that every body is stepped and measured all along.
     for seed in 1..=8 {
-        let pour = pour(&mixed_shapes(), seed, ROLLING_RESISTANCE, false);
+        let pour = pour(&mixed_shapes(), seed, ROLLING_RESISTANCE, false, 600);
         // 2.5 cm while landing: a body falling at up to 10 m/s that lands on one corner or rim
         // point turns in the next step by more than its manifold, which holds the features near
         // that point, sees on its far side (a cylinder's far rim swings down by up to 9 cm in a
@@ -270,6 +276,29 @@ fn shapes_poured_on_terrain_never_sink_below_it() {
 }
 
 #[test]
+#[ignore = "cylinders standing on a cap and hulls across bent triangles rock on at up to \
+            6.1 cm/s (seed 11; seeds 1 to 8 at most 4.4 cm/s): see \
+            a_cylinder_standing_across_a_gentle_crease_rests"]
+fn shapes_poured_on_terrain_are_at_rest_with_sleeping_off() {
+    // Sleeping off, so that a body that rocks or creeps is seen: the fastest point of any body
+    // over the last second of 14 s. Every body is released at once from at most 5 m above the
+    // ground and lands within 1.1 s of free fall, so the window starts 10 s after the last
+    // lands, with a second for tumbling. 5 cm/s: the issue's bound for a pile at rest; a body
+    // resting on one face reads under 1 mm/s (seeds 1 to 12: most bodies under 0.3 mm/s), one
+    // rolling or rocking reads cm/s. Measured: seeds 1 to 12 reach 0.02 to 6.1 cm/s, all of it
+    // cylinders standing on a cap and hulls resting across bent triangles (seed 11: a cylinder
+    // on its cap at 6.1 cm/s; seed 5: a hull at 4.4 cm/s; seeds 3 and 9: 0.3 and 0.2 mm/s).
+    for seed in 1..=12 {
+        let pour = pour(&mixed_shapes(), seed, ROLLING_RESISTANCE, false, 840);
+        assert!(
+            pour.fastest_at_rest < 0.05,
+            "seed {seed}: a body still moved at {} m/s 10 s after landing",
+            pour.fastest_at_rest
+        );
+    }
+}
+
+#[test]
 fn shapes_poured_on_terrain_come_to_rest() {
     // Balls, capsules and cylinders with the rolling resistance of the built-in scene, boxes and
     // hulls held by friction: every body asleep by 9.7 s, before the run's end (seeds 1 to 16:
@@ -279,7 +308,7 @@ fn shapes_poured_on_terrain_come_to_rest() {
     // ones roll on in the bowls for ever, and cylinders standing on a cap across bent triangles
     // rocked on at 1 to 6 cm/s).
     for seed in 1..=4 {
-        let pour = pour(&mixed_shapes(), seed, ROLLING_RESISTANCE, true);
+        let pour = pour(&mixed_shapes(), seed, ROLLING_RESISTANCE, true, 600);
         let asleep_from = pour.all_asleep_from.unwrap_or(usize::MAX);
         assert!(
             asleep_from < 580,
@@ -291,7 +320,7 @@ fn shapes_poured_on_terrain_come_to_rest() {
 #[test]
 fn flat_faced_shapes_poured_on_terrain_come_to_rest() {
     // Sleeping off: resting bodies, no creeping or jitter.
-    let pour = pour(&flat_faced_shapes(), 15, 0.0, false);
+    let pour = pour(&flat_faced_shapes(), 15, 0.0, false, 600);
     assert!(
         pour.deepest < 0.02,
         "a body sank {} m below the surface",
@@ -367,6 +396,127 @@ fn a_cylinder_lying_across_a_gentle_ridge_is_held_on_the_ridge() {
         assert!(
             deepest < 0.002,
             "yaw {yaw}: the cylinder sank {deepest} m below the ridge"
+        );
+    }
+}
+
+/// A heightfield 8 m square of 41 × 41 samples, a valley along Z: two planes rising `bend`
+/// degrees in all, half each side, from the crease x = 0, and the whole falling `tilt` degrees
+/// toward +Z.
+fn crease(bend: f32, tilt: f32) -> HeightField {
+    let (samples, size) = (41, 8.0);
+    let (rise, fall) = ((0.5 * bend).to_radians().tan(), tilt.to_radians().tan());
+    let coordinate = |index: usize| (index as f32 / (samples - 1) as f32 - 0.5) * size;
+    let heights: Vec<Vec<f32>> = (0..samples)
+        .map(|i| {
+            (0..samples)
+                .map(|j| coordinate(j).abs() * rise - coordinate(i) * fall)
+                .collect()
+        })
+        .collect();
+    HeightField::new(&heights, Vec3::new(size, 1.0, size)).unwrap()
+}
+
+/// The fastest point speed (`|v| + |ω| r`, m/s) of `shape` set down at `position` with
+/// `rotation` on [`crease`]`(bend, tilt)`, sleeping off, with rolling resistance
+/// `rolling_resistance`, over steps 240 to 600 (4 s to 10 s, after it settles).
+fn fastest_across_crease(
+    shape: Shape,
+    position: Vec3,
+    rotation: Quat,
+    (bend, tilt): (f32, f32),
+    rolling_resistance: f32,
+) -> f32 {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    world
+        .add_body(BodyDesc::static_body(Shape::HeightField(crease(bend, tilt))).friction(0.7))
+        .unwrap();
+    let body = world
+        .add_body(
+            BodyDesc::dynamic(shape)
+                .position(position)
+                .rotation(rotation)
+                .friction(0.7)
+                .rolling_resistance(rolling_resistance)
+                .can_sleep(false),
+        )
+        .unwrap();
+    let mut fastest = 0.0f32;
+    for step in 0..600 {
+        world.step(DT).unwrap();
+        let body = world.body(body).unwrap();
+        if step >= 240 {
+            let speed = body.linear_velocity().length()
+                + body.angular_velocity().length() * body.shape().bounding_radius();
+            fastest = fastest.max(speed);
+        }
+    }
+    fastest
+}
+
+#[test]
+fn a_capsule_lying_across_a_crease_rests_with_and_without_rolling_resistance() {
+    // The terrain scene's capsule (radius 0.2 m, half height 0.3 m) lying along X across the
+    // valley, its two ends on the two planes: on the crease, and 13 cm off it (its points on
+    // triangles of both sides, not symmetric). Bends of 1° (the two sides' manifolds merge,
+    // under 1.8°) and 3° (two manifolds); level, or falling 10° across the capsule with
+    // rolling resistance 0.3 holding it (it rests on slopes up to atan 0.3 = 17°).
+    let along_x = Quat::from_rotation_z(std::f32::consts::FRAC_PI_2);
+    for (bend, tilt, resistance) in [
+        (1.0, 0.0, 0.0),
+        (1.0, 0.0, 0.3),
+        (1.0, 10.0, 0.3),
+        (3.0, 0.0, 0.0),
+        (3.0, 0.0, 0.3),
+        (3.0, 10.0, 0.3),
+    ] {
+        for x in [0.0, 0.13] {
+            let fastest = fastest_across_crease(
+                Shape::capsule(0.2, 0.3).unwrap(),
+                Vec3::new(x, 0.21, 0.0),
+                along_x,
+                (bend, tilt),
+                resistance,
+            );
+            // 1 mm/s: measured at most 24 µm/s (3°, level, no rolling resistance, still
+            // settling), 0.3 µm/s with it; a body that rocks or rolls reads cm/s.
+            assert!(
+                fastest < 1.0e-3,
+                "bend {bend}°, tilt {tilt}°, resistance {resistance}, x {x}: \
+                 moves at {fastest} m/s"
+            );
+        }
+    }
+}
+
+#[test]
+#[ignore = "rocks on at 0.2 to 0.4 m/s: the merged manifold's four points miss the rim \
+            points that touch first (measured 0.27, 0.32, 0.38 m/s at 0.5°, 1°, 1.5°)"]
+fn a_cylinder_standing_across_a_gentle_crease_rests() {
+    // A cylinder (radius 0.3 m, half height 0.2 m) standing on its cap across the valley, with
+    // no rolling resistance, bends of 0.5° to 1.5° (the two sides' triangles merge into one
+    // manifold). The cap bridges the valley: it rests on its rim's two ends across the crease,
+    // and its rim along the crease is r tan(bend/2) (1.3 to 3.9 mm) above the surface, so it
+    // rests like a table on four legs, of which two barely touch. The merged manifold keeps
+    // four points chosen by their place (the rim's ends across and along the crease), then
+    // moves the one nearest the deepest onto it: tilted a little, the cap's four points all
+    // lie on the low side, the other side sinks unheld, is pushed out, and the cap rocks on,
+    // growing from 1.5 mm/s at 1 s to 0.3 m/s. Choosing instead the points that touch first
+    // when the cap tilts (`TILT · position·direction − separation`) rests it at 3 to 7 µm/s,
+    // but dropping the move onto the deepest point lets landing bodies sink up to 7 cm.
+    // On a flat floor (no bend) it rests at 48 µm/s; across 3° (two manifolds) at 0.8 mm/s.
+    for bend in [0.5, 1.0, 1.5] {
+        let fastest = fastest_across_crease(
+            Shape::cylinder(0.3, 0.2).unwrap(),
+            Vec3::new(0.0, 0.21, 0.0),
+            Quat::IDENTITY,
+            (bend, 0.0),
+            0.0,
+        );
+        // 1 mm/s: as for the capsule, a body at rest reads µm/s, one that rocks cm/s.
+        assert!(
+            fastest < 1.0e-3,
+            "bend {bend}°: the cylinder moves at {fastest} m/s"
         );
     }
 }
