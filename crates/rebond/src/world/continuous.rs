@@ -20,10 +20,12 @@
 
 use super::contact_update::pair_interacts;
 use super::{World, WorldSettings};
+use crate::arena::Arena;
 use crate::body::{BodyHandle, BodyType, RigidBody};
 use crate::collision::time_of_impact::{time_of_impact, Impact, ImpactTolerances, Motion};
 use crate::collision::FAST_MOTION_REACHES;
-use crate::filter::Colliders;
+use crate::filter::{Colliders, IgnoredPairs};
+use crate::joint::JointSet;
 use crate::math::{Pose, Vec3};
 use crate::solver::FastMotion;
 
@@ -111,18 +113,11 @@ impl World {
             for tree in [broad_phase.static_tree(), broad_phase.moving_tree()] {
                 tree.query(&swept, |proxy| {
                     let other_slot = tree.user_data(proxy) as usize;
-                    let Some((other_index, other)) = bodies.at_slot(other_slot) else {
+                    let this = (BodyHandle(index), body);
+                    let Some(other) = meets(bodies, other_slot, this, ignored_pairs, joints) else {
                         return true;
                     };
-                    if other_slot == slot
-                        || other.sensor
-                        || !pair_interacts(
-                            (BodyHandle(index), body),
-                            (BodyHandle(other_index), other),
-                            ignored_pairs,
-                            joints,
-                        )
-                    {
+                    if other_slot == slot {
                         return true;
                     }
                     let other_motion = motion_of(other_slot, other);
@@ -217,18 +212,11 @@ impl World {
             let swept = motion.swept_bounds(&kinematic.shape, &Pose::IDENTITY, &Pose::IDENTITY);
             tree.query(&swept, |proxy| {
                 let other_slot = tree.user_data(proxy) as usize;
-                let Some((other_index, other)) = bodies.at_slot(other_slot) else {
+                let this = (BodyHandle(index), kinematic);
+                let Some(other) = meets(bodies, other_slot, this, ignored_pairs, joints) else {
                     return true;
                 };
-                if other.body_type != BodyType::Dynamic
-                    || other.sensor
-                    || !pair_interacts(
-                        (BodyHandle(index), kinematic),
-                        (BodyHandle(other_index), other),
-                        ignored_pairs,
-                        joints,
-                    )
-                {
+                if other.body_type != BodyType::Dynamic {
                     return true;
                 }
                 let tolerances = ImpactTolerances {
@@ -267,6 +255,20 @@ impl World {
         }
         impacts.clear();
     }
+}
+
+/// The body in `slot` when a sweep of `this` must test it: not a sensor, and let collide with
+/// `this` by their groups, the ignored pairs and the joints ([`pair_interacts`]).
+fn meets<'a>(
+    bodies: &'a Arena<RigidBody>,
+    slot: usize,
+    this: (BodyHandle, &RigidBody),
+    ignored_pairs: &IgnoredPairs,
+    joints: &JointSet,
+) -> Option<&'a RigidBody> {
+    let (index, other) = bodies.at_slot(slot)?;
+    (!other.sensor && pair_interacts(this, (BodyHandle(index), other), ignored_pairs, joints))
+        .then_some(other)
 }
 
 /// A body the continuous pass puts back or pushes ahead, by slot: where, and the slot of the
