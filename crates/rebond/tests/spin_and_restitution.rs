@@ -304,16 +304,19 @@ fn a_column_of_elastic_balls_struck_from_above_sends_the_striker_back() {
         let striker_velocity = world.body(striker).unwrap().linear_velocity().y;
         if striker_velocity > 0.0 {
             // The cradle's bounds: the striker leaves with at least 95 % of the incoming speed,
-            // the column's balls keep under 5 % of it (measured: 5.21 m/s from 4.98 m/s, and
-            // the two upper balls jump at 0.16 m/s, a step of gravity, 3 %).
+            // the column's balls keep under 5 % of it. And no energy is made: the striker
+            // leaves no faster than it came, and no column ball moves faster than 1 mm/s, but for
+            // what the collisions leave when they stop, under 1e-4 m/s a contact in each of the
+            // two outcomes that make the bounce (measured: 4.9813 m/s from 4.9810 m/s, column
+            // balls at 0.07 and 0.16 mm/s; with the collisions cut off too early, 5.21 m/s).
             assert!(
-                striker_velocity >= 0.95 * incoming,
+                striker_velocity >= 0.95 * incoming && striker_velocity <= incoming + 1e-3,
                 "the striker left at {striker_velocity} m/s from {incoming} m/s"
             );
             for &ball in &column {
                 let velocity = world.body(ball).unwrap().linear_velocity();
                 assert!(
-                    velocity.length() <= 0.05 * incoming,
+                    velocity.length() <= 1e-3,
                     "a column ball moves at {velocity} after a {incoming} m/s blow"
                 );
             }

@@ -12,8 +12,12 @@ use crate::collision::contact_cache::{Contact, ContactCache};
 
 /// Most sweeps of the restitution stage's collisions: a row of touching equal balls passes an
 /// impact on in one sweep in the row's order; a chain of collisions without restitution shares
-/// out the momentum more slowly.
-const COLLISION_SWEEPS: usize = 32;
+/// out the momentum more slowly: the plastic collision of a ball striking a column of three on
+/// the ground takes 121 sweeps to stop them all (its settle 97). Cut off at 32, the plastic
+/// outcome kept the striker falling at 0.2 m/s, and the striker, given the elastic outcome less
+/// the plastic one, left 4 % faster than it came. The sweeps stop as soon as nothing moves, so
+/// the cap costs only chains that need it.
+const COLLISION_SWEEPS: usize = 256;
 
 /// This step's contact constraints, in buffers reused from step to step.
 #[derive(Debug, Clone, Default)]
