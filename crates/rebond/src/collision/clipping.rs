@@ -423,12 +423,22 @@ pub fn reduce_contacts_on_face(
     }
     let bitangent = normal.cross(tangent);
     let mut chosen = Chosen::default();
-    for direction in [tangent, bitangent, -tangent, -bitangent] {
+    let directions = [tangent, bitangent, -tangent, -bitangent];
+    for (turn, direction) in directions.iter().enumerate() {
+        let farthest = candidates
+            .iter()
+            .map(|candidate| candidate.position.dot(*direction))
+            .fold(f32::NEG_INFINITY, f32::max);
+        // Of the points equally far (along one edge of the patch), the corner that comes next
+        // counter-clockwise: a merged mesh manifold holds points of an edge found by several
+        // triangles (some where the edge only grazes a triangle's side), and the four corners
+        // hold the patch where a point in between would leave one corner out.
+        let next = directions[(turn + 1) % directions.len()];
         let extreme = candidates
             .iter()
-            .map(|candidate| candidate.position.dot(direction))
             .enumerate()
-            .max_by(|(_, a), (_, b)| a.total_cmp(b))
+            .filter(|(_, candidate)| candidate.position.dot(*direction) >= farthest - EXTREME_TIE)
+            .max_by(|(_, a), (_, b)| a.position.dot(next).total_cmp(&b.position.dot(next)))
             .map_or(0, |(index, _)| index);
         if !chosen.indices().contains(&extreme) {
             chosen.push(extreme);
@@ -494,6 +504,10 @@ fn reach_deepest(manifold: &mut Manifold, candidates: &[ContactPoint], kept: &[u
         reached[round] = index;
     }
 }
+
+/// Candidates within this distance, metres, of the farthest along a direction are equally far
+/// ([`reduce_contacts_on_face`]): f32 rounding of points on one edge of a 10 m face is 1e-6 m.
+const EXTREME_TIE: f32 = 1.0e-5;
 
 /// A dropped point deeper than every kept point by more than this, metres, is reached by moving
 /// the nearest kept point onto it ([`reduce_contacts_on_face`]). Well below the 0.1 mm to which
@@ -805,6 +819,29 @@ mod tests {
             let tilted = reduce_contacts_on_face(Vec3::Z, tangent, &hexagon(Some(deepest)), false);
             assert_eq!(ids(&tilted), ids(&flat));
             assert_eq!(tilted.deepest_separation(), -0.014);
+        }
+    }
+
+    #[test]
+    fn face_reduction_keeps_the_corners_of_an_edge_found_many_times() {
+        // A unit square resting 26 µm deep, as a box's face on a floor of triangles: besides the
+        // corners, the triangles under its front edge (x = 1) find points on that edge, one of
+        // them where the edge only grazes a triangle's side, 3.5 mm apart. Picking that one as
+        // the farthest along +X left the corner (1, 0) out and the box spun on three points.
+        let mut candidates = vec![
+            contact(1.0, 0.0, -2.6e-5, 0),
+            contact(1.0, 0.4, 3.5e-3, 1),
+            contact(1.0, 0.5, -2.6e-5, 2),
+            contact(1.0, 1.0, -2.6e-5, 3),
+            contact(0.0, 1.0, -0.9e-5, 4),
+            contact(0.0, 0.0, -0.9e-5, 5),
+        ];
+        for _ in 0..candidates.len() {
+            let manifold = reduce_contacts_on_face(Vec3::Z, Vec3::X, &candidates, true);
+            let mut ids: Vec<u32> = manifold.points().iter().map(|point| point.id).collect();
+            ids.sort_unstable();
+            assert_eq!(ids, [0, 3, 4, 5], "from {candidates:?}");
+            candidates.rotate_left(1);
         }
     }
 
