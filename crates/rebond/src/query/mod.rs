@@ -39,12 +39,15 @@
 //!   A body pushed off that course during the step (a bounce), or moved by the user since, may
 //!   be missed where it sticks out of its box, until the next step.
 
+mod closest;
 mod mesh;
 mod overlap;
+mod projection;
 mod ray;
 mod shape_cast;
 mod world_queries;
 
+pub use closest::{closest_points, ClosestPoints};
 pub(crate) use overlap::shapes_overlap;
 
 use std::fmt;
@@ -152,6 +155,28 @@ pub struct ShapeHit {
     /// overlap from the start, the direction in which the shape separates from the body the
     /// quickest.
     pub normal: Vec3,
+}
+
+/// The point of a body's surface nearest a query point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointProjection {
+    /// The body.
+    pub body: BodyHandle,
+    /// The body's collider the point is on: its compound child's index, or 0.
+    pub collider: u32,
+    /// On a trimesh or heightfield, the triangle the point is on ([`Shape::triangle`]'s index);
+    /// `None` on any other shape.
+    pub triangle: Option<u32>,
+    /// The surface point nearest the query point, world, metres.
+    pub point: Vec3,
+    /// Unit world outward normal of the surface at `point`; on a trimesh, which has no inside,
+    /// the side of the triangle facing the query point.
+    pub normal: Vec3,
+    /// Signed distance from the query point to `point`, metres: negative when the query point is
+    /// inside the body.
+    pub distance: f32,
+    /// Whether the query point lies in the body (inside or on its surface); never on a trimesh.
+    pub inside: bool,
 }
 
 /// A test of one body by its handle and state, such as `|_, body| body.mass() > 10.0`.
@@ -315,13 +340,13 @@ fn unit_direction(field: &str, direction: Vec3) -> Result<Vec3> {
         .ok_or_else(|| Error::new(field, ErrorKind::ZeroVector))
 }
 
-/// A user pose with a finite position and a normalised rotation; errors name `pose.position` or
-/// `pose.rotation`.
-fn validated_pose(pose: &Pose) -> Result<Pose> {
+/// A user pose with a finite position and a normalised rotation; errors name `position` or
+/// `rotation` within `field` (`pose.position`).
+fn validated_pose(field: &str, pose: &Pose) -> Result<Pose> {
     if !pose.position.is_finite() {
-        return Err(Error::new("pose.position", ErrorKind::NotFinite));
+        return Err(Error::new("position", ErrorKind::NotFinite).within(field));
     }
-    let rotation = normalize_rotation("rotation", pose.rotation).map_err(|e| e.within("pose"))?;
+    let rotation = normalize_rotation("rotation", pose.rotation).map_err(|e| e.within(field))?;
     Ok(Pose::new(pose.position, rotation))
 }
 
