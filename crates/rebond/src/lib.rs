@@ -72,7 +72,7 @@ pub use joint::{
 pub use mass::MassProperties;
 pub use material::CombineRule;
 pub use math::{Aabb, Mat3, Pose, Quat, Vec3};
-pub use query::{QueryFilter, Ray, RayHit, ShapeHit};
+pub use query::{ClosestPoints, PointProjection, QueryFilter, Ray, RayHit, ShapeHit};
 pub use shape::{CompoundChild, Shape};
 #[doc(hidden)]
 pub use world::StepWork;

@@ -4,7 +4,7 @@
 //! and the query types; `rebond::Result` stays out so that it does not shadow `std`'s.
 
 pub use crate::{
-    BodyDesc, BodyHandle, BodyType, CompoundChild, Error, InteractionGroups, JointDesc,
-    JointHandle, LockedAxes, Motor, Pose, Quat, QueryFilter, Ray, RigidBody, Shape, Vec3, World,
-    WorldSettings,
+    BodyDesc, BodyHandle, BodyType, ClosestPoints, CompoundChild, Error, InteractionGroups,
+    JointDesc, JointHandle, LockedAxes, Motor, Pose, Quat, QueryFilter, Ray, RigidBody, Shape,
+    Vec3, World, WorldSettings,
 };

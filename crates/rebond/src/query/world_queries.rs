@@ -3,10 +3,15 @@
 
 use std::ops::ControlFlow;
 
+use super::closest::{classify, nearest_between};
 use super::overlap::{shape_contains_point, shapes_overlap};
+use super::projection::{box_gap, project_on_shape};
 use super::ray::{cast_ray_at_shape, ShapeRayHit};
 use super::shape_cast::{cast_shape_at_shape, Sweep};
-use super::{convex_parts, unit_direction, validated_pose, QueryFilter, Ray, RayHit, ShapeHit};
+use super::{
+    convex_parts, unit_direction, validated_pose, ClosestPoints, PointProjection, QueryFilter, Ray,
+    RayHit, ShapeHit,
+};
 use crate::body::{BodyHandle, RigidBody};
 use crate::collision::dynamic_tree::{DynamicTree, ProxyId};
 use crate::error::{check_non_negative_or_infinite, Error, ErrorKind, Result};
@@ -129,7 +134,7 @@ impl World {
     ) -> Result<Option<ShapeHit>> {
         let sweep = Sweep {
             shape,
-            pose: validated_pose(pose)?,
+            pose: validated_pose("pose", pose)?,
             direction: unit_direction("direction", direction)?,
             max_distance: check_non_negative_or_infinite("max_distance", max_distance)?,
         };
@@ -287,7 +292,7 @@ impl World {
         bodies: &mut Vec<BodyHandle>,
     ) -> Result<()> {
         bodies.clear();
-        let pose = validated_pose(pose)?;
+        let pose = validated_pose("pose", pose)?;
         let bounds = shape.aabb(&pose);
         self.collect_overlaps(&bounds, filter, bodies, |handle, body, found| {
             if body.aabb().overlaps(&bounds)
@@ -316,7 +321,7 @@ impl World {
         colliders: &mut Vec<(BodyHandle, u32)>,
     ) -> Result<()> {
         colliders.clear();
-        let pose = validated_pose(pose)?;
+        let pose = validated_pose("pose", pose)?;
         let bounds = shape.aabb(&pose);
         self.collect_overlaps(&bounds, filter, colliders, |handle, body, found| {
             if body.aabb().overlaps(&bounds) {
@@ -327,6 +332,152 @@ impl World {
         })
     }
 }
+
+/// Distances: between two bodies, and from a point to the nearest body.
+impl World {
+    /// The closest points of bodies `body_a` and `body_b` at their current poses, or their
+    /// penetration, or [`ClosestPoints::Beyond`] when they are more than `max_distance` metres
+    /// apart (zero or more; infinity for no limit): [`closest_points`](super::closest_points) on
+    /// the two bodies' shapes, every collider counted (sensors too).
+    ///
+    /// ```
+    /// use rebond::{BodyDesc, ClosestPoints, Shape, Vec3, World, WorldSettings};
+    ///
+    /// let mut world = World::new(WorldSettings::default())?;
+    /// let a = world.add_body(BodyDesc::static_body(Shape::sphere(1.0)?))?;
+    /// let b = world.add_body(
+    ///     BodyDesc::static_body(Shape::sphere(1.0)?).position(Vec3::new(0.0, 5.0, 0.0)),
+    /// )?;
+    /// let found = world.closest_points(a, b, 10.0)?;
+    /// assert_eq!(found.distance(), Some(3.0));
+    /// assert!(matches!(found, ClosestPoints::Separated { normal: Vec3::Y, .. }));
+    /// assert_eq!(world.closest_points(a, b, 2.0)?, ClosestPoints::Beyond);
+    /// # Ok::<(), rebond::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// A removed body or one of another world ([`ErrorKind::StaleHandle`], field `body_a` or
+    /// `body_b`), a NaN or negative `max_distance`.
+    pub fn closest_points(
+        &self,
+        body_a: BodyHandle,
+        body_b: BodyHandle,
+        max_distance: f32,
+    ) -> Result<ClosestPoints> {
+        let a = self.body(body_a).map_err(|error| error.within("body_a"))?;
+        let b = self.body(body_b).map_err(|error| error.within("body_b"))?;
+        let max_distance = check_non_negative_or_infinite("max_distance", max_distance)?;
+        let nearest = nearest_between(&a.shape, &a.pose(), &b.shape, &b.pose(), max_distance);
+        Ok(classify(nearest, max_distance))
+    }
+
+    /// The signed distance between the surfaces of bodies `body_a` and `body_b`, metres:
+    /// negative by the penetration depth when they overlap. [`World::closest_points`] without a
+    /// limit.
+    ///
+    /// # Errors
+    /// As [`World::closest_points`].
+    pub fn distance(&self, body_a: BodyHandle, body_b: BodyHandle) -> Result<f32> {
+        let found = self.closest_points(body_a, body_b, f32::INFINITY)?;
+        Ok(found.distance().unwrap_or(f32::INFINITY))
+    }
+
+    /// The point of the bodies' surfaces nearest `point`, among the bodies `filter` sees, within
+    /// `max_distance` metres (zero or more; infinity for no limit), or `None`. The body with the
+    /// smallest signed distance wins (the usual signed distance of their union): a body holding
+    /// the point beats every body outside, the one it is deepest in first; ties go to the
+    /// smaller handle, and within a body to its first collider, its smallest triangle.
+    ///
+    /// ```
+    /// use rebond::{BodyDesc, QueryFilter, Shape, Vec3, World, WorldSettings};
+    ///
+    /// let mut world = World::new(WorldSettings::default())?;
+    /// let ground = world.add_body(BodyDesc::static_body(Shape::cuboid(Vec3::new(10.0, 1.0, 10.0))?))?;
+    /// let found = world
+    ///     .project_point(Vec3::new(2.0, 4.0, 0.0), f32::INFINITY, &QueryFilter::default())?
+    ///     .expect("the ground is there");
+    /// assert_eq!(found.body, ground);
+    /// assert_eq!(found.point, Vec3::new(2.0, 1.0, 0.0));
+    /// assert_eq!((found.distance, found.inside), (3.0, false));
+    /// # Ok::<(), rebond::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// A non-finite `point`, a NaN or negative `max_distance`, a body of another world in
+    /// `filter.excluded_bodies`; the error names the field.
+    pub fn project_point(
+        &self,
+        point: Vec3,
+        max_distance: f32,
+        filter: &QueryFilter,
+    ) -> Result<Option<PointProjection>> {
+        if !point.is_finite() {
+            return Err(Error::new("point", ErrorKind::NotFinite));
+        }
+        let max_distance = check_non_negative_or_infinite("max_distance", max_distance)?;
+        self.check_filter(filter)?;
+        let arena = self.bodies_arena();
+        let broad_phase = self.broad_phase();
+        let trees = [broad_phase.static_tree(), broad_phase.moving_tree()];
+        let proxies: usize = trees.iter().map(|tree| tree.proxy_count()).sum();
+        let at_point = Aabb::new(point, point);
+        let mut best: Option<PointProjection> = None;
+        let mut searched: Option<Aabb> = None;
+        let mut radius = max_distance.min(FIRST_SEARCH_RADIUS);
+        loop {
+            let search = Aabb::new(point - Vec3::splat(radius), point + Vec3::splat(radius));
+            let mut met = 0;
+            for tree in trees {
+                tree.query(&search, |proxy| {
+                    met += 1;
+                    if searched.is_some_and(|inner| tree.fat_aabb(proxy).overlaps(&inner)) {
+                        return true;
+                    }
+                    let Some((index, body)) = arena.at_slot(tree.user_data(proxy) as usize) else {
+                        return true;
+                    };
+                    let handle = BodyHandle(index);
+                    let reach = best.map_or(max_distance, |best| best.distance.max(0.0));
+                    if !filter.accepts(handle, body) || box_gap(&at_point, &body.aabb()) > reach {
+                        return true;
+                    }
+                    let colliders = Colliders::of(body);
+                    let sees = |collider| filter.sees_collider(&colliders, collider);
+                    let Some(found) =
+                        project_on_shape(&body.shape, &body.pose(), point, reach, sees)
+                    else {
+                        return true;
+                    };
+                    if best.is_none_or(|best| (found.distance, handle) < (best.distance, best.body))
+                    {
+                        best = Some(PointProjection {
+                            body: handle,
+                            collider: found.part.collider,
+                            triangle: found.part.triangle,
+                            point: found.point,
+                            normal: found.normal,
+                            distance: found.distance,
+                            inside: found.inside,
+                        });
+                    }
+                    true
+                });
+            }
+            // Every body not met lies outside the search cube, farther than `radius`.
+            let settled = best.is_some_and(|best| best.distance <= radius);
+            if settled || radius >= max_distance || met >= proxies {
+                break;
+            }
+            searched = Some(search);
+            radius = (2.0 * radius).min(max_distance);
+        }
+        Ok(best.filter(|best| best.distance <= max_distance))
+    }
+}
+
+/// Half the side of the first cube [`World::project_point`] searches without a distance limit,
+/// metres: about a body's size, doubled until a body is found within it.
+const FIRST_SEARCH_RADIUS: f32 = 1.0;
 
 /// The walks shared by the queries.
 impl World {

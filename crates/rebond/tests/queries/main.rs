@@ -24,6 +24,7 @@ use rebond::{
     RigidBody, Shape, Vec3, World, WorldSettings,
 };
 
+mod closest;
 mod filters;
 mod overlaps;
 mod ray_casts;
