@@ -39,6 +39,7 @@
 
 mod arena;
 mod body;
+pub mod character;
 mod collision;
 mod error;
 pub mod events;
