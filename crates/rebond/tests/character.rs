@@ -384,3 +384,321 @@ fn a_sixty_degree_slope_is_slid_down() {
     );
     assert!(sliding > 20);
 }
+
+/// A kinematic capsule standing on the floor at `x`.
+fn add_character(world: &mut World, x: f32) -> BodyHandle {
+    world
+        .add_body(BodyDesc::kinematic(capsule()).position(Vec3::new(x, STANDING, 0.0)))
+        .unwrap()
+}
+
+/// Moves `character` by `desired` then steps the world, `frames` times, calling `check` after
+/// each step.
+fn run(
+    world: &mut World,
+    controller: &mut CharacterController,
+    character: BodyHandle,
+    desired: Vec3,
+    frames: usize,
+    mut check: impl FnMut(&World, &CharacterMove),
+) {
+    for _ in 0..frames {
+        let moved = controller
+            .move_body(world, character, desired, DT, &QueryFilter::default())
+            .unwrap()
+            .clone();
+        world.step(DT).unwrap();
+        check(world, &moved);
+    }
+}
+
+#[test]
+fn a_kinematic_platform_carries_the_character_without_slipping() {
+    let mut world = world(Vec3::new(0.0, -9.81, 0.0));
+    let platform = world
+        .add_body(
+            BodyDesc::kinematic(Shape::cuboid(Vec3::new(3.0, 0.5, 3.0)).unwrap())
+                .position(Vec3::new(0.0, -0.5, 0.0)),
+        )
+        .unwrap();
+    let character = add_character(&mut world, 0.5);
+    let mut controller = controller(CharacterSettings::default());
+    let fall = Vec3::new(0.0, -0.05, 0.0);
+    // A frame to find the ground, then the platform rises and moves sideways.
+    run(
+        &mut world,
+        &mut controller,
+        character,
+        fall,
+        1,
+        |_, moved| assert!(moved.is_grounded()),
+    );
+    let velocity = Vec3::new(1.0, 0.5, -0.5);
+    world
+        .body_mut(platform)
+        .unwrap()
+        .set_linear_velocity(velocity)
+        .unwrap();
+    let relative = |world: &World| {
+        world.body(character).unwrap().position() - world.body(platform).unwrap().position()
+    };
+    let start = relative(&world);
+    let mut worst = 0.0f32;
+    run(
+        &mut world,
+        &mut controller,
+        character,
+        fall,
+        120,
+        |world, moved| {
+            assert_eq!(moved.ground.map(|ground| ground.body), Some(platform));
+            worst = worst.max((relative(world) - start).length());
+        },
+    );
+    println!("kinematic platform: worst slip {worst}");
+    // The platform travels 2.4 m; the character keeps its place on it to the casts' precision
+    // and the f32 rounding of positions a few metres out (measured: 1.5e-6 m).
+    assert!(worst < 1e-4, "slipped {worst}");
+}
+
+#[test]
+fn a_dynamic_platform_carries_the_character_without_slipping() {
+    let mut world = world(Vec3::new(0.0, -9.81, 0.0));
+    let floor = add_floor(&mut world);
+    world.body_mut(floor).unwrap().set_friction(0.0).unwrap();
+    let platform = world
+        .add_body(
+            BodyDesc::dynamic(Shape::cuboid(Vec3::new(2.0, 0.1, 2.0)).unwrap())
+                .position(Vec3::new(0.0, 0.1, 0.0))
+                .friction(0.0)
+                .linear_velocity(Vec3::new(1.0, 0.0, 0.0)),
+        )
+        .unwrap();
+    let character = world
+        .add_body(BodyDesc::kinematic(capsule()).position(Vec3::new(0.0, 0.2 + STANDING, 0.0)))
+        .unwrap();
+    let mut controller = controller(CharacterSettings::default());
+    let fall = Vec3::new(0.0, -0.05, 0.0);
+    run(&mut world, &mut controller, character, fall, 1, |_, _| {});
+    let relative = |world: &World| {
+        world.body(character).unwrap().position() - world.body(platform).unwrap().position()
+    };
+    let start = relative(&world);
+    let mut worst = 0.0f32;
+    run(
+        &mut world,
+        &mut controller,
+        character,
+        fall,
+        120,
+        |world, moved| {
+            assert_eq!(moved.ground.map(|ground| ground.body), Some(platform));
+            worst = worst.max((relative(world) - start).length());
+        },
+    );
+    let platform_x = world.body(platform).unwrap().position().x;
+    println!("dynamic platform: worst slip {worst}, platform at {platform_x}");
+    assert!(platform_x > 1.9, "the platform glided 2 m: {platform_x}");
+    assert!(worst < 1e-3, "slipped {worst}");
+}
+
+#[test]
+fn a_pushed_box_moves_no_faster_than_the_push_force_allows() {
+    let mut world = world(Vec3::new(0.0, -9.81, 0.0));
+    let floor = add_floor(&mut world);
+    world.body_mut(floor).unwrap().set_friction(0.0).unwrap();
+    let crate_ = world
+        .add_body(
+            BodyDesc::dynamic(Shape::cuboid(Vec3::splat(0.5)).unwrap())
+                .position(Vec3::new(0.0, 0.5, 0.0))
+                .friction(0.0),
+        )
+        .unwrap();
+    let mass = world.body(crate_).unwrap().mass();
+    let character = add_character(&mut world, -1.0);
+    // 2,000 N on the 1,000 kg box: 2 m/s² at most, so it takes a second to reach the character's
+    // 2 m/s.
+    let push_force = 2000.0;
+    let mut controller = controller(CharacterSettings {
+        push_force,
+        ..CharacterSettings::default()
+    });
+    let speed = 2.0;
+    let desired = Vec3::new(speed, -0.05, 0.0) * DT;
+    let (mut pushing, mut given) = (0usize, Vec3::ZERO);
+    run(
+        &mut world,
+        &mut controller,
+        character,
+        desired,
+        90,
+        |world, moved| {
+            for hit in &moved.hits {
+                if hit.body == crate_ && hit.impulse != Vec3::ZERO {
+                    pushing += 1;
+                    given += hit.impulse;
+                    assert!(hit.impulse.length() <= push_force * DT * (1.0 + 1e-6));
+                }
+            }
+            let velocity = world.body(crate_).unwrap().linear_velocity().x;
+            // Never faster than the cap allows since the first push, nor than the character.
+            let bound = (push_force * DT * pushing as f32 / mass).min(speed);
+            assert!(velocity <= bound + 1e-3, "{velocity} > {bound}");
+        },
+    );
+    let velocity = world.body(crate_).unwrap().linear_velocity();
+    println!("push: mass {mass}, {pushing} pushes, given {given}, box at {velocity}");
+    // After a second and a half it has caught up with the character's speed.
+    assert!((velocity.x - speed).abs() < 1e-2, "{velocity}");
+    // On a frictionless floor the box's momentum is the impulses given: the contacts of the
+    // kinematic character, kept 1 cm away, never pushed it.
+    assert!(
+        (velocity.x * mass - given.x).abs() < 1e-4 * given.x,
+        "{velocity} vs {given}"
+    );
+}
+
+#[test]
+fn a_character_starting_inside_the_floor_is_pushed_out() {
+    let mut world = world(Vec3::ZERO);
+    add_floor(&mut world);
+    let mut controller = controller(CharacterSettings::default());
+    let start = Vec3::new(0.0, STANDING - 0.2, 0.0);
+    let end = walk(
+        &world,
+        &mut controller,
+        start,
+        Vec3::ZERO,
+        1,
+        |_, _, moved| {
+            assert!(moved.is_grounded());
+        },
+    );
+    println!("recovered to {end}");
+    assert!((end.y - STANDING).abs() <= CAST_PRECISION, "{end}");
+}
+
+#[test]
+fn bad_settings_and_inputs_are_refused_naming_the_field() {
+    let refused = |settings: CharacterSettings| CharacterController::new(settings).unwrap_err();
+    let base = CharacterSettings::default();
+    let cases = [
+        (
+            CharacterSettings {
+                up: Vec3::ZERO,
+                ..base
+            },
+            "up",
+        ),
+        (
+            CharacterSettings {
+                up: Vec3::NAN,
+                ..base
+            },
+            "up",
+        ),
+        (
+            CharacterSettings {
+                max_slope_angle: -0.1,
+                ..base
+            },
+            "max_slope_angle",
+        ),
+        (
+            CharacterSettings {
+                max_slope_angle: 1.5,
+                ..base
+            },
+            "max_slope_angle",
+        ),
+        (
+            CharacterSettings {
+                max_step_height: -1.0,
+                ..base
+            },
+            "max_step_height",
+        ),
+        (
+            CharacterSettings {
+                min_step_width: f32::NAN,
+                ..base
+            },
+            "min_step_width",
+        ),
+        (
+            CharacterSettings {
+                snap_distance: f32::INFINITY,
+                ..base
+            },
+            "snap_distance",
+        ),
+        (
+            CharacterSettings {
+                offset: 0.0,
+                ..base
+            },
+            "offset",
+        ),
+        (
+            CharacterSettings {
+                push_force: -5.0,
+                ..base
+            },
+            "push_force",
+        ),
+        (
+            CharacterSettings {
+                max_iterations: 0,
+                ..base
+            },
+            "max_iterations",
+        ),
+    ];
+    for (settings, field) in cases {
+        assert_eq!(refused(settings).field, field);
+    }
+    assert!(CharacterController::new(CharacterSettings {
+        push_force: f32::INFINITY,
+        ..base
+    })
+    .is_ok());
+
+    let mut world = world(Vec3::ZERO);
+    add_floor(&mut world);
+    let mut controller = controller(base);
+    let pose = Pose::from_position(Vec3::new(0.0, STANDING, 0.0));
+    let filter = QueryFilter::default();
+    let mut attempt = |shape: &Shape, pose: &Pose, desired: Vec3, dt: f32| {
+        controller
+            .move_shape(&world, shape, pose, desired, dt, &filter)
+            .unwrap_err()
+    };
+    let plane = Shape::halfspace(Vec3::Y).unwrap();
+    assert_eq!(
+        attempt(&plane, &pose, Vec3::ZERO, DT).kind,
+        ErrorKind::NotConvex
+    );
+    assert_eq!(
+        attempt(&capsule(), &pose, Vec3::NAN, DT).field,
+        "desired_translation"
+    );
+    assert_eq!(attempt(&capsule(), &pose, Vec3::X, 0.0).field, "dt");
+    let bad_pose = Pose::new(Vec3::new(f32::NAN, 0.0, 0.0), Quat::IDENTITY);
+    assert_eq!(
+        attempt(&capsule(), &bad_pose, Vec3::X, DT).field,
+        "pose.position"
+    );
+    // A refused call leaves the controller as it was: never moved.
+    assert_eq!(controller.last_move(), &CharacterMove::default());
+
+    let dynamic = world
+        .add_body(BodyDesc::dynamic(capsule()).position(Vec3::new(3.0, 2.0, 0.0)))
+        .unwrap();
+    let error = controller
+        .move_body(&mut world, dynamic, Vec3::X, DT, &filter)
+        .unwrap_err();
+    assert_eq!(
+        (error.field.as_str(), error.kind),
+        ("body", ErrorKind::NotKinematic)
+    );
+}
