@@ -45,10 +45,10 @@
 
 use crate::body::{BodyHandle, BodyType, RigidBody};
 use crate::error::{
-    check_length, check_non_negative, check_non_negative_or_infinite, check_range, check_size,
-    Error, ErrorKind, Result,
+    check_count, check_length, check_non_negative, check_non_negative_or_infinite, check_range,
+    check_size, Error, ErrorKind, Result,
 };
-use crate::limits::{MAX_COORDINATE, MAX_SIZE, MAX_TIMESTEP, MIN_TIMESTEP};
+use crate::limits::{MAX_COORDINATE, MAX_FORCE, MAX_SIZE, MAX_TIMESTEP, MIN_TIMESTEP};
 use crate::math::{Pose, Vec3};
 use crate::query::{closest_points, validated_pose, ClosestPoints, QueryFilter, Ray, ShapeHit};
 use crate::shape::Shape;
@@ -133,16 +133,7 @@ impl CharacterSettings {
         for (field, value) in lengths {
             check_range(field, check_non_negative(field, value)?, 0.0, MAX_SIZE)?;
         }
-        if !(1..=MAX_ITERATIONS).contains(&self.max_iterations) {
-            return Err(Error::new(
-                "max_iterations",
-                ErrorKind::OutOfRange {
-                    value: self.max_iterations as f32,
-                    min: 1.0,
-                    max: MAX_ITERATIONS as f32,
-                },
-            ));
-        }
+        check_count("max_iterations", self.max_iterations, 1, MAX_ITERATIONS)?;
         Ok(Self {
             up,
             max_slope_angle,
@@ -170,21 +161,13 @@ pub struct Ground {
 /// A surface the character's shape met during a move.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CharacterHit {
-    /// The body met.
-    pub body: BodyHandle,
-    /// Its collider: a compound child's index, or 0.
-    pub collider: u32,
-    /// On a trimesh or heightfield, the triangle met; `None` on any other shape.
-    pub triangle: Option<u32>,
-    /// The contact point on the body's surface, world, metres.
-    pub point: Vec3,
-    /// Unit normal of the body's surface at `point`, facing the character, world.
-    pub normal: Vec3,
-    /// How far the shape had travelled in its cast when it touched, metres: the time of impact
-    /// at unit speed (zero when it started in contact).
-    pub distance: f32,
-    /// The impulse the character gives the body, N·s, at `point`: zero unless the body is
-    /// dynamic and blocked the character's motion (see the [module documentation](self)).
+    /// The cast's hit: the body and collider met, the contact point on the body, the body's
+    /// normal there facing the character, and how far the shape had travelled in that cast
+    /// (the time of impact at unit speed, metres).
+    pub hit: ShapeHit,
+    /// The impulse the character gives the body, N·s, at the contact point: zero unless the
+    /// body is dynamic and blocked the character's motion (see the [module
+    /// documentation](self)).
     pub impulse: Vec3,
 }
 
@@ -305,8 +288,8 @@ impl CharacterController {
         for (index, hit) in self.last.hits.iter().enumerate() {
             if hit.impulse != Vec3::ZERO {
                 world
-                    .body_mut(hit.body)
-                    .and_then(|body| body.apply_impulse_at_point(hit.impulse, hit.point))
+                    .body_mut(hit.hit.body)
+                    .and_then(|body| body.apply_impulse_at_point(hit.impulse, hit.hit.point))
                     .map_err(|error| error.within(&format!("hits[{index}].body")))?;
             }
         }
@@ -597,15 +580,7 @@ impl Mover<'_> {
                 }
             }
             let impulse = self.push(&hit, remaining - deflected, surface.walkable, slide.hits)?;
-            slide.hits.push(CharacterHit {
-                body: hit.body,
-                collider: hit.collider,
-                triangle: hit.triangle,
-                point: hit.point,
-                normal: hit.normal,
-                distance: hit.distance,
-                impulse,
-            });
+            slide.hits.push(CharacterHit { hit, impulse });
             if !surface.walkable && slide.may_step {
                 if let Some((position, ground)) = self.step_up(*slide.position, remaining)? {
                     *slide.position = position;
@@ -662,10 +637,12 @@ impl Mover<'_> {
         }
         let given: f32 = earlier
             .iter()
-            .filter(|other| other.body == hit.body)
+            .filter(|other| other.hit.body == hit.body)
             .map(|other| other.impulse.length())
             .sum();
-        let cap = (self.settings.push_force * self.dt - given).max(0.0);
+        // An infinite push force is held to the engine's impulse limit, which bodies accept.
+        let cap = (self.settings.push_force * self.dt).min(MAX_FORCE);
+        let cap = (cap - given).max(0.0);
         let wanted = blocked * (body.mass() / self.dt);
         Ok(wanted.clamp_length_max(cap))
     }

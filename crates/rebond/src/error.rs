@@ -238,6 +238,22 @@ pub(crate) fn check_range(field: &str, value: f32, min: f32, max: f32) -> Result
     }
 }
 
+/// Checks that a count lies in `[min, max]`.
+pub(crate) fn check_count(field: &str, value: u32, min: u32, max: u32) -> Result<u32> {
+    if (min..=max).contains(&value) {
+        Ok(value)
+    } else {
+        Err(Error::new(
+            field,
+            ErrorKind::OutOfRange {
+                value: value as f32,
+                min: min as f32,
+                max: max as f32,
+            },
+        ))
+    }
+}
+
 /// Checks that every component of `vector` is finite.
 pub(crate) fn check_finite_vector(field: &str, vector: glam::Vec3) -> Result<glam::Vec3> {
     if vector.is_finite() {

@@ -71,27 +71,47 @@ fn controller(settings: CharacterSettings) -> CharacterController {
     CharacterController::new(settings).unwrap()
 }
 
-/// Moves the capsule from `start` by `desired` each frame for `frames` frames in a world that
-/// does not step, calling `check` after each move; the final position.
-fn walk(
-    world: &World,
-    controller: &mut CharacterController,
+/// The capsule moved from `start` by `desired` each frame for `frames` frames, in a world that
+/// does not step.
+struct Walk {
     start: Vec3,
     desired: Vec3,
     frames: usize,
-    mut check: impl FnMut(usize, Vec3, &CharacterMove),
-) -> Vec3 {
-    let shape = capsule();
-    let mut position = start;
-    for frame in 0..frames {
-        let pose = Pose::from_position(position);
-        let moved = controller
-            .move_shape(world, &shape, &pose, desired, DT, &QueryFilter::default())
-            .unwrap();
-        position += moved.translation;
-        check(frame, position, moved);
+}
+
+impl Walk {
+    /// Makes the walk with `controller`, calling `check` after each move; the final position.
+    fn run(
+        self,
+        world: &World,
+        controller: &mut CharacterController,
+        mut check: impl FnMut(usize, Vec3, &CharacterMove),
+    ) -> Vec3 {
+        let Walk {
+            start,
+            desired,
+            frames,
+        } = self;
+        let shape = capsule();
+        let mut position = start;
+        for frame in 0..frames {
+            let pose = Pose::from_position(position);
+            let moved = controller
+                .move_shape(world, &shape, &pose, desired, DT, &QueryFilter::default())
+                .unwrap();
+            position += moved.translation;
+            check(frame, position, moved);
+        }
+        position
     }
-    position
+}
+
+/// Checks that the move ends on `body` with a ground normal within `tolerance` of `normal`.
+fn assert_standing_on(moved: &CharacterMove, body: BodyHandle, normal: Vec3, tolerance: f32) {
+    let ground = moved.ground.expect("grounded");
+    assert_eq!(ground.body, body);
+    let error = (ground.normal - normal).length();
+    assert!(error <= tolerance, "{} vs {normal}", ground.normal);
 }
 
 #[test]
@@ -102,26 +122,18 @@ fn flat_ground_is_reported_with_its_normal_and_body() {
     // Walking at 3 m/s while pushed down at 6 m/s: the floor holds the character up.
     let desired = Vec3::new(3.0, -6.0, 0.0) * DT;
     let start = Vec3::new(-5.0, STANDING, 0.0);
-    let end = walk(
-        &world,
-        &mut controller,
+    let end = Walk {
         start,
         desired,
-        60,
-        |frame, position, moved| {
-            let ground = moved.ground.expect("on the floor");
-            assert_eq!(ground.body, floor, "frame {frame}");
-            assert!(
-                (ground.normal - Vec3::Y).length() < 1e-6,
-                "{:?}",
-                ground.normal
-            );
-            assert!(
-                (position.y - STANDING).abs() <= CAST_PRECISION,
-                "frame {frame}: {position}"
-            );
-        },
-    );
+        frames: 60,
+    }
+    .run(&world, &mut controller, |frame, position, moved| {
+        assert_standing_on(moved, floor, Vec3::Y, 1e-6);
+        assert!(
+            (position.y - STANDING).abs() <= CAST_PRECISION,
+            "frame {frame}: {position}"
+        );
+    });
     println!("flat: end {end}");
     // The lateral motion is never shortened on flat ground: 60 frames of 5 cm.
     assert!((end.x - (start.x + 3.0)).abs() < 1e-4, "{end}");
@@ -137,30 +149,23 @@ fn a_thirty_degree_slope_is_ground_and_the_character_does_not_slide() {
     let start = normal * (RADIUS + OFFSET + 0.05) + Vec3::Y * HALF_HEIGHT;
     let desired = Vec3::new(0.0, -0.1, 0.0);
     let mut rest = None;
-    walk(
-        &world,
-        &mut controller,
+    Walk {
         start,
         desired,
-        60,
-        |frame, position, moved| {
-            let ground = moved.ground.expect("on the slope");
-            assert_eq!(ground.body, slope);
-            assert!(
-                (ground.normal - normal).length() < 1e-5,
-                "{:?}",
-                ground.normal
-            );
-            let rest = *rest.get_or_insert(position);
-            // Pushed straight down, the character moves only along y, by no more than the casts'
-            // precision (measured: 1e-6 m on the first frame, then nothing): it does not slide.
-            assert_eq!((position.x, position.z), (rest.x, rest.z), "frame {frame}");
-            assert!(
-                (position.y - rest.y).abs() <= CAST_PRECISION,
-                "frame {frame}: {position}"
-            );
-        },
-    );
+        frames: 60,
+    }
+    .run(&world, &mut controller, |frame, position, moved| {
+        // The normal read from the slope box's rotated face: f32 rounding of the rotation.
+        assert_standing_on(moved, slope, normal, 1e-5);
+        let rest = *rest.get_or_insert(position);
+        // Pushed straight down, the character moves only along y, by no more than the casts'
+        // precision (measured: 1e-6 m on the first frame, then nothing): it does not slide.
+        assert_eq!((position.x, position.z), (rest.x, rest.z), "frame {frame}");
+        assert!(
+            (position.y - rest.y).abs() <= CAST_PRECISION,
+            "frame {frame}: {position}"
+        );
+    });
 }
 
 /// Walks from the floor toward a slope of `slope` degrees at 2 m/s, pushed down at 3 m/s, with
@@ -173,14 +178,14 @@ fn walk_up_slope(slope: f32) -> (Vec<f32>, Vec3) {
     let mut heights = Vec::new();
     let start = Vec3::new(-1.0, STANDING, 0.0);
     let desired = Vec3::new(2.0, -3.0, 0.0) * DT;
-    let end = walk(
-        &world,
-        &mut controller,
+    let end = Walk {
         start,
         desired,
-        90,
-        |_, position, _| heights.push(position.y),
-    );
+        frames: 90,
+    }
+    .run(&world, &mut controller, |_, position, _| {
+        heights.push(position.y)
+    });
     (heights, end)
 }
 
@@ -226,16 +231,14 @@ fn walk_to_step(height: f32) -> (Vec3, Option<BodyHandle>, BodyHandle) {
     let start = Vec3::new(-1.0, STANDING, 0.0);
     let desired = Vec3::new(2.0, -3.0, 0.0) * DT;
     let mut last_ground = None;
-    let end = walk(
-        &world,
-        &mut controller,
+    let end = Walk {
         start,
         desired,
-        120,
-        |_, _, moved| {
-            last_ground = moved.ground.map(|ground| ground.body);
-        },
-    );
+        frames: 120,
+    }
+    .run(&world, &mut controller, |_, _, moved| {
+        last_ground = moved.ground.map(|ground| ground.body);
+    });
     (end, last_ground, step)
 }
 
@@ -275,26 +278,27 @@ fn walking_into_a_wall_at_thirty_degrees_slides_along_it_at_v_sin_30() {
     let along = (desired - normal * desired.dot(normal)).normalize();
     let mut previous: Option<Vec3> = None;
     let mut sliding = 0;
-    walk(
-        &world,
-        &mut controller,
-        Vec3::new(-1.0, STANDING, 0.0),
+    Walk {
+        start: Vec3::new(-1.0, STANDING, 0.0),
         desired,
-        60,
-        |frame, position, moved| {
-            let touching = moved.hits.iter().any(|hit| hit.normal.dot(normal) > 0.99);
-            if let (Some(before), true) = (previous, touching) {
-                let step = position - before;
-                if (step.dot(normal)).abs() < 1e-6 {
-                    sliding += 1;
-                    let speed_along = step.dot(along) / DT;
-                    println!("wall frame {frame}: {speed_along}");
-                    assert!((speed_along - speed * 0.5).abs() < 1e-4, "{speed_along}");
-                }
+        frames: 60,
+    }
+    .run(&world, &mut controller, |frame, position, moved| {
+        let touching = moved
+            .hits
+            .iter()
+            .any(|hit| hit.hit.normal.dot(normal) > 0.99);
+        if let (Some(before), true) = (previous, touching) {
+            let step = position - before;
+            if (step.dot(normal)).abs() < 1e-6 {
+                sliding += 1;
+                let speed_along = step.dot(along) / DT;
+                println!("wall frame {frame}: {speed_along}");
+                assert!((speed_along - speed * 0.5).abs() < 1e-4, "{speed_along}");
             }
-            previous = Some(position);
-        },
-    );
+        }
+        previous = Some(position);
+    });
     // It reaches the wall after about 20 of the 60 frames (0.69 m at 3.3 cm a frame).
     assert!(sliding >= 35, "{sliding} frames sliding");
 }
@@ -319,18 +323,16 @@ fn walking_down_a_step_snaps_to_the_lower_floor() {
         });
         let desired = Vec3::new(2.0, 0.0, 0.0) * DT;
         let mut airborne = 0;
-        let end = walk(
-            &world,
-            &mut controller,
-            Vec3::new(-1.0, STANDING, 0.0),
+        let end = Walk {
+            start: Vec3::new(-1.0, STANDING, 0.0),
             desired,
-            60,
-            |_, _, moved| {
-                if !moved.is_grounded() {
-                    airborne += 1;
-                }
-            },
-        );
+            frames: 60,
+        }
+        .run(&world, &mut controller, |_, _, moved| {
+            if !moved.is_grounded() {
+                airborne += 1;
+            }
+        });
         println!("snap {snap}: end {end}, airborne {airborne}");
         if snap > 0.0 {
             assert_eq!(airborne, 0);
@@ -357,31 +359,29 @@ fn a_sixty_degree_slope_is_slid_down() {
     let desired = Vec3::new(0.0, -fall, 0.0);
     let mut previous: Option<Vec3> = None;
     let mut sliding = 0;
-    walk(
-        &world,
-        &mut controller,
+    Walk {
         start,
         desired,
-        30,
-        |frame, position, moved| {
-            assert!(!moved.is_grounded());
-            if let Some(before) = previous {
-                let step = position - before;
-                if step.dot(normal).abs() < 1e-6 {
-                    sliding += 1;
-                    // The fall projected on the slope: down by s sin² 60°, back by s sin 60° cos 60°.
-                    let expected = Vec3::new(
-                        -fall * angle.sin() * angle.cos(),
-                        -fall * angle.sin().powi(2),
-                        0.0,
-                    );
-                    println!("slide frame {frame}: {step} vs {expected}");
-                    assert!((step - expected).length() < 1e-5, "{step} vs {expected}");
-                }
+        frames: 30,
+    }
+    .run(&world, &mut controller, |frame, position, moved| {
+        assert!(!moved.is_grounded());
+        if let Some(before) = previous {
+            let step = position - before;
+            if step.dot(normal).abs() < 1e-6 {
+                sliding += 1;
+                // The fall projected on the slope: down by s sin² 60°, back by s sin 60° cos 60°.
+                let expected = Vec3::new(
+                    -fall * angle.sin() * angle.cos(),
+                    -fall * angle.sin().powi(2),
+                    0.0,
+                );
+                println!("slide frame {frame}: {step} vs {expected}");
+                assert!((step - expected).length() < 1e-5, "{step} vs {expected}");
             }
-            previous = Some(position);
-        },
-    );
+        }
+        previous = Some(position);
+    });
     assert!(sliding > 20);
 }
 
@@ -412,6 +412,41 @@ fn run(
     }
 }
 
+/// Rides `platform` with the kinematic `character` for two seconds, pushed down at 3 m/s, after
+/// `set_off` sets the platform moving; the largest change of the character's position relative
+/// to the platform.
+fn ride(
+    world: &mut World,
+    character: BodyHandle,
+    platform: BodyHandle,
+    set_off: impl FnOnce(&mut World),
+) -> f32 {
+    let mut controller = controller(CharacterSettings::default());
+    let fall = Vec3::new(0.0, -0.05, 0.0);
+    // A frame to find the ground, then the platform moves.
+    run(world, &mut controller, character, fall, 1, |_, moved| {
+        assert!(moved.is_grounded())
+    });
+    set_off(world);
+    let relative = |world: &World| {
+        world.body(character).unwrap().position() - world.body(platform).unwrap().position()
+    };
+    let start = relative(world);
+    let mut worst = 0.0f32;
+    run(
+        world,
+        &mut controller,
+        character,
+        fall,
+        120,
+        |world, moved| {
+            assert_eq!(moved.ground.map(|ground| ground.body), Some(platform));
+            worst = worst.max((relative(world) - start).length());
+        },
+    );
+    worst
+}
+
 #[test]
 fn a_kinematic_platform_carries_the_character_without_slipping() {
     let mut world = world(Vec3::new(0.0, -9.81, 0.0));
@@ -422,80 +457,42 @@ fn a_kinematic_platform_carries_the_character_without_slipping() {
         )
         .unwrap();
     let character = add_character(&mut world, 0.5);
-    let mut controller = controller(CharacterSettings::default());
-    let fall = Vec3::new(0.0, -0.05, 0.0);
-    // A frame to find the ground, then the platform rises and moves sideways.
-    run(
-        &mut world,
-        &mut controller,
-        character,
-        fall,
-        1,
-        |_, moved| assert!(moved.is_grounded()),
-    );
+    // The platform rises and moves sideways.
     let velocity = Vec3::new(1.0, 0.5, -0.5);
-    world
-        .body_mut(platform)
-        .unwrap()
-        .set_linear_velocity(velocity)
-        .unwrap();
-    let relative = |world: &World| {
-        world.body(character).unwrap().position() - world.body(platform).unwrap().position()
-    };
-    let start = relative(&world);
-    let mut worst = 0.0f32;
-    run(
-        &mut world,
-        &mut controller,
-        character,
-        fall,
-        120,
-        |world, moved| {
-            assert_eq!(moved.ground.map(|ground| ground.body), Some(platform));
-            worst = worst.max((relative(world) - start).length());
-        },
-    );
+    let worst = ride(&mut world, character, platform, |world| {
+        let platform = world.body_mut(platform).unwrap();
+        platform.set_linear_velocity(velocity).unwrap();
+    });
     println!("kinematic platform: worst slip {worst}");
     // The platform travels 2.4 m; the character keeps its place on it to the casts' precision
     // and the f32 rounding of positions a few metres out (measured: 1.5e-6 m).
     assert!(worst < 1e-4, "slipped {worst}");
 }
 
-#[test]
-fn a_dynamic_platform_carries_the_character_without_slipping() {
+/// A world with gravity and a frictionless floor y = 0, and on it a frictionless dynamic box of
+/// `half_extents` centred at `x`, moving at `velocity`.
+fn box_on_ice(half_extents: Vec3, x: f32, velocity: Vec3) -> (World, BodyHandle) {
     let mut world = world(Vec3::new(0.0, -9.81, 0.0));
     let floor = add_floor(&mut world);
     world.body_mut(floor).unwrap().set_friction(0.0).unwrap();
-    let platform = world
+    let body = world
         .add_body(
-            BodyDesc::dynamic(Shape::cuboid(Vec3::new(2.0, 0.1, 2.0)).unwrap())
-                .position(Vec3::new(0.0, 0.1, 0.0))
+            BodyDesc::dynamic(Shape::cuboid(half_extents).unwrap())
+                .position(Vec3::new(x, half_extents.y, 0.0))
                 .friction(0.0)
-                .linear_velocity(Vec3::new(1.0, 0.0, 0.0)),
+                .linear_velocity(velocity),
         )
         .unwrap();
+    (world, body)
+}
+
+#[test]
+fn a_dynamic_platform_carries_the_character_without_slipping() {
+    let (mut world, platform) = box_on_ice(Vec3::new(2.0, 0.1, 2.0), 0.0, Vec3::new(1.0, 0.0, 0.0));
     let character = world
         .add_body(BodyDesc::kinematic(capsule()).position(Vec3::new(0.0, 0.2 + STANDING, 0.0)))
         .unwrap();
-    let mut controller = controller(CharacterSettings::default());
-    let fall = Vec3::new(0.0, -0.05, 0.0);
-    run(&mut world, &mut controller, character, fall, 1, |_, _| {});
-    let relative = |world: &World| {
-        world.body(character).unwrap().position() - world.body(platform).unwrap().position()
-    };
-    let start = relative(&world);
-    let mut worst = 0.0f32;
-    run(
-        &mut world,
-        &mut controller,
-        character,
-        fall,
-        120,
-        |world, moved| {
-            assert_eq!(moved.ground.map(|ground| ground.body), Some(platform));
-            worst = worst.max((relative(world) - start).length());
-        },
-    );
+    let worst = ride(&mut world, character, platform, |_| {});
     let platform_x = world.body(platform).unwrap().position().x;
     println!("dynamic platform: worst slip {worst}, platform at {platform_x}");
     assert!(platform_x > 1.9, "the platform glided 2 m: {platform_x}");
@@ -504,16 +501,7 @@ fn a_dynamic_platform_carries_the_character_without_slipping() {
 
 #[test]
 fn a_pushed_box_moves_no_faster_than_the_push_force_allows() {
-    let mut world = world(Vec3::new(0.0, -9.81, 0.0));
-    let floor = add_floor(&mut world);
-    world.body_mut(floor).unwrap().set_friction(0.0).unwrap();
-    let crate_ = world
-        .add_body(
-            BodyDesc::dynamic(Shape::cuboid(Vec3::splat(0.5)).unwrap())
-                .position(Vec3::new(0.0, 0.5, 0.0))
-                .friction(0.0),
-        )
-        .unwrap();
+    let (mut world, crate_) = box_on_ice(Vec3::splat(0.5), 0.0, Vec3::ZERO);
     let mass = world.body(crate_).unwrap().mass();
     let character = add_character(&mut world, -1.0);
     // 2,000 N on the 1,000 kg box: 2 m/s² at most, so it takes a second to reach the character's
@@ -534,7 +522,7 @@ fn a_pushed_box_moves_no_faster_than_the_push_force_allows() {
         90,
         |world, moved| {
             for hit in &moved.hits {
-                if hit.body == crate_ && hit.impulse != Vec3::ZERO {
+                if hit.hit.body == crate_ && hit.impulse != Vec3::ZERO {
                     pushing += 1;
                     given += hit.impulse;
                     assert!(hit.impulse.length() <= push_force * DT * (1.0 + 1e-6));
@@ -564,16 +552,14 @@ fn a_character_starting_inside_the_floor_is_pushed_out() {
     add_floor(&mut world);
     let mut controller = controller(CharacterSettings::default());
     let start = Vec3::new(0.0, STANDING - 0.2, 0.0);
-    let end = walk(
-        &world,
-        &mut controller,
+    let end = Walk {
         start,
-        Vec3::ZERO,
-        1,
-        |_, _, moved| {
-            assert!(moved.is_grounded());
-        },
-    );
+        desired: Vec3::ZERO,
+        frames: 1,
+    }
+    .run(&world, &mut controller, |_, _, moved| {
+        assert!(moved.is_grounded());
+    });
     println!("recovered to {end}");
     assert!((end.y - STANDING).abs() <= CAST_PRECISION, "{end}");
 }
@@ -701,4 +687,40 @@ fn bad_settings_and_inputs_are_refused_naming_the_field() {
         (error.field.as_str(), error.kind),
         ("body", ErrorKind::NotKinematic)
     );
+}
+
+#[test]
+fn a_box_character_walks_and_climbs_a_step_too() {
+    let mut world = world(Vec3::ZERO);
+    add_floor(&mut world);
+    let step = add_block(
+        &mut world,
+        Vec3::new(0.0, -1.0, -10.0),
+        Vec3::new(5.0, 0.3, 10.0),
+    );
+    let mut controller = controller(CharacterSettings {
+        max_step_height: 0.35,
+        ..CharacterSettings::default()
+    });
+    // A 0.6 m × 1.6 m × 0.6 m box standing on the floor: its flat bottom meets the step's edge
+    // face on, without the capsule's rolling over it.
+    let shape = Shape::cuboid(Vec3::new(0.3, 0.8, 0.3)).unwrap();
+    let desired = Vec3::new(2.0, -3.0, 0.0) * DT;
+    let mut position = Vec3::new(-1.0, 0.8 + OFFSET, 0.0);
+    for _ in 0..120 {
+        let pose = Pose::from_position(position);
+        let filter = QueryFilter::default();
+        let moved = controller
+            .move_shape(&world, &shape, &pose, desired, DT, &filter)
+            .unwrap();
+        assert!(moved.is_grounded());
+        position += moved.translation;
+    }
+    println!("box character: {position}");
+    assert_eq!(controller.last_move().ground.map(|g| g.body), Some(step));
+    assert!(
+        (position.y - (0.3 + 0.8 + OFFSET)).abs() <= CAST_PRECISION,
+        "{position}"
+    );
+    assert!(position.x > 2.0, "{position}");
 }
