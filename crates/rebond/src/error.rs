@@ -58,6 +58,9 @@ pub enum ErrorKind {
     NotKinematic,
     /// A value of a sequence (a path's times) not greater than the one before it.
     NotIncreasing { value: f32, previous: f32 },
+    /// A shape that must be convex and bounded (a character's) is a halfspace, a triangle mesh
+    /// or a heightfield.
+    NotConvex,
 }
 
 /// An invalid input, with the place it was found.
@@ -149,6 +152,11 @@ impl fmt::Display for ErrorKind {
                 )
             }
             Self::NotKinematic => write!(f, "only a kinematic body follows a pose target or path"),
+            Self::NotConvex => write!(
+                f,
+                "must be a convex shape or a compound of them, not a halfspace, trimesh or \
+                 heightfield"
+            ),
             Self::NotIncreasing { value, previous } => {
                 write!(
                     f,
@@ -227,6 +235,22 @@ pub(crate) fn check_range(field: &str, value: f32, min: f32, max: f32) -> Result
         Ok(value)
     } else {
         Err(Error::new(field, ErrorKind::OutOfRange { value, min, max }))
+    }
+}
+
+/// Checks that a count lies in `[min, max]`.
+pub(crate) fn check_count(field: &str, value: u32, min: u32, max: u32) -> Result<u32> {
+    if (min..=max).contains(&value) {
+        Ok(value)
+    } else {
+        Err(Error::new(
+            field,
+            ErrorKind::OutOfRange {
+                value: value as f32,
+                min: min as f32,
+                max: max as f32,
+            },
+        ))
     }
 }
 

@@ -35,10 +35,12 @@
 //! (private: `collision/`, `island.rs`, `solver/`), [`World`] (owns everything and steps it;
 //! `world/mod.rs` lists the step's stages in order, with where each lives), with [`query`]
 //! (rays, shape casts, overlaps), [`events`] (contacts, forces, sensors), [`scene`] (scene
-//! files) and [`state`] (saving and restoring whole worlds, exactly).
+//! files) and [`state`] (saving and restoring whole worlds, exactly); on top of them,
+//! [`character`] moves game characters through the world by its shape casts.
 
 mod arena;
 mod body;
+pub mod character;
 mod collision;
 mod error;
 pub mod events;
@@ -107,6 +109,11 @@ pub struct ReadmeDoctests;
 #[cfg(doctest)]
 #[doc = include_str!("../../../docs/bodies.md")]
 pub struct BodiesDoctests;
+
+/// The examples of `docs/games.md`, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/games.md")]
+pub struct GamesDoctests;
 
 /// The examples of `docs/kinematic.md`, compiled and run as doc tests.
 #[cfg(doctest)]

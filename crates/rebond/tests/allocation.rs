@@ -408,3 +408,43 @@ fn a_steady_step_with_kinematic_paths_and_targets_allocates_nothing() {
     run(&mut world, 240);
     allocations_of(|| run(&mut world, 240));
 }
+
+#[test]
+fn a_steady_character_move_allocates_nothing() {
+    use rebond::character::{CharacterController, CharacterSettings};
+    use rebond::QueryFilter;
+
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    add_ground(&mut world, 0.5);
+    // A wall across the walk, at 30° to it, so every frame slides along it on the ground.
+    let turn = Quat::from_rotation_y(std::f32::consts::FRAC_PI_6);
+    world
+        .add_body(
+            BodyDesc::static_body(Shape::cuboid(Vec3::new(0.5, 2.0, 20.0)).unwrap())
+                .position(turn * Vec3::new(1.5, 2.0, 0.0))
+                .rotation(turn),
+        )
+        .unwrap();
+    let character = world
+        .add_body(
+            BodyDesc::kinematic(Shape::capsule(0.3, 0.5).unwrap())
+                .position(Vec3::new(0.0, 0.81, 0.0)),
+        )
+        .unwrap();
+    let mut controller = CharacterController::new(CharacterSettings::default()).unwrap();
+    let desired = Vec3::new(2.0, -1.0, 0.0) * DT;
+    let filter = QueryFilter::default();
+    let mut frame = |world: &mut World| {
+        let moved = controller
+            .move_body(world, character, desired, DT, &filter)
+            .unwrap();
+        let touching = moved.hits.len();
+        world.step(DT).unwrap();
+        touching
+    };
+    for _ in 0..60 {
+        frame(&mut world);
+    }
+    let hits = allocations_of(|| frame(&mut world));
+    assert!(hits >= 2, "on the ground and against the wall: {hits} hits");
+}

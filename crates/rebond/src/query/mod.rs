@@ -357,7 +357,7 @@ fn unit_direction(field: &str, direction: Vec3) -> Result<Vec3> {
 
 /// A user pose with a finite position and a normalised rotation; errors name `position` or
 /// `rotation` within `field` (`pose.position`).
-fn validated_pose(field: &str, pose: &Pose) -> Result<Pose> {
+pub(crate) fn validated_pose(field: &str, pose: &Pose) -> Result<Pose> {
     if !pose.position.is_finite() {
         return Err(Error::new("position", ErrorKind::NotFinite).within(field));
     }

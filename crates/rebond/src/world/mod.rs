@@ -32,7 +32,8 @@ use crate::collision::contact_cache::{Contact, ContactCache};
 use crate::collision::narrow_phase::NarrowPhase;
 use crate::collision::SPECULATIVE_DISTANCE;
 use crate::error::{
-    check_length, check_non_negative, check_positive, check_range, Error, ErrorKind, Result,
+    check_count, check_length, check_non_negative, check_positive, check_range, Error, ErrorKind,
+    Result,
 };
 use crate::events::{ContactEvent, ContactForceEvent, EventTracker, SensorEvent};
 use crate::filter::{ordered, Colliders, IgnoredPairs, InteractionGroups};
@@ -135,16 +136,7 @@ impl WorldSettings {
         check_length("gravity", self.gravity, MAX_GRAVITY)?;
         check_positive("max_linear_speed", self.max_linear_speed)?;
         check_range("max_linear_speed", self.max_linear_speed, 0.0, MAX_SPEED)?;
-        if !(1..=MAX_SUBSTEPS).contains(&self.substeps) {
-            return Err(Error::new(
-                "substeps",
-                ErrorKind::OutOfRange {
-                    value: self.substeps as f32,
-                    min: 1.0,
-                    max: MAX_SUBSTEPS as f32,
-                },
-            ));
-        }
+        check_count("substeps", self.substeps, 1, MAX_SUBSTEPS)?;
         check_positive("contact_hertz", self.contact_hertz)?;
         check_non_negative("contact_damping_ratio", self.contact_damping_ratio)?;
         check_positive("contact_push_speed", self.contact_push_speed)?;
