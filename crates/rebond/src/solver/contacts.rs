@@ -133,6 +133,7 @@ impl ConstraintKind for ContactConstraints {
                     index,
                     body_a,
                     body_b,
+                    surface_velocity: contacts.surface_velocity(index),
                 })
             });
             let index = self.lanes.len();

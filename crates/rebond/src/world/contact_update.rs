@@ -7,6 +7,7 @@ use crate::arena::Arena;
 use crate::body::{BodyHandle, BodyType, RigidBody};
 use crate::collision::FAST_MOTION_REACHES;
 use crate::filter::{Colliders, IgnoredPairs};
+use crate::hooks::{ContactHooks, ContactModification};
 use crate::joint::JointSet;
 use crate::material::Material;
 use crate::math::{Aabb, Vec3};
@@ -25,10 +26,12 @@ impl World {
     /// The contact margin of a pair grows with how fast its bodies move, so that two bodies
     /// closing in within this step already have speculative points:
     /// [`WorldSettings::speculative_distance`] plus [`speculative_reach`].
-    pub(super) fn update_contacts(&mut self, dt: f32) {
+    ///
+    /// Returns whether a contact has a body with contact rules of its own ([`crate::hooks`]).
+    pub(super) fn update_contacts(&mut self, dt: f32) -> bool {
         self.update_pairs(dt);
         self.collide_pairs(dt);
-        self.finish_contacts();
+        self.finish_contacts()
     }
 
     /// Refreshes the boxes of the awake bodies and of the static bodies lent out (swept over
@@ -159,8 +162,9 @@ impl World {
     }
 
     /// Gives each of this step's contacts its combined material and its patch's radius ratio,
-    /// and wakes the sleepers an awake mover touches.
-    fn finish_contacts(&mut self) {
+    /// and wakes the sleepers an awake mover touches. Returns whether a contact has a body with
+    /// contact rules of its own.
+    fn finish_contacts(&mut self) -> bool {
         let Self {
             settings,
             bodies,
@@ -168,6 +172,7 @@ impl World {
             islands,
             ..
         } = self;
+        let mut ruled = false;
         for contact in contacts.contacts_mut() {
             if contact.manifold.is_empty() {
                 continue;
@@ -176,6 +181,7 @@ impl World {
             let (Some(body_a), Some(body_b)) = (bodies.get(a.0), bodies.get(b.0)) else {
                 continue;
             };
+            ruled |= body_a.has_contact_rules() || body_b.has_contact_rules();
             contact.material = Material::combine(
                 body_a.material_of_child(contact.key.child_a),
                 body_b.material_of_child(contact.key.child_b),
@@ -201,6 +207,36 @@ impl World {
                     islands.note_woken(sleeper.slot());
                 }
             }
+        }
+        ruled
+    }
+
+    /// Shows each of this step's contacts with a body that has contact rules of its own, or
+    /// every contact when there are `hooks`, to the rules and then to the hooks, in the
+    /// contacts' order, and hands what they changed to the contact cache ([`crate::hooks`]).
+    pub(super) fn modify_contacts(&mut self, mut hooks: Option<&mut dyn ContactHooks>) {
+        let Self {
+            bodies, contacts, ..
+        } = self;
+        for index in 0..contacts.contacts().len() {
+            let contact = &contacts.contacts()[index];
+            let (a, b) = contact.bodies();
+            let (Some(body_a), Some(body_b)) = (bodies.get(a.0), bodies.get(b.0)) else {
+                continue;
+            };
+            let ruled = body_a.has_contact_rules() || body_b.has_contact_rules();
+            if contact.manifold.is_empty() || !(ruled || hooks.is_some()) {
+                continue;
+            }
+            let mut modification = ContactModification::new(contact, body_a, body_b);
+            if ruled {
+                modification.apply_body_rules();
+            }
+            if let Some(hooks) = hooks.as_deref_mut() {
+                hooks.modify_contact(&mut modification);
+            }
+            let edit = modification.edit();
+            contacts.apply_edit(index, &edit);
         }
     }
 }

@@ -164,6 +164,10 @@ fn check_body(body: &RigidBody) -> Result<(), String> {
     .all(|value| value.is_finite() && *value >= 0.0)
         && (0.0..=1.0).contains(&body.restitution)
         && body.contact_force_threshold >= 0.0
+        && body
+            .one_way
+            .is_none_or(|direction| direction.is_finite() && direction.is_normalized())
+        && body.surface_velocity.length() <= MAX_SPEED
         && body.linear_velocity.length() <= MAX_SPEED * LIMIT_ROUNDING
         && body.angular_velocity.length() <= MAX_ANGULAR_SPEED * LIMIT_ROUNDING;
     if finite && in_range {

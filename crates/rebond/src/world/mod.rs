@@ -7,17 +7,19 @@
 //! 2. sleeping groups touched or pushed since the last step wake (`island.rs`);
 //! 3. contacts: broad phase, narrow phase, the contact cache, and the groups new contacts wake
 //!    (`contact_update.rs`, `collision/`);
-//! 4. islands: one union–find over the awake bodies' joints and touching contacts, which also
+//! 4. contact hooks: the bodies' own rules (one-way, surface velocity) and the user's hooks
+//!    change this step's contacts (`contact_update.rs`, [`crate::hooks`]);
+//! 5. islands: one union–find over the awake bodies' joints and touching contacts, which also
 //!    gives the joint groups (`island.rs`, built through `Solver::build_islands`);
-//! 5. the solve, island by island: substeps of the soft step over every kind of constraint
+//! 6. the solve, island by island: substeps of the soft step over every kind of constraint
 //!    (`solver/`: `stages.rs` runs them, `solver/mod.rs` lists them);
-//! 6. kinematic bodies land exactly on their targets (`body/kinematic.rs`);
-//! 7. the continuous pass puts back fast bodies that went through another, and pushes ahead of
+//! 7. kinematic bodies land exactly on their targets (`body/kinematic.rs`);
+//! 8. the continuous pass puts back fast bodies that went through another, and pushes ahead of
 //!    a moving kinematic body what it would pass (`continuous.rs`);
-//! 8. joints measure their forces and break (`joint/set.rs`, `joints.rs`);
-//! 9. contact, force and sensor events (`events.rs`);
-//! 10. sleep: the same islands fall asleep or stay awake, and what no awake body uses is parked
-//!     (`island.rs`).
+//! 9. joints measure their forces and break (`joint/set.rs`, `joints.rs`);
+//! 10. contact, force and sensor events (`events.rs`);
+//! 11. sleep: the contacts the hooks changed are put back as found, the same islands fall
+//!     asleep or stay awake, and what no awake body uses is parked (`island.rs`).
 
 mod contact_update;
 mod continuous;
@@ -36,6 +38,7 @@ use crate::error::{
 };
 use crate::events::{ContactEvent, ContactForceEvent, EventTracker, SensorEvent};
 use crate::filter::{ordered, Colliders, IgnoredPairs, InteractionGroups};
+use crate::hooks::ContactHooks;
 use crate::island::Islands;
 use crate::joint::{JointHandle, JointSet};
 use crate::limits::{MAX_GRAVITY, MAX_SPEED, MAX_TIMESTEP, MIN_TIMESTEP};
@@ -296,8 +299,8 @@ impl World {
     /// Wakes the group of each body woken since the last call, whole, and brings back the
     /// contacts, broad-phase pairs, touching pairs and sensor overlaps parked while no body of
     /// theirs was awake (`mid_step`: after the step listed its sensor pairs). Costs the groups
-    /// woken and, when any woke, a pass over the parked lists.
-    fn wake_groups(&mut self, mid_step: bool) {
+    /// woken and, when any woke, a pass over the parked lists. Returns whether any woke.
+    fn wake_groups(&mut self, mid_step: bool) -> bool {
         let Self {
             bodies,
             broad_phase,
@@ -307,13 +310,14 @@ impl World {
             ..
         } = self;
         if !islands.wake_groups(bodies) {
-            return;
+            return false;
         }
         set_proxies_asleep(bodies, broad_phase, islands.woken(), false);
         let awake = |handle: BodyHandle| bodies.get(handle.0).is_some_and(RigidBody::is_awake);
         let wakes = |a: BodyHandle, b: BodyHandle| awake(a) || awake(b);
         contacts.unpark(wakes);
         events.unpark(wakes, mid_step);
+        true
     }
 
     /// Parks the contacts, broad-phase pairs, touching pairs and sensor overlaps of which no body
@@ -611,15 +615,31 @@ impl World {
     /// `settings.substeps` substeps. Forces and torques applied since the last step act during
     /// the whole step, then are cleared. Kinematic bodies with a pose target or a path move to
     /// it at the velocity that carries them there and end the step exactly on it
-    /// ([`RigidBody::set_kinematic_target`]).
+    /// ([`RigidBody::set_kinematic_target`]). The bodies' own contact rules (one-way bodies,
+    /// surface velocities: [`crate::hooks`]) apply.
     pub fn step(&mut self, dt: f32) -> Result<()> {
+        self.step_hooked(dt, None)
+    }
+
+    /// [`World::step`], with `hooks` shown each contact before the solve, after the bodies'
+    /// own contact rules, to change what the solver does with it this step ([`crate::hooks`]).
+    pub fn step_with_hooks(&mut self, dt: f32, hooks: &mut dyn ContactHooks) -> Result<()> {
+        self.step_hooked(dt, Some(hooks))
+    }
+
+    fn step_hooked(&mut self, dt: f32, hooks: Option<&mut dyn ContactHooks>) -> Result<()> {
         check_range("dt", dt, MIN_TIMESTEP, MAX_TIMESTEP)?;
         // The stages in order (module documentation). Kinematic velocities come first: the
         // contacts and the broad phase's sweep read them.
         self.for_each_kinematic(|body| body.begin_kinematic_step(dt));
         self.wake_groups(false);
-        self.update_contacts(dt);
-        self.wake_groups(true);
+        let ruled = self.update_contacts(dt);
+        let woke = self.wake_groups(true);
+        // After the contacts woken with their groups came back, so the hooks see every contact
+        // the solver will; a pass only where a contact may have a rule.
+        if ruled || woke || hooks.is_some() {
+            self.modify_contacts(hooks);
+        }
         self.solve(dt);
         // Before anything reads the poses the step ended with.
         self.for_each_kinematic(|body| body.finish_kinematic_step(dt));
@@ -627,6 +647,8 @@ impl World {
         self.joints.finish_step(dt);
         self.refilter_broken_joints();
         self.update_events(dt);
+        // Before contacts are parked: what sleeps or comes to the next step is as found.
+        self.contacts.restore_edited();
         self.update_sleep(dt);
         Ok(())
     }

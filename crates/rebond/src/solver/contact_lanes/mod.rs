@@ -91,13 +91,14 @@ impl PassLanes {
 }
 
 /// One contact to put into a lane: the contact, its index in the contact cache, its solver
-/// bodies.
+/// bodies, and its surface velocity (m/s, A's surface relative to B's: `hooks.rs`).
 #[derive(Clone, Copy)]
 pub(crate) struct LaneContact<'a> {
     pub contact: &'a Contact,
     pub index: usize,
     pub body_a: usize,
     pub body_b: usize,
+    pub surface_velocity: Vec3,
 }
 
 /// How far below zero, N·s, a point's total impulse from the block solve may come before its
@@ -258,6 +259,9 @@ pub(crate) struct ContactLanes {
     /// tangent, zero but where a body's translation is locked ([`LinearMasses`]).
     tangent_coupling: [F32x4; 2],
     tangent_impulse: [F32x4; 2],
+    /// `t·u` per tangent, m/s: the velocity of B's contact point relative to A's that friction
+    /// drives toward, from the surface velocity `u` (zero but on a conveyor, `hooks.rs`).
+    tangent_target: [F32x4; 2],
     twist_spin_a: Vec3x4,
     twist_spin_b: Vec3x4,
     twist_mass: F32x4,
@@ -289,6 +293,7 @@ impl ContactLanes {
         tangent: [JacobianLanes::ZERO; 2],
         tangent_coupling: [F32x4::ZERO; 2],
         tangent_impulse: [F32x4::ZERO; 2],
+        tangent_target: [F32x4::ZERO; 2],
         twist_spin_a: Vec3x4::ZERO,
         twist_spin_b: Vec3x4::ZERO,
         twist_mass: F32x4::ZERO,
@@ -440,6 +445,7 @@ impl ContactLanes {
             index,
             body_a,
             body_b,
+            surface_velocity,
         } = *lane_contact;
         self.contacts[lane] = index;
         self.body_a[lane] = body_a;
@@ -470,6 +476,9 @@ impl ContactLanes {
         let friction_impulse = Vec3A::from(contact.friction_impulse);
         self.tangent_impulse[0].set_lane(lane, friction_impulse.dot(tangent_1));
         self.tangent_impulse[1].set_lane(lane, friction_impulse.dot(tangent_2));
+        let surface_velocity = Vec3A::from(surface_velocity);
+        self.tangent_target[0].set_lane(lane, surface_velocity.dot(tangent_1));
+        self.tangent_target[1].set_lane(lane, surface_velocity.dot(tangent_2));
         self.twist_impulse.set_lane(lane, contact.twist_impulse);
     }
 
@@ -800,7 +809,8 @@ impl ContactLanes {
         (applied, total_normal_impulse)
     }
 
-    /// The manifold's friction at the centre of its points, clamped to the cone
+    /// The manifold's friction at the centre of its points, driving the relative tangential
+    /// velocity there toward the surface velocity's (`tangent_target`), clamped to the cone
     /// `|λ_t| ≤ μ Σλ_n`, then its twist about the normal clamped to `μ Σλ_n ⟨r⟩` (`⟨r⟩` the
     /// patch's mean distance from its centre, `contact_model::patch_radius_ratio`), given
     /// `Σλ_n`, and the pass's normal impulse `applied_normal`, which reaches the tangents' linear
@@ -819,7 +829,8 @@ impl ContactLanes {
         for axis in 0..2 {
             let jacobian = &self.tangent[axis];
             let mut velocity = self.tangents[axis].dot(bodies.relative_velocity)
-                + jacobian.spin_velocity(bodies.angular_a, bodies.angular_b);
+                + jacobian.spin_velocity(bodies.angular_a, bodies.angular_b)
+                - self.tangent_target[axis];
             if LOCKED {
                 velocity += self.tangent_coupling[axis] * applied_normal;
             }
