@@ -12,11 +12,16 @@
 //! [`Contact::children`]), so a hook that depends only on what it is shown steps the same bits
 //! every run. Contacts of which no body is awake are not shown: they are parked, unchanged.
 //!
+//! The continuous pass (a body moving more than four times its reach in a step is swept, and
+//! put back where it first meets another) does not see the hooks: a fast body whose contact a
+//! hook switches off is still stopped where it meets the other. To let such bodies through, make
+//! the pair ignore each other ([`World::set_pair_ignored`](crate::World::set_pair_ignored)).
+//!
 //! A change lasts one step: the contact cache keeps each contact as the narrow phase found it, so
 //! the hook is shown it afresh at the next step. The step's events see the contacts as changed
 //! (a switched-off contact does not touch, so it starts no [`ContactEvent`](crate::ContactEvent)),
 //! and [`World::contacts`](crate::World::contacts) lists them as found, with the impulses the
-//! solver gave them (zero on a switched-off point) and the friction and restitution the hook set.
+//! solver gave them (zero on a switched-off point).
 //!
 //! # Rules of the bodies' own
 //!
@@ -39,6 +44,9 @@
 //!   than [`ONE_WAY_MAX_DEPTH`] until it has nearly left on the far side, where the contact
 //!   counts again and lifts it out. A body landing on top meets P with the normal along the
 //!   direction, its speculative contact stops it before it sinks in, and it stands.
+//!
+//!   The continuous pass, which sweeps bodies too fast for their contacts, follows the same
+//!   normal rule: a fast body thrown up through the platform is not stopped under it.
 //!
 //!   Limits of a rule without memory: a body that stops inside the platform (it was thrown too
 //!   slowly to cross it) is deep and falls back out the side it came from. A body sliding into
@@ -100,6 +108,19 @@ pub const ONE_WAY_MAX_DEPTH: f32 = 0.05;
 /// is within this angle's cosine of the one-way direction: 45°, so a body resting on the
 /// platform's rounded or bevelled edge still stands, and a body meeting its side passes.
 pub const ONE_WAY_MIN_COSINE: f32 = std::f32::consts::FRAC_1_SQRT_2;
+
+/// Whether bodies `a` and `b` meeting with the unit `normal` (from A toward B) hold each other
+/// as far as one-way bodies go: the normal from each one-way body of the two toward the other
+/// lies within 45° of its one-way direction. The contacts' rule adds a depth; the continuous
+/// pass, whose bodies meet touching, reads it alone (`world/continuous.rs`).
+pub(crate) fn one_way_holds(a: &RigidBody, b: &RigidBody, normal: Vec3) -> bool {
+    let faces = |platform: &RigidBody, outward: Vec3| {
+        platform.one_way.is_none_or(|direction| {
+            outward.dot(platform.rotation * direction) >= ONE_WAY_MIN_COSINE
+        })
+    };
+    faces(a, normal) && faces(b, -normal)
+}
 
 /// What a step calls on each contact before the solve ([`crate::hooks`]). A closure
 /// `FnMut(&mut ContactModification)` is one.
@@ -212,7 +233,10 @@ impl<'a> ContactModification<'a> {
         let len = self.points().len();
         if index >= len {
             let index = u32::try_from(index).unwrap_or(u32::MAX);
-            return Err(Error::new("point", ErrorKind::IndexOutOfRange { index, len }));
+            return Err(Error::new(
+                "point",
+                ErrorKind::IndexOutOfRange { index, len },
+            ));
         }
         self.enabled[index] = enabled;
         Ok(())
@@ -271,15 +295,10 @@ impl<'a> ContactModification<'a> {
     /// on the side it stands on.
     pub(crate) fn apply_body_rules(&mut self) {
         let (a, b) = (self.body_a, self.body_b);
-        self.surface_velocity =
-            a.rotation * a.surface_velocity - b.rotation * b.surface_velocity;
-        let shallow = self.contact.manifold.deepest_separation() >= -ONE_WAY_MAX_DEPTH;
-        for (platform, outward) in [(a, self.normal), (b, -self.normal)] {
-            let Some(direction) = platform.one_way else {
-                continue;
-            };
-            let faces_up = outward.dot(platform.rotation * direction) >= ONE_WAY_MIN_COSINE;
-            if !(faces_up && shallow) {
+        self.surface_velocity = a.rotation * a.surface_velocity - b.rotation * b.surface_velocity;
+        if a.one_way.is_some() || b.one_way.is_some() {
+            let shallow = self.contact.manifold.deepest_separation() >= -ONE_WAY_MAX_DEPTH;
+            if !(shallow && one_way_holds(a, b, self.normal)) {
                 self.set_enabled(false);
             }
         }

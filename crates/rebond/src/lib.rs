@@ -110,6 +110,11 @@ pub struct ReadmeDoctests;
 #[doc = include_str!("../../../docs/bodies.md")]
 pub struct BodiesDoctests;
 
+/// The examples of `docs/games.md`, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/games.md")]
+pub struct GamesDoctests;
+
 /// The examples of `docs/kinematic.md`, compiled and run as doc tests.
 #[cfg(doctest)]
 #[doc = include_str!("../../../docs/kinematic.md")]

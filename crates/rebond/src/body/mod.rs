@@ -6,8 +6,8 @@
 use crate::arena::ArenaIndex;
 use crate::collision::broad_phase::ProxyHandle;
 use crate::error::{
-    check_direction, check_length, check_non_negative, check_non_negative_or_infinite, check_position,
-    check_positive, check_range, Error, ErrorKind, Result,
+    check_direction, check_length, check_non_negative, check_non_negative_or_infinite,
+    check_position, check_positive, check_range, Error, ErrorKind, Result,
 };
 use crate::filter::InteractionGroups;
 use crate::limits::{
@@ -463,40 +463,17 @@ impl RigidBody {
     }
 
     /// The direction, body frame, unit, bodies pass through it from; `None` for a solid body
-    /// ([`BodyDesc::one_way`](BodyDesc#structfield.one_way)).
+    /// ([`BodyDesc::one_way`](BodyDesc#structfield.one_way)); set it with
+    /// [`World::set_one_way`](crate::World::set_one_way).
     pub fn one_way(&self) -> Option<Vec3> {
         self.one_way
     }
 
-    /// Makes the body one-way from `direction` (body frame, normalised here; zero or not
-    /// finite is an error for `one_way`), or solid again with `None`; wakes it. Bodies asleep
-    /// on a static body stay asleep until something wakes them ([`World::wake_all`]).
-    ///
-    /// [`World::wake_all`]: crate::World::wake_all
-    pub fn set_one_way(&mut self, direction: Option<Vec3>) -> Result<()> {
-        self.one_way = match direction {
-            Some(direction) => Some(check_direction("one_way", direction)?),
-            None => None,
-        };
-        self.wake();
-        Ok(())
-    }
-
     /// The velocity of the body's surface relative to the body, m/s, body frame
-    /// ([`BodyDesc::surface_velocity`](BodyDesc#structfield.surface_velocity)).
+    /// ([`BodyDesc::surface_velocity`](BodyDesc#structfield.surface_velocity)); set it with
+    /// [`World::set_surface_velocity`](crate::World::set_surface_velocity).
     pub fn surface_velocity(&self) -> Vec3 {
         self.surface_velocity
-    }
-
-    /// Sets the velocity of the body's surface relative to the body, m/s, body frame, at most
-    /// [`MAX_SPEED`] long; wakes it. Bodies asleep on a static body stay asleep until something
-    /// wakes them ([`World::wake_all`]).
-    ///
-    /// [`World::wake_all`]: crate::World::wake_all
-    pub fn set_surface_velocity(&mut self, velocity: Vec3) -> Result<()> {
-        self.surface_velocity = check_length("surface_velocity", velocity, MAX_SPEED)?;
-        self.wake();
-        Ok(())
     }
 
     /// Whether the contact rules of its own apply to its contacts: it is one-way or its

@@ -445,6 +445,11 @@ impl ContactCache {
             .unwrap_or_default()
     }
 
+    /// Whether a contact of this step has a surface velocity.
+    pub fn has_surface_velocities(&self) -> bool {
+        !self.surface_velocities.is_empty()
+    }
+
     /// Gives this step's contact `index` what a hook changed of it: its surface velocity, and
     /// for a changed material or normal or points switched off, a changed copy for the solve and
     /// the events, the contact as found kept aside for [`restore_edited`](Self::restore_edited).
@@ -483,7 +488,11 @@ impl ContactCache {
             let solved = &self.current[index];
             let points = found.manifold.points().iter();
             for (point, impulse) in points.zip(&mut found.normal_impulses) {
-                let same = solved.manifold.points().iter().position(|p| p.id == point.id);
+                let same = solved
+                    .manifold
+                    .points()
+                    .iter()
+                    .position(|p| p.id == point.id);
                 *impulse = same.map_or(0.0, |same| solved.normal_impulses[same]);
             }
             found.friction_impulse = solved.friction_impulse;

@@ -133,7 +133,6 @@ impl ConstraintKind for ContactConstraints {
                     index,
                     body_a,
                     body_b,
-                    surface_velocity: contacts.surface_velocity(index),
                 })
             });
             let index = self.lanes.len();
@@ -147,6 +146,9 @@ impl ConstraintKind for ContactConstraints {
             if rolls {
                 self.rolling
                     .add(index, lane_contacts, &solver_bodies.motions);
+            }
+            if contacts.has_surface_velocities() {
+                self.lanes[index].set_surface_velocities(|index| contacts.surface_velocity(index));
             }
         }
         self.softness = context.contact.softness(context.h, context.inverse_h);

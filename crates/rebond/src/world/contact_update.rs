@@ -26,12 +26,10 @@ impl World {
     /// The contact margin of a pair grows with how fast its bodies move, so that two bodies
     /// closing in within this step already have speculative points:
     /// [`WorldSettings::speculative_distance`] plus [`speculative_reach`].
-    ///
-    /// Returns whether a contact has a body with contact rules of its own ([`crate::hooks`]).
-    pub(super) fn update_contacts(&mut self, dt: f32) -> bool {
+    pub(super) fn update_contacts(&mut self, dt: f32) {
         self.update_pairs(dt);
         self.collide_pairs(dt);
-        self.finish_contacts()
+        self.finish_contacts();
     }
 
     /// Refreshes the boxes of the awake bodies and of the static bodies lent out (swept over
@@ -162,9 +160,8 @@ impl World {
     }
 
     /// Gives each of this step's contacts its combined material and its patch's radius ratio,
-    /// and wakes the sleepers an awake mover touches. Returns whether a contact has a body with
-    /// contact rules of its own.
-    fn finish_contacts(&mut self) -> bool {
+    /// and wakes the sleepers an awake mover touches.
+    fn finish_contacts(&mut self) {
         let Self {
             settings,
             bodies,
@@ -172,7 +169,6 @@ impl World {
             islands,
             ..
         } = self;
-        let mut ruled = false;
         for contact in contacts.contacts_mut() {
             if contact.manifold.is_empty() {
                 continue;
@@ -181,7 +177,6 @@ impl World {
             let (Some(body_a), Some(body_b)) = (bodies.get(a.0), bodies.get(b.0)) else {
                 continue;
             };
-            ruled |= body_a.has_contact_rules() || body_b.has_contact_rules();
             contact.material = Material::combine(
                 body_a.material_of_child(contact.key.child_a),
                 body_b.material_of_child(contact.key.child_b),
@@ -208,7 +203,6 @@ impl World {
                 }
             }
         }
-        ruled
     }
 
     /// Shows each of this step's contacts with a body that has contact rules of its own, or

@@ -34,7 +34,8 @@ use crate::collision::contact_cache::{Contact, ContactCache};
 use crate::collision::narrow_phase::NarrowPhase;
 use crate::collision::SPECULATIVE_DISTANCE;
 use crate::error::{
-    check_length, check_non_negative, check_positive, check_range, Error, ErrorKind, Result,
+    check_direction, check_length, check_non_negative, check_positive, check_range, Error,
+    ErrorKind, Result,
 };
 use crate::events::{ContactEvent, ContactForceEvent, EventTracker, SensorEvent};
 use crate::filter::{ordered, Colliders, IgnoredPairs, InteractionGroups};
@@ -215,6 +216,9 @@ pub struct World {
     /// Arena slots of static bodies lent out by [`World::body_mut`] since the last step, whose
     /// bounding boxes the next step refreshes in case they were moved.
     touched_static_slots: Vec<usize>,
+    /// How many bodies are one-way or have a surface velocity: while none, and without a hook,
+    /// the step shows no contact to the hooks' pass.
+    contact_rule_bodies: usize,
     /// The continuous pass's bodies to put back or push, by slot, with where and against what.
     #[cfg_attr(feature = "serde", serde(skip))]
     impacts: Vec<continuous::Stop>,
@@ -255,6 +259,7 @@ impl World {
             step_work: StepWork::default(),
             bounds_of_slot: Vec::new(),
             touched_static_slots: Vec::new(),
+            contact_rule_bodies: 0,
             impacts: Vec::new(),
         })
     }
@@ -299,8 +304,8 @@ impl World {
     /// Wakes the group of each body woken since the last call, whole, and brings back the
     /// contacts, broad-phase pairs, touching pairs and sensor overlaps parked while no body of
     /// theirs was awake (`mid_step`: after the step listed its sensor pairs). Costs the groups
-    /// woken and, when any woke, a pass over the parked lists. Returns whether any woke.
-    fn wake_groups(&mut self, mid_step: bool) -> bool {
+    /// woken and, when any woke, a pass over the parked lists.
+    fn wake_groups(&mut self, mid_step: bool) {
         let Self {
             bodies,
             broad_phase,
@@ -310,14 +315,13 @@ impl World {
             ..
         } = self;
         if !islands.wake_groups(bodies) {
-            return false;
+            return;
         }
         set_proxies_asleep(bodies, broad_phase, islands.woken(), false);
         let awake = |handle: BodyHandle| bodies.get(handle.0).is_some_and(RigidBody::is_awake);
         let wakes = |a: BodyHandle, b: BodyHandle| awake(a) || awake(b);
         contacts.unpark(wakes);
         events.unpark(wakes, mid_step);
-        true
     }
 
     /// Parks the contacts, broad-phase pairs, touching pairs and sensor overlaps of which no body
@@ -343,6 +347,7 @@ impl World {
     pub fn add_body(&mut self, desc: BodyDesc) -> Result<BodyHandle> {
         let body = RigidBody::from_desc(desc)?;
         let is_static = body.body_type == BodyType::Static;
+        self.count_contact_rules(false, body.has_contact_rules());
         let aabb = body.aabb();
         let index = self.bodies.insert(body);
         let proxy = self
@@ -411,7 +416,64 @@ impl World {
         }
         self.contacts.remove_body(handle);
         self.ignored_pairs.remove_body(handle);
+        self.count_contact_rules(body.has_contact_rules(), false);
         Ok(body)
+    }
+
+    /// Makes body `handle` one-way from `direction` (body frame, normalised here; zero or not
+    /// finite is an error for `one_way`), or solid again with `None`
+    /// ([`BodyDesc::one_way`](BodyDesc#structfield.one_way), [`crate::hooks`]). Wakes it and the
+    /// bodies asleep on it.
+    pub fn set_one_way(&mut self, handle: BodyHandle, direction: Option<Vec3>) -> Result<()> {
+        let one_way = direction
+            .map(|direction| check_direction("one_way", direction))
+            .transpose()?;
+        self.change_contact_rules(handle, |body| body.one_way = one_way)
+    }
+
+    /// Sets the velocity of body `handle`'s surface relative to it, m/s, body frame, at most
+    /// [`MAX_SPEED`](crate::limits::MAX_SPEED) long (else an error for `surface_velocity`): a
+    /// conveyor belt ([`BodyDesc::surface_velocity`](BodyDesc#structfield.surface_velocity),
+    /// [`crate::hooks`]). Wakes it and the bodies asleep on it.
+    pub fn set_surface_velocity(&mut self, handle: BodyHandle, velocity: Vec3) -> Result<()> {
+        let velocity = check_length("surface_velocity", velocity, MAX_SPEED)?;
+        self.change_contact_rules(handle, |body| body.surface_velocity = velocity)
+    }
+
+    /// Changes body `handle`'s contact rules with `change`, keeps the count of bodies with
+    /// rules, and wakes the body and the bodies asleep against it, which the change may set
+    /// moving.
+    fn change_contact_rules(
+        &mut self,
+        handle: BodyHandle,
+        change: impl FnOnce(&mut RigidBody),
+    ) -> Result<()> {
+        let body = self.bodies.get_mut(handle.0).ok_or_else(stale)?;
+        let had_rules = body.has_contact_rules();
+        change(body);
+        let has_rules = body.has_contact_rules();
+        self.count_contact_rules(had_rules, has_rules);
+        let resting: Vec<BodyHandle> = self
+            .contacts
+            .parked()
+            .filter(|contact| contact.key.body_a == handle || contact.key.body_b == handle)
+            .flat_map(|contact| [contact.key.body_a, contact.key.body_b])
+            .collect();
+        for body in resting {
+            self.wake_slot(body.slot());
+        }
+        self.wake_slot(handle.slot());
+        Ok(())
+    }
+
+    /// Keeps the count of bodies with contact rules as a body goes from having them or not
+    /// (`had`) to having them or not (`has`).
+    fn count_contact_rules(&mut self, had: bool, has: bool) {
+        match (had, has) {
+            (false, true) => self.contact_rule_bodies += 1,
+            (true, false) => self.contact_rule_bodies -= 1,
+            _ => {}
+        }
     }
 
     /// The body behind `handle`.
@@ -508,7 +570,9 @@ impl World {
     /// This step's contacts (one manifold per pair of touching convex parts), sorted by key: the
     /// contacts the step solved, each with at least one awake body. The contacts of sleeping
     /// bodies (asleep together, or asleep on a static body) are kept apart, unchanged, in
-    /// [`World::sleeping_contacts`] until one of their bodies wakes.
+    /// [`World::sleeping_contacts`] until one of their bodies wakes. Each is as the narrow phase
+    /// found it, with the impulses the solve gave it: a contact hook's changes
+    /// ([`crate::hooks`]) last for the step's solve and events alone.
     pub fn contacts(&self) -> &[Contact] {
         self.contacts.contacts()
     }
@@ -633,11 +697,11 @@ impl World {
         // contacts and the broad phase's sweep read them.
         self.for_each_kinematic(|body| body.begin_kinematic_step(dt));
         self.wake_groups(false);
-        let ruled = self.update_contacts(dt);
-        let woke = self.wake_groups(true);
+        self.update_contacts(dt);
+        self.wake_groups(true);
         // After the contacts woken with their groups came back, so the hooks see every contact
-        // the solver will; a pass only where a contact may have a rule.
-        if ruled || woke || hooks.is_some() {
+        // the solver will; no pass while no body has rules and there is no hook.
+        if self.contact_rule_bodies > 0 || hooks.is_some() {
             self.modify_contacts(hooks);
         }
         self.solve(dt);

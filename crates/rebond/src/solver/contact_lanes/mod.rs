@@ -91,14 +91,13 @@ impl PassLanes {
 }
 
 /// One contact to put into a lane: the contact, its index in the contact cache, its solver
-/// bodies, and its surface velocity (m/s, A's surface relative to B's: `hooks.rs`).
+/// bodies.
 #[derive(Clone, Copy)]
 pub(crate) struct LaneContact<'a> {
     pub contact: &'a Contact,
     pub index: usize,
     pub body_a: usize,
     pub body_b: usize,
-    pub surface_velocity: Vec3,
 }
 
 /// How far below zero, N·s, a point's total impulse from the block solve may come before its
@@ -445,7 +444,6 @@ impl ContactLanes {
             index,
             body_a,
             body_b,
-            surface_velocity,
         } = *lane_contact;
         self.contacts[lane] = index;
         self.body_a[lane] = body_a;
@@ -476,10 +474,22 @@ impl ContactLanes {
         let friction_impulse = Vec3A::from(contact.friction_impulse);
         self.tangent_impulse[0].set_lane(lane, friction_impulse.dot(tangent_1));
         self.tangent_impulse[1].set_lane(lane, friction_impulse.dot(tangent_2));
-        let surface_velocity = Vec3A::from(surface_velocity);
-        self.tangent_target[0].set_lane(lane, surface_velocity.dot(tangent_1));
-        self.tangent_target[1].set_lane(lane, surface_velocity.dot(tangent_2));
         self.twist_impulse.set_lane(lane, contact.twist_impulse);
+    }
+
+    /// Gives each lane the target of its friction from its contact's surface velocity
+    /// (`surface_velocity(index)`, m/s, A's surface relative to B's: `hooks.rs`), `t·u` along
+    /// each tangent; after [`Self::fill`], in the steps where some contact has one.
+    pub fn set_surface_velocities(&mut self, surface_velocity: impl Fn(usize) -> Vec3) {
+        for (lane, &index) in self.contacts.iter().enumerate() {
+            if index == usize::MAX {
+                continue;
+            }
+            let velocity = Vec3A::from(surface_velocity(index));
+            for (target, tangent) in self.tangent_target.iter_mut().zip(&self.tangents) {
+                target.set_lane(lane, velocity.dot(tangent.lanes()[lane]));
+            }
+        }
     }
 
     /// Whether any lane bounces (has a restitution above zero).
