@@ -133,8 +133,8 @@ impl Contact {
     /// start pushes nothing.
     fn keep_points(&mut self, kept: [bool; MAX_MANIFOLD_POINTS]) {
         let mut count = 0;
-        for index in 0..self.manifold.len() {
-            if kept[index] {
+        for (index, &keeps) in kept.iter().enumerate().take(self.manifold.len()) {
+            if keeps {
                 self.normal_impulses[count] = self.normal_impulses[index];
                 self.frame.solver.arms[count] = self.frame.solver.arms[index];
                 count += 1;
