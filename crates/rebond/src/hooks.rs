@@ -26,7 +26,9 @@
 //! # Rules of the bodies' own
 //!
 //! Two body properties are built on the same hook, and apply in [`World::step`] too, before the
-//! user's hook, which sees and may change their outcome:
+//! user's hook, which sees and may change their outcome. [`BodyDesc`] sets them, and
+//! [`World::set_one_way`] and [`World::set_surface_velocity`] change them (waking the body and
+//! what sleeps on it):
 //!
 //! - **Surface velocity** ([`BodyDesc::surface_velocity`]): a conveyor belt. A contact's
 //!   [`surface_velocity`](ContactModification::surface_velocity) is `R_A u_A − R_B u_B`, each
@@ -52,8 +54,10 @@
 //!   slowly to cross it) is deep and falls back out the side it came from. A body sliding into
 //!   the platform's edge meets it with a sideways normal and passes into it; it is lifted onto
 //!   the top if it is no deeper than [`ONE_WAY_MAX_DEPTH`] when the normal turns up (a thin
-//!   platform, a body sliding along its top surface), else it carries on through. A platform
-//!   thinner than [`ONE_WAY_MAX_DEPTH`] lifts a body crossing it before it is half way through.
+//!   platform, a body sliding along its top surface), else it carries on through. A body whose
+//!   half-size plus the platform's half-thickness is under [`ONE_WAY_MAX_DEPTH`] (a marble
+//!   crossing a thin sheet) counts again as soon as its centre passes the platform's middle, and
+//!   is lifted out on the far side: it still passes, a little sooner.
 //!
 //! ```
 //! use rebond::hooks::ContactModification;
@@ -85,6 +89,9 @@
 //! ```
 //!
 //! [`World::step`]: crate::World::step
+//! [`World::set_one_way`]: crate::World::set_one_way
+//! [`World::set_surface_velocity`]: crate::World::set_surface_velocity
+//! [`BodyDesc`]: crate::BodyDesc
 //! [`BodyDesc::surface_velocity`]: crate::BodyDesc#structfield.surface_velocity
 //! [`BodyDesc::one_way`]: crate::BodyDesc#structfield.one_way
 
