@@ -57,7 +57,9 @@
 //!   platform, a body sliding along its top surface), else it carries on through. A body whose
 //!   half-size plus the platform's half-thickness is under [`ONE_WAY_MAX_DEPTH`] (a marble
 //!   crossing a thin sheet) counts again as soon as its centre passes the platform's middle, and
-//!   is lifted out on the far side: it still passes, a little sooner.
+//!   is lifted out on the far side: it still passes, a little sooner. A body that ends a step
+//!   less than [`ONE_WAY_MAX_DEPTH`] inside the far side touches the platform for the next step
+//!   (a contact event starts and stops), though moving away it is pushed by nothing.
 //!
 //! ```
 //! use rebond::hooks::ContactModification;

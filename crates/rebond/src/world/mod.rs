@@ -379,16 +379,7 @@ impl World {
         if !self.bodies.get(handle.0).ok_or_else(stale)?.is_awake() {
             // A sleeping or static body may have parked contacts: its group and the groups resting
             // on it wake now, so that the contacts come back to be dropped below.
-            let resting: Vec<BodyHandle> = self
-                .contacts
-                .parked()
-                .filter(|contact| contact.key.body_a == handle || contact.key.body_b == handle)
-                .flat_map(|contact| [contact.key.body_a, contact.key.body_b])
-                .collect();
-            for other in resting {
-                self.wake_slot(other.slot());
-            }
-            self.wake_slot(handle.slot());
+            self.wake_with_resting(handle);
             self.wake_groups(false);
             // Its parked touching pairs and overlaps (a sensor around a sleeping body) end at the
             // next step, as an awake body's do.
@@ -453,6 +444,13 @@ impl World {
         change(body);
         let has_rules = body.has_contact_rules();
         self.count_contact_rules(had_rules, has_rules);
+        self.wake_with_resting(handle);
+        Ok(())
+    }
+
+    /// Wakes body `handle` and the bodies of its parked contacts (asleep on it, or under it);
+    /// their groups wake at the next [`World::wake_groups`].
+    fn wake_with_resting(&mut self, handle: BodyHandle) {
         let resting: Vec<BodyHandle> = self
             .contacts
             .parked()
@@ -463,7 +461,6 @@ impl World {
             self.wake_slot(body.slot());
         }
         self.wake_slot(handle.slot());
-        Ok(())
     }
 
     /// Keeps the count of bodies with contact rules as a body goes from having them or not
