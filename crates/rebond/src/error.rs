@@ -263,6 +263,14 @@ pub(crate) fn check_finite_vector(field: &str, vector: glam::Vec3) -> Result<gla
     }
 }
 
+/// `direction` normalised; a non-finite one is [`ErrorKind::NotFinite`], one too short to
+/// normalise [`ErrorKind::ZeroVector`].
+pub(crate) fn check_direction(field: &str, direction: glam::Vec3) -> Result<glam::Vec3> {
+    check_finite_vector(field, direction)?
+        .try_normalize()
+        .ok_or_else(|| Error::new(field, ErrorKind::ZeroVector))
+}
+
 /// Checks that a size (radius, half extent, half height) is finite and within
 /// `[MIN_SIZE, MAX_SIZE]`.
 pub(crate) fn check_size(field: &str, value: f32) -> Result<f32> {

@@ -45,6 +45,7 @@ mod collision;
 mod error;
 pub mod events;
 mod filter;
+pub mod hooks;
 mod island;
 pub mod joint;
 pub mod limits;
@@ -68,6 +69,7 @@ pub use collision::{ContactPoint, MAX_MANIFOLD_POINTS};
 pub use error::{Error, ErrorKind, Result};
 pub use events::{ContactEvent, ContactEventKind, ContactForceEvent, SensorEvent, SensorEventKind};
 pub use filter::InteractionGroups;
+pub use hooks::{ContactHooks, ContactModification};
 pub use joint::{
     Joint, JointBreakEvent, JointDesc, JointHandle, JointPlacement, JointType, Motor, Spring,
 };

@@ -448,3 +448,43 @@ fn a_steady_character_move_allocates_nothing() {
     let hits = allocations_of(|| frame(&mut world));
     assert!(hits >= 2, "on the ground and against the wall: {hits} hits");
 }
+
+#[test]
+fn a_steady_step_with_contact_hooks_conveyors_and_one_way_bodies_allocates_nothing() {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    let belt = add_ground(&mut world, 0.5);
+    // A one-way slab the boxes ride through sideways, its contacts switched off.
+    world
+        .add_body(
+            BodyDesc::static_body(Shape::cuboid(Vec3::new(0.5, 0.1, 3.0)).unwrap())
+                .position(Vec3::new(0.0, 0.5, 0.0))
+                .one_way(Vec3::Y),
+        )
+        .unwrap();
+    for index in 0..3 {
+        world
+            .add_body(unit_box(Vec3::new(-1.0, 0.5, index as f32 * 1.5)).can_sleep(false))
+            .unwrap();
+    }
+    // The belt carries the boxes along +X for 2 s and back, through the slab each way, and the
+    // hook changes every contact's friction (a changed copy of each for the solve).
+    let run_back_and_forth = |world: &mut World| {
+        for step in 0..240 {
+            let speed = if step < 120 { 1.0 } else { -1.0 };
+            world
+                .set_surface_velocity(belt, Vec3::new(speed, 0.0, 0.0))
+                .unwrap();
+            world
+                .step_with_hooks(DT, &mut |contact: &mut rebond::ContactModification| {
+                    contact.set_friction(0.8).unwrap();
+                })
+                .unwrap();
+        }
+    };
+    run_back_and_forth(&mut world);
+    run_back_and_forth(&mut world);
+    allocations_of(|| {
+        run_back_and_forth(&mut world);
+        run_back_and_forth(&mut world);
+    });
+}

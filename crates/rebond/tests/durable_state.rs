@@ -569,9 +569,11 @@ fn a_snapshot_cut_damaged_or_of_a_later_version_is_refused() {
         World::load_state_as_other_build(&damaged).unwrap_err(),
         StateError::Damaged
     );
-    // A later build's snapshot version (the first byte of the snapshot) is another build's.
+    // A later build's snapshot version (the first byte of the snapshot) is another build's:
+    // this build writes version 2 (byte 1) and reads versions 1 and 2.
+    assert_eq!(bytes[start], 1);
     let mut later = bytes.clone();
-    later[start] = 1;
+    later[start] = 2;
     assert_eq!(
         World::load_state_as_other_build(&with_checksum(later)).unwrap_err(),
         StateError::OtherBuild
@@ -583,6 +585,26 @@ fn a_snapshot_cut_damaged_or_of_a_later_version_is_refused() {
         World::load_state(&version_1).unwrap_err(),
         StateError::OtherVersion { found: 1 }
     );
+}
+
+/// A version-1 snapshot (an earlier build's: no contact rules) still reads. Version 2 is version
+/// 1's records followed by the bodies' contact rules, so a version-2 snapshot with none, its
+/// version byte set to 0 and the rules' empty list (its last byte) cut, is the version-1
+/// snapshot of the same world.
+#[test]
+fn a_version_1_snapshot_still_reads() {
+    let (bytes, start) = small_state();
+    let saved = World::load_state_as_other_build(&bytes).unwrap();
+    assert_eq!(bytes.last(), Some(&0), "an empty list of contact rules");
+    let mut version_1 = bytes[..bytes.len() - 1].to_vec();
+    version_1[start] = 0;
+    let payload = (version_1.len() - 32) as u64;
+    version_1[20..28].copy_from_slice(&payload.to_le_bytes());
+    let restored = World::load_state_as_other_build(&with_checksum(version_1)).unwrap();
+    for ((_, a), (_, b)) in saved.bodies().zip(restored.bodies()) {
+        assert_eq!(a.position(), b.position());
+        assert_eq!((b.one_way(), b.surface_velocity()), (None, Vec3::ZERO));
+    }
 }
 
 #[test]

@@ -77,6 +77,19 @@ pub struct BodyDesc {
     /// the first point's pose (`position` and `rotation` give way to it) and each step carries
     /// it to the path's pose at the step's end ([`KinematicPath`]).
     pub path: Option<KinematicPath>,
+    /// The direction, in the body frame, bodies pass through it from, default `None` (a solid
+    /// body): a platform with `one_way = +Y` lets bodies jump through it from below and stand
+    /// on top. Normalised when added; a zero or non-finite one is an error. Its contacts count
+    /// only where the normal from this body to the other lies within 45° of the direction and
+    /// the contact is no deeper than [`ONE_WAY_MAX_DEPTH`](crate::hooks::ONE_WAY_MAX_DEPTH)
+    /// (the rule and its limits: [`crate::hooks`]).
+    pub one_way: Option<Vec3>,
+    /// The velocity of the body's surface relative to the body, m/s, body frame (it turns with
+    /// the body), default zero: a conveyor belt. Friction drives what touches the body toward
+    /// it along the contact plane (the part along a contact's normal does nothing), so a box
+    /// on a static conveyor with `[1, 0, 0]` is carried along +X at 1 m/s once friction
+    /// brought it there, in `v / (μ g)` seconds on flat ground ([`crate::hooks`]).
+    pub surface_velocity: Vec3,
 }
 
 impl BodyDesc {
@@ -106,6 +119,8 @@ impl BodyDesc {
             contact_force_threshold: f32::INFINITY,
             user_data: 0,
             path: None,
+            one_way: None,
+            surface_velocity: Vec3::ZERO,
         }
     }
 
@@ -247,6 +262,20 @@ impl BodyDesc {
     /// Sets the keyframes a kinematic body follows.
     pub fn path(mut self, path: KinematicPath) -> Self {
         self.path = Some(path);
+        self
+    }
+
+    /// Makes the body one-way: bodies pass through it from `direction` (body frame), and
+    /// stand on it from the other side ([`BodyDesc::one_way`](BodyDesc#structfield.one_way)).
+    pub fn one_way(mut self, direction: Vec3) -> Self {
+        self.one_way = Some(direction);
+        self
+    }
+
+    /// Sets the velocity of the body's surface relative to the body, m/s, body frame: a
+    /// conveyor belt ([`BodyDesc::surface_velocity`](BodyDesc#structfield.surface_velocity)).
+    pub fn surface_velocity(mut self, velocity: Vec3) -> Self {
+        self.surface_velocity = velocity;
         self
     }
 }

@@ -6,8 +6,8 @@
 use crate::arena::ArenaIndex;
 use crate::collision::broad_phase::ProxyHandle;
 use crate::error::{
-    check_length, check_non_negative, check_non_negative_or_infinite, check_position,
-    check_positive, check_range, Error, ErrorKind, Result,
+    check_direction, check_length, check_non_negative, check_non_negative_or_infinite,
+    check_position, check_positive, check_range, Error, ErrorKind, Result,
 };
 use crate::filter::InteractionGroups;
 use crate::limits::{
@@ -123,6 +123,10 @@ pub struct RigidBody {
     /// Seconds along the path: the sum of the steps' `dt` since the path was set, in `f64` so
     /// that it is the exact sum of the `f32` steps for far longer than any run.
     pub(crate) path_time: f64,
+    /// Unit direction, body frame, bodies pass through it from; `None` for a solid body.
+    pub(crate) one_way: Option<Vec3>,
+    /// Velocity of its surface relative to it, m/s, body frame.
+    pub(crate) surface_velocity: Vec3,
 }
 
 impl RigidBody {
@@ -148,6 +152,11 @@ impl RigidBody {
         check_non_negative("linear_damping", desc.linear_damping)?;
         check_non_negative("angular_damping", desc.angular_damping)?;
         check_non_negative_or_infinite("contact_force_threshold", desc.contact_force_threshold)?;
+        let one_way = match desc.one_way {
+            Some(direction) => Some(check_direction("one_way", direction)?),
+            None => None,
+        };
+        check_length("surface_velocity", desc.surface_velocity, MAX_SPEED)?;
         let path = match &desc.path {
             Some(path) => Some(checked_path(desc.body_type, path)?),
             None => None,
@@ -204,6 +213,8 @@ impl RigidBody {
             kinematic_target: None,
             path: None,
             path_time: 0.0,
+            one_way,
+            surface_velocity: desc.surface_velocity,
         };
         if let Some((properties, inverse_inertia)) = mass_properties {
             body.mass = properties.mass;
@@ -449,6 +460,26 @@ impl RigidBody {
         self.contact_force_threshold =
             check_non_negative_or_infinite("contact_force_threshold", threshold)?;
         Ok(())
+    }
+
+    /// The direction, body frame, unit, bodies pass through it from; `None` for a solid body
+    /// ([`BodyDesc::one_way`](BodyDesc#structfield.one_way)); set it with
+    /// [`World::set_one_way`](crate::World::set_one_way).
+    pub fn one_way(&self) -> Option<Vec3> {
+        self.one_way
+    }
+
+    /// The velocity of the body's surface relative to the body, m/s, body frame
+    /// ([`BodyDesc::surface_velocity`](BodyDesc#structfield.surface_velocity)); set it with
+    /// [`World::set_surface_velocity`](crate::World::set_surface_velocity).
+    pub fn surface_velocity(&self) -> Vec3 {
+        self.surface_velocity
+    }
+
+    /// Whether the contact rules of its own apply to its contacts: it is one-way or its
+    /// surface moves ([`crate::hooks`]).
+    pub(crate) fn has_contact_rules(&self) -> bool {
+        self.one_way.is_some() || self.surface_velocity != Vec3::ZERO
     }
 
     /// Whether the body is asleep (skipped by the step until something wakes it).

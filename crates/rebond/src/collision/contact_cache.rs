@@ -10,6 +10,7 @@ use super::mesh_contact::KeptSimplex;
 use super::narrow_phase::{PartCache, PartContacts};
 use crate::body::BodyHandle;
 use crate::filter::Colliders;
+use crate::hooks::ContactEdit;
 #[cfg(feature = "serde")]
 use crate::limits::MAX_SOLVER_IMPULSE;
 use crate::material::Material;
@@ -126,6 +127,30 @@ impl Contact {
     pub fn restitution(&self) -> f32 {
         self.material.restitution
     }
+
+    /// Keeps the points `kept[i]` is true for, in order, with their impulses and lever arms; a
+    /// contact left with none holds no friction, twist or rolling impulse either, so the warm
+    /// start pushes nothing.
+    fn keep_points(&mut self, kept: [bool; MAX_MANIFOLD_POINTS]) {
+        let mut count = 0;
+        for (index, &keeps) in kept.iter().enumerate().take(self.manifold.len()) {
+            if keeps {
+                self.normal_impulses[count] = self.normal_impulses[index];
+                self.frame.solver.arms[count] = self.frame.solver.arms[index];
+                count += 1;
+            }
+        }
+        let mut index = 0;
+        self.manifold.retain(|_| {
+            index += 1;
+            kept[index - 1]
+        });
+        if count == 0 {
+            self.friction_impulse = Vec3::ZERO;
+            self.twist_impulse = 0.0;
+            self.rolling_impulse = Vec3::ZERO;
+        }
+    }
 }
 
 /// A contact parked while its bodies sleep, with what its query left.
@@ -164,6 +189,14 @@ pub struct ContactCache {
     /// `part_caches` and `previous_part_caches` point into, this step's and last step's.
     triangle_simplices: Vec<KeptSimplex>,
     previous_triangle_simplices: Vec<KeptSimplex>,
+    /// The surface velocity of each of this step's contacts, by index, m/s (A's surface
+    /// relative to B's, `hooks.rs`); empty while no contact of the step has one.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    surface_velocities: Vec<Vec3>,
+    /// The contacts the step's hooks changed, as they were found, until
+    /// [`restore_edited`](Self::restore_edited) puts them back; empty between steps.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    edited: Vec<(usize, Contact)>,
 }
 
 impl ContactCache {
@@ -179,6 +212,7 @@ impl ContactCache {
             &mut self.previous_triangle_simplices,
         );
         self.triangle_simplices.clear();
+        self.surface_velocities.clear();
         self.previous_cursor = 0;
         self.previous_pair_start = 0;
     }
@@ -400,6 +434,72 @@ impl ContactCache {
     /// This step's contacts, for the solver to store its impulses in.
     pub fn contacts_mut(&mut self) -> &mut [Contact] {
         &mut self.current
+    }
+
+    /// The surface velocity of this step's contact `index`, m/s: A's surface relative to B's,
+    /// which friction drives B's contact point toward, relative to A's.
+    pub fn surface_velocity(&self, index: usize) -> Vec3 {
+        self.surface_velocities
+            .get(index)
+            .copied()
+            .unwrap_or_default()
+    }
+
+    /// Whether a contact of this step has a surface velocity.
+    pub fn has_surface_velocities(&self) -> bool {
+        !self.surface_velocities.is_empty()
+    }
+
+    /// Gives this step's contact `index` what a hook changed of it: its surface velocity, and
+    /// for a changed material or normal or points switched off, a changed copy for the solve and
+    /// the events, the contact as found kept aside for [`restore_edited`](Self::restore_edited).
+    /// The indices are the solver's: nothing adds or removes a contact from the hooks to the
+    /// restore.
+    pub(crate) fn apply_edit(&mut self, index: usize, edit: &ContactEdit) {
+        let count = self.current.len();
+        let Some(contact) = self.current.get_mut(index) else {
+            return;
+        };
+        if edit.surface_velocity != Vec3::ZERO {
+            if self.surface_velocities.len() < count {
+                self.surface_velocities.resize(count, Vec3::ZERO);
+            }
+            self.surface_velocities[index] = edit.surface_velocity;
+        }
+        if edit.material == contact.material && edit.normal.is_none() && edit.kept.is_none() {
+            return;
+        }
+        self.edited.push((index, *contact));
+        contact.material = edit.material;
+        if let Some(normal) = edit.normal {
+            contact.manifold.normal = normal;
+            contact.frame.solver.normal = normal;
+        }
+        if let Some(kept) = edit.kept {
+            contact.keep_points(kept);
+        }
+    }
+
+    /// Puts back the contacts the step's hooks changed, as they were found, with the impulses
+    /// the solve gave their changed copies, each point's normal impulse by feature id (zero on a
+    /// point switched off). The next step starts from the contacts as found.
+    pub fn restore_edited(&mut self) {
+        for (index, mut found) in self.edited.drain(..) {
+            let solved = &self.current[index];
+            let points = found.manifold.points().iter();
+            for (point, impulse) in points.zip(&mut found.normal_impulses) {
+                let same = solved
+                    .manifold
+                    .points()
+                    .iter()
+                    .position(|p| p.id == point.id);
+                *impulse = same.map_or(0.0, |same| solved.normal_impulses[same]);
+            }
+            found.friction_impulse = solved.friction_impulse;
+            found.twist_impulse = solved.twist_impulse;
+            found.rolling_impulse = solved.rolling_impulse;
+            self.current[index] = found;
+        }
     }
 
     /// Parks this step's contacts of the pairs `(a, b)` for which `parks(a, b)` is true: they

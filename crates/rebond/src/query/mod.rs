@@ -344,16 +344,8 @@ impl<'a> QueryFilter<'a> {
     }
 }
 
-/// `direction` normalised; a non-finite one is [`ErrorKind::NotFinite`], one too short to
-/// normalise [`ErrorKind::ZeroVector`].
-fn unit_direction(field: &str, direction: Vec3) -> Result<Vec3> {
-    if !direction.is_finite() {
-        return Err(Error::new(field, ErrorKind::NotFinite));
-    }
-    direction
-        .try_normalize()
-        .ok_or_else(|| Error::new(field, ErrorKind::ZeroVector))
-}
+// A query's direction is normalised and checked as every direction the engine takes.
+use crate::error::check_direction as unit_direction;
 
 /// A user pose with a finite position and a normalised rotation; errors name `position` or
 /// `rotation` within `field` (`pose.position`).

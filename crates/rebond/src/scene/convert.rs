@@ -229,6 +229,12 @@ pub(super) fn body_desc(
     if let Some(entry) = &entry.path {
         desc.path = Some(path(entry, &field("path"), desc.position, desc.rotation)?);
     }
+    if let Some(value) = entry.one_way {
+        desc.one_way = Some(vector(&field("one_way"), value)?);
+    }
+    if let Some(value) = entry.surface_velocity {
+        desc.surface_velocity = vector(&field("surface_velocity"), value)?;
+    }
     Ok(desc)
 }
 

@@ -150,6 +150,10 @@ pub(super) struct BodyEntry {
     pub(super) collision_groups: Option<JsonObject<GroupsEntry>>,
     /// Keyframes a kinematic body follows.
     pub(super) path: Option<JsonObject<PathEntry>>,
+    /// Extension of the contract: the direction, body frame, bodies pass through it from.
+    pub(super) one_way: Option<[f64; 3]>,
+    /// Extension of the contract: the velocity of its surface, m/s, body frame (a conveyor).
+    pub(super) surface_velocity: Option<[f64; 3]>,
 }
 
 /// A kinematic body's keyframes, as written.

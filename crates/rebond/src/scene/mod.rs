@@ -434,7 +434,7 @@ impl Scene {
                 .map(|joint| named(&joint.name, joint.handle.0))
                 .collect(),
         };
-        let snapshot = crate::state::SnapshotV1::of(&self.world, Some(scene));
+        let snapshot = crate::state::SnapshotV2::of(&self.world, Some(scene));
         crate::state::encode(SCENE_MAGIC, &(step, self), snapshot)
     }
 
@@ -471,8 +471,9 @@ impl Scene {
             }
             Decoded::Portable(snapshot) => {
                 let missing = || StateError::Inconsistent("the scene's names are missing".into());
-                let names = snapshot.scene.ok_or_else(missing)?;
-                let world = snapshot.world.restore().map_err(StateError::Inconsistent)?;
+                let mut snapshot = *snapshot;
+                let names = snapshot.scene.take().ok_or_else(missing)?;
+                let world = snapshot.restore_world().map_err(StateError::Inconsistent)?;
                 let identity = world.identity();
                 let handle = |named: &crate::state::NamedV1| {
                     crate::arena::ArenaIndex::from_parts(named.slot, named.generation, identity)

@@ -147,6 +147,9 @@ impl ConstraintKind for ContactConstraints {
                 self.rolling
                     .add(index, lane_contacts, &solver_bodies.motions);
             }
+            if contacts.has_surface_velocities() {
+                self.lanes[index].set_surface_velocities(|index| contacts.surface_velocity(index));
+            }
         }
         self.softness = context.contact.softness(context.h, context.inverse_h);
         self.push_speed = context.contact.push_speed;

@@ -34,11 +34,32 @@ use crate::{World, WorldSettings};
 pub(crate) enum Snapshot {
     /// Version 1 (rebond's state format version 2).
     V1(SnapshotV1),
+    /// Version 2: version 1's records and the bodies' contact rules.
+    V2(SnapshotV2),
 }
 
 /// How many versions of [`Snapshot`] this build reads: its variants, numbered from 0 in its
 /// encoding.
-pub(crate) const SNAPSHOT_VERSIONS: u32 = 1;
+pub(crate) const SNAPSHOT_VERSIONS: u32 = 2;
+
+/// Version 2 of a snapshot: version 1's, and the contact rules of the bodies that have some.
+#[derive(Serialize, Deserialize)]
+pub(crate) struct SnapshotV2 {
+    pub world: WorldV1,
+    pub scene: Option<SceneV1>,
+    /// By ascending slot.
+    contact_rules: Vec<ContactRulesV2>,
+}
+
+/// A body's contact rules ([`crate::hooks`]), body frame.
+#[derive(Serialize, Deserialize)]
+struct ContactRulesV2 {
+    slot: u32,
+    /// Unit direction bodies pass through it from.
+    one_way: Option<[f32; 3]>,
+    /// m/s.
+    surface_velocity: [f32; 3],
+}
 
 /// Version 1 of a snapshot: a world, and for a scene's state its names and clock.
 #[derive(Serialize, Deserialize)]
@@ -309,21 +330,55 @@ struct JointV1 {
     angle: f32,
 }
 
-impl SnapshotV1 {
+impl SnapshotV2 {
     /// The snapshot of `world`, and of a scene's `scene` part.
     pub fn of(world: &World, scene: Option<SceneV1>) -> Self {
+        let (bodies, _, _) = world.portable_parts();
+        let contact_rules = (bodies.slots().enumerate())
+            .filter_map(|(slot, (_, body))| {
+                let body = body.filter(|body| body.has_contact_rules())?;
+                Some(ContactRulesV2 {
+                    slot: slot as u32,
+                    one_way: body.one_way.map(|direction| direction.to_array()),
+                    surface_velocity: body.surface_velocity.to_array(),
+                })
+            })
+            .collect();
         Self {
             world: WorldV1::of(world),
             scene,
+            contact_rules,
         }
+    }
+
+    /// The world of the snapshot, with its bodies' contact rules ([`WorldV1::restore`]).
+    pub fn restore_world(self) -> Result<World, String> {
+        let mut world = self.world.restore()?;
+        for rules in self.contact_rules {
+            let slot = rules.slot as usize;
+            world
+                .restore_contact_rules(
+                    slot,
+                    rules.one_way.map(Vec3::from_array),
+                    Vec3::from_array(rules.surface_velocity),
+                )
+                .map_err(|error| format!("body {slot}: {error}"))?;
+        }
+        Ok(world)
     }
 }
 
 impl Snapshot {
-    /// The latest version of the snapshot, whatever version it was written in.
-    pub fn into_latest(self) -> SnapshotV1 {
+    /// The latest version of the snapshot, whatever version it was written in: a version 1
+    /// snapshot has no contact rules.
+    pub fn into_latest(self) -> SnapshotV2 {
         match self {
-            Self::V1(snapshot) => snapshot,
+            Self::V1(snapshot) => SnapshotV2 {
+                world: snapshot.world,
+                scene: snapshot.scene,
+                contact_rules: Vec::new(),
+            },
+            Self::V2(snapshot) => snapshot,
         }
     }
 }

@@ -7,6 +7,7 @@ use crate::arena::Arena;
 use crate::body::{BodyHandle, BodyType, RigidBody};
 use crate::collision::FAST_MOTION_REACHES;
 use crate::filter::{Colliders, IgnoredPairs};
+use crate::hooks::{ContactHooks, ContactModification};
 use crate::joint::JointSet;
 use crate::material::Material;
 use crate::math::{Aabb, Vec3};
@@ -201,6 +202,35 @@ impl World {
                     islands.note_woken(sleeper.slot());
                 }
             }
+        }
+    }
+
+    /// Shows each of this step's contacts with a body that has contact rules of its own, or
+    /// every contact when there are `hooks`, to the rules and then to the hooks, in the
+    /// contacts' order, and hands what they changed to the contact cache ([`crate::hooks`]).
+    pub(super) fn modify_contacts(&mut self, mut hooks: Option<&mut dyn ContactHooks>) {
+        let Self {
+            bodies, contacts, ..
+        } = self;
+        for index in 0..contacts.contacts().len() {
+            let contact = &contacts.contacts()[index];
+            let (a, b) = contact.bodies();
+            let (Some(body_a), Some(body_b)) = (bodies.get(a.0), bodies.get(b.0)) else {
+                continue;
+            };
+            let ruled = body_a.has_contact_rules() || body_b.has_contact_rules();
+            if contact.manifold.is_empty() || !(ruled || hooks.is_some()) {
+                continue;
+            }
+            let mut modification = ContactModification::new(contact, body_a, body_b);
+            if ruled {
+                modification.apply_body_rules();
+            }
+            if let Some(hooks) = hooks.as_deref_mut() {
+                hooks.modify_contact(&mut modification);
+            }
+            let edit = modification.edit();
+            contacts.apply_edit(index, &edit);
         }
     }
 }

@@ -17,6 +17,9 @@
 //! each fixed where the step left it, and pushes those it would end deep in or past: it cannot
 //! be put back, as it ends the step where it was told to
 //! ([`World::push_ahead_of_fast_kinematic_bodies`]).
+//!
+//! A fast body passes through a one-way body from the side that lets it (`hooks.rs`): an impact
+//! whose normal the one-way rule refuses is no impact.
 
 use super::contact_update::pair_interacts;
 use super::{World, WorldSettings};
@@ -25,6 +28,7 @@ use crate::body::{BodyHandle, BodyType, RigidBody};
 use crate::collision::time_of_impact::{time_of_impact, Impact, ImpactTolerances, Motion};
 use crate::collision::FAST_MOTION_REACHES;
 use crate::filter::{Colliders, IgnoredPairs};
+use crate::hooks::one_way_holds;
 use crate::joint::JointSet;
 use crate::math::{Pose, Vec3};
 use crate::solver::FastMotion;
@@ -129,7 +133,8 @@ impl World {
                         &other_motion,
                         tolerances,
                         |a, b| colliders.0.touch(a, &colliders.1, b),
-                    );
+                    )
+                    .filter(|impact| one_way_holds(body, other, impact.normal));
                     if let Some(impact) = impact {
                         if earliest.is_none_or(|kept| impact.t < kept.impact.t) {
                             earliest = Some(Stop {
@@ -233,7 +238,8 @@ impl World {
                     &fixed_motion(other),
                     tolerances,
                     |a, b| colliders.0.touch(a, &colliders.1, b),
-                );
+                )
+                .filter(|impact| one_way_holds(kinematic, other, impact.normal));
                 impacts.extend(impact.map(|impact| Stop {
                     slot: other_slot,
                     impact,

@@ -6,10 +6,12 @@
 use super::{World, WorldSettings};
 use crate::arena::{restore_world, Arena};
 use crate::body::{BodyHandle, BodyType, RigidBody};
+use crate::error::{check_direction, check_length};
 use crate::filter::IgnoredPairs;
 use crate::island::Islands;
 use crate::joint::JointSet;
 use crate::limits::{MAX_ANGULAR_SPEED, MAX_MASS, MAX_SPEED, MIN_MASS};
+use crate::math::Vec3;
 
 /// How far past a speed limit a decoded velocity may lie: the step holds velocities to the limits
 /// in `f32`, which may land a rounding above them.
@@ -40,6 +42,13 @@ impl World {
         }
         if self.broad_phase.proxy_count() != self.bodies.len() {
             return Err("the broad phase holds proxies of no body".to_owned());
+        }
+        let ruled = self
+            .bodies
+            .iter()
+            .filter(|(_, body)| body.has_contact_rules());
+        if ruled.count() != self.contact_rule_bodies {
+            return Err("the count of bodies with contact rules is wrong".to_owned());
         }
         self.broad_phase.check_decoded(slots)?;
         self.islands.check_decoded(&self.bodies)?;
@@ -73,6 +82,9 @@ impl World {
         world.islands = Islands::restored(&bodies);
         world.bodies = bodies;
         world.joints = joints;
+        world.contact_rule_bodies = (world.bodies.iter())
+            .filter(|(_, body)| body.has_contact_rules())
+            .count();
         let slots = world.bodies.slot_count();
         for slot in 0..slots {
             let Some(body) = world.bodies.at_slot_mut(slot) else {
@@ -102,6 +114,31 @@ impl World {
     /// The world's identity, which its handles carry.
     pub(crate) fn identity(&self) -> u32 {
         self.bodies.world()
+    }
+
+    /// Gives the body in arena slot `slot` its contact rules, checked as [`World::set_one_way`]
+    /// and [`World::set_surface_velocity`] check them, without waking anything: a portable
+    /// snapshot's last part.
+    pub(crate) fn restore_contact_rules(
+        &mut self,
+        slot: usize,
+        one_way: Option<Vec3>,
+        surface_velocity: Vec3,
+    ) -> crate::Result<()> {
+        let one_way = one_way
+            .map(|direction| check_direction("one_way", direction))
+            .transpose()?;
+        check_length("surface_velocity", surface_velocity, MAX_SPEED)?;
+        let body = self
+            .bodies
+            .at_slot_mut(slot)
+            .ok_or_else(|| crate::Error::new("", crate::ErrorKind::StaleHandle))?;
+        let had_rules = body.has_contact_rules();
+        body.one_way = one_way;
+        body.surface_velocity = surface_velocity;
+        let has_rules = body.has_contact_rules();
+        self.count_contact_rules(had_rules, has_rules);
+        Ok(())
     }
 
     /// The parts a portable snapshot reads: bodies, joints and ignored pairs.
@@ -164,6 +201,10 @@ fn check_body(body: &RigidBody) -> Result<(), String> {
     .all(|value| value.is_finite() && *value >= 0.0)
         && (0.0..=1.0).contains(&body.restitution)
         && body.contact_force_threshold >= 0.0
+        && body
+            .one_way
+            .is_none_or(|direction| direction.is_finite() && direction.is_normalized())
+        && body.surface_velocity.length() <= MAX_SPEED
         && body.linear_velocity.length() <= MAX_SPEED * LIMIT_ROUNDING
         && body.angular_velocity.length() <= MAX_ANGULAR_SPEED * LIMIT_ROUNDING;
     if finite && in_range {

@@ -7,17 +7,19 @@
 //! 2. sleeping groups touched or pushed since the last step wake (`island.rs`);
 //! 3. contacts: broad phase, narrow phase, the contact cache, and the groups new contacts wake
 //!    (`contact_update.rs`, `collision/`);
-//! 4. islands: one union–find over the awake bodies' joints and touching contacts, which also
+//! 4. contact hooks: the bodies' own rules (one-way, surface velocity) and the user's hooks
+//!    change this step's contacts (`contact_update.rs`, [`crate::hooks`]);
+//! 5. islands: one union–find over the awake bodies' joints and touching contacts, which also
 //!    gives the joint groups (`island.rs`, built through `Solver::build_islands`);
-//! 5. the solve, island by island: substeps of the soft step over every kind of constraint
+//! 6. the solve, island by island: substeps of the soft step over every kind of constraint
 //!    (`solver/`: `stages.rs` runs them, `solver/mod.rs` lists them);
-//! 6. kinematic bodies land exactly on their targets (`body/kinematic.rs`);
-//! 7. the continuous pass puts back fast bodies that went through another, and pushes ahead of
+//! 7. kinematic bodies land exactly on their targets (`body/kinematic.rs`);
+//! 8. the continuous pass puts back fast bodies that went through another, and pushes ahead of
 //!    a moving kinematic body what it would pass (`continuous.rs`);
-//! 8. joints measure their forces and break (`joint/set.rs`, `joints.rs`);
-//! 9. contact, force and sensor events (`events.rs`);
-//! 10. sleep: the same islands fall asleep or stay awake, and what no awake body uses is parked
-//!     (`island.rs`).
+//! 9. joints measure their forces and break (`joint/set.rs`, `joints.rs`);
+//! 10. contact, force and sensor events (`events.rs`);
+//! 11. sleep: the contacts the hooks changed are put back as found, the same islands fall
+//!     asleep or stay awake, and what no awake body uses is parked (`island.rs`).
 
 mod contact_update;
 mod continuous;
@@ -32,11 +34,12 @@ use crate::collision::contact_cache::{Contact, ContactCache};
 use crate::collision::narrow_phase::NarrowPhase;
 use crate::collision::SPECULATIVE_DISTANCE;
 use crate::error::{
-    check_count, check_length, check_non_negative, check_positive, check_range, Error, ErrorKind,
-    Result,
+    check_count, check_direction, check_length, check_non_negative, check_positive, check_range,
+    Error, ErrorKind, Result,
 };
 use crate::events::{ContactEvent, ContactForceEvent, EventTracker, SensorEvent};
 use crate::filter::{ordered, Colliders, IgnoredPairs, InteractionGroups};
+use crate::hooks::ContactHooks;
 use crate::island::Islands;
 use crate::joint::{JointHandle, JointSet};
 use crate::limits::{MAX_GRAVITY, MAX_SPEED, MAX_TIMESTEP, MIN_TIMESTEP};
@@ -204,6 +207,9 @@ pub struct World {
     /// Arena slots of static bodies lent out by [`World::body_mut`] since the last step, whose
     /// bounding boxes the next step refreshes in case they were moved.
     touched_static_slots: Vec<usize>,
+    /// How many bodies are one-way or have a surface velocity: while none, and without a hook,
+    /// the step shows no contact to the hooks' pass.
+    contact_rule_bodies: usize,
     /// The continuous pass's bodies to put back or push, by slot, with where and against what.
     #[cfg_attr(feature = "serde", serde(skip))]
     impacts: Vec<continuous::Stop>,
@@ -244,6 +250,7 @@ impl World {
             step_work: StepWork::default(),
             bounds_of_slot: Vec::new(),
             touched_static_slots: Vec::new(),
+            contact_rule_bodies: 0,
             impacts: Vec::new(),
         })
     }
@@ -331,6 +338,7 @@ impl World {
     pub fn add_body(&mut self, desc: BodyDesc) -> Result<BodyHandle> {
         let body = RigidBody::from_desc(desc)?;
         let is_static = body.body_type == BodyType::Static;
+        self.count_contact_rules(false, body.has_contact_rules());
         let aabb = body.aabb();
         let index = self.bodies.insert(body);
         let proxy = self
@@ -362,16 +370,7 @@ impl World {
         if !self.bodies.get(handle.0).ok_or_else(stale)?.is_awake() {
             // A sleeping or static body may have parked contacts: its group and the groups resting
             // on it wake now, so that the contacts come back to be dropped below.
-            let resting: Vec<BodyHandle> = self
-                .contacts
-                .parked()
-                .filter(|contact| contact.key.body_a == handle || contact.key.body_b == handle)
-                .flat_map(|contact| [contact.key.body_a, contact.key.body_b])
-                .collect();
-            for other in resting {
-                self.wake_slot(other.slot());
-            }
-            self.wake_slot(handle.slot());
+            self.wake_with_resting(handle);
             self.wake_groups(false);
             // Its parked touching pairs and overlaps (a sensor around a sleeping body) end at the
             // next step, as an awake body's do.
@@ -399,7 +398,70 @@ impl World {
         }
         self.contacts.remove_body(handle);
         self.ignored_pairs.remove_body(handle);
+        self.count_contact_rules(body.has_contact_rules(), false);
         Ok(body)
+    }
+
+    /// Makes body `handle` one-way from `direction` (body frame, normalised here; zero or not
+    /// finite is an error for `one_way`), or solid again with `None`
+    /// ([`BodyDesc::one_way`](BodyDesc#structfield.one_way), [`crate::hooks`]). Wakes it and the
+    /// bodies asleep on it.
+    pub fn set_one_way(&mut self, handle: BodyHandle, direction: Option<Vec3>) -> Result<()> {
+        let one_way = direction
+            .map(|direction| check_direction("one_way", direction))
+            .transpose()?;
+        self.change_contact_rules(handle, |body| body.one_way = one_way)
+    }
+
+    /// Sets the velocity of body `handle`'s surface relative to it, m/s, body frame, at most
+    /// [`MAX_SPEED`](crate::limits::MAX_SPEED) long (else an error for `surface_velocity`): a
+    /// conveyor belt ([`BodyDesc::surface_velocity`](BodyDesc#structfield.surface_velocity),
+    /// [`crate::hooks`]). Wakes it and the bodies asleep on it.
+    pub fn set_surface_velocity(&mut self, handle: BodyHandle, velocity: Vec3) -> Result<()> {
+        let velocity = check_length("surface_velocity", velocity, MAX_SPEED)?;
+        self.change_contact_rules(handle, |body| body.surface_velocity = velocity)
+    }
+
+    /// Changes body `handle`'s contact rules with `change`, keeps the count of bodies with
+    /// rules, and wakes the body and the bodies asleep against it, which the change may set
+    /// moving.
+    fn change_contact_rules(
+        &mut self,
+        handle: BodyHandle,
+        change: impl FnOnce(&mut RigidBody),
+    ) -> Result<()> {
+        let body = self.bodies.get_mut(handle.0).ok_or_else(stale)?;
+        let had_rules = body.has_contact_rules();
+        change(body);
+        let has_rules = body.has_contact_rules();
+        self.count_contact_rules(had_rules, has_rules);
+        self.wake_with_resting(handle);
+        Ok(())
+    }
+
+    /// Wakes body `handle` and the bodies of its parked contacts (asleep on it, or under it);
+    /// their groups wake at the next [`World::wake_groups`].
+    fn wake_with_resting(&mut self, handle: BodyHandle) {
+        let resting: Vec<BodyHandle> = self
+            .contacts
+            .parked()
+            .filter(|contact| contact.key.body_a == handle || contact.key.body_b == handle)
+            .flat_map(|contact| [contact.key.body_a, contact.key.body_b])
+            .collect();
+        for body in resting {
+            self.wake_slot(body.slot());
+        }
+        self.wake_slot(handle.slot());
+    }
+
+    /// Keeps the count of bodies with contact rules as a body goes from having them or not
+    /// (`had`) to having them or not (`has`).
+    fn count_contact_rules(&mut self, had: bool, has: bool) {
+        match (had, has) {
+            (false, true) => self.contact_rule_bodies += 1,
+            (true, false) => self.contact_rule_bodies -= 1,
+            _ => {}
+        }
     }
 
     /// The body behind `handle`.
@@ -496,7 +558,9 @@ impl World {
     /// This step's contacts (one manifold per pair of touching convex parts), sorted by key: the
     /// contacts the step solved, each with at least one awake body. The contacts of sleeping
     /// bodies (asleep together, or asleep on a static body) are kept apart, unchanged, in
-    /// [`World::sleeping_contacts`] until one of their bodies wakes.
+    /// [`World::sleeping_contacts`] until one of their bodies wakes. Each is as the narrow phase
+    /// found it, with the impulses the solve gave it: a contact hook's changes
+    /// ([`crate::hooks`]) last for the step's solve and events alone.
     pub fn contacts(&self) -> &[Contact] {
         self.contacts.contacts()
     }
@@ -603,8 +667,19 @@ impl World {
     /// `settings.substeps` substeps. Forces and torques applied since the last step act during
     /// the whole step, then are cleared. Kinematic bodies with a pose target or a path move to
     /// it at the velocity that carries them there and end the step exactly on it
-    /// ([`RigidBody::set_kinematic_target`]).
+    /// ([`RigidBody::set_kinematic_target`]). The bodies' own contact rules (one-way bodies,
+    /// surface velocities: [`crate::hooks`]) apply.
     pub fn step(&mut self, dt: f32) -> Result<()> {
+        self.step_hooked(dt, None)
+    }
+
+    /// [`World::step`], with `hooks` shown each contact before the solve, after the bodies'
+    /// own contact rules, to change what the solver does with it this step ([`crate::hooks`]).
+    pub fn step_with_hooks(&mut self, dt: f32, hooks: &mut dyn ContactHooks) -> Result<()> {
+        self.step_hooked(dt, Some(hooks))
+    }
+
+    fn step_hooked(&mut self, dt: f32, hooks: Option<&mut dyn ContactHooks>) -> Result<()> {
         check_range("dt", dt, MIN_TIMESTEP, MAX_TIMESTEP)?;
         // The stages in order (module documentation). Kinematic velocities come first: the
         // contacts and the broad phase's sweep read them.
@@ -612,6 +687,11 @@ impl World {
         self.wake_groups(false);
         self.update_contacts(dt);
         self.wake_groups(true);
+        // After the contacts woken with their groups came back, so the hooks see every contact
+        // the solver will; no pass while no body has rules and there is no hook.
+        if self.contact_rule_bodies > 0 || hooks.is_some() {
+            self.modify_contacts(hooks);
+        }
         self.solve(dt);
         // Before anything reads the poses the step ended with.
         self.for_each_kinematic(|body| body.finish_kinematic_step(dt));
@@ -619,6 +699,8 @@ impl World {
         self.joints.finish_step(dt);
         self.refilter_broken_joints();
         self.update_events(dt);
+        // Before contacts are parked: what sleeps or comes to the next step is as found.
+        self.contacts.restore_edited();
         self.update_sleep(dt);
         Ok(())
     }

@@ -258,6 +258,9 @@ pub(crate) struct ContactLanes {
     /// tangent, zero but where a body's translation is locked ([`LinearMasses`]).
     tangent_coupling: [F32x4; 2],
     tangent_impulse: [F32x4; 2],
+    /// `t·u` per tangent, m/s: the velocity of B's contact point relative to A's that friction
+    /// drives toward, from the surface velocity `u` (zero but on a conveyor, `hooks.rs`).
+    tangent_target: [F32x4; 2],
     twist_spin_a: Vec3x4,
     twist_spin_b: Vec3x4,
     twist_mass: F32x4,
@@ -289,6 +292,7 @@ impl ContactLanes {
         tangent: [JacobianLanes::ZERO; 2],
         tangent_coupling: [F32x4::ZERO; 2],
         tangent_impulse: [F32x4::ZERO; 2],
+        tangent_target: [F32x4::ZERO; 2],
         twist_spin_a: Vec3x4::ZERO,
         twist_spin_b: Vec3x4::ZERO,
         twist_mass: F32x4::ZERO,
@@ -471,6 +475,21 @@ impl ContactLanes {
         self.tangent_impulse[0].set_lane(lane, friction_impulse.dot(tangent_1));
         self.tangent_impulse[1].set_lane(lane, friction_impulse.dot(tangent_2));
         self.twist_impulse.set_lane(lane, contact.twist_impulse);
+    }
+
+    /// Gives each lane the target of its friction from its contact's surface velocity
+    /// (`surface_velocity(index)`, m/s, A's surface relative to B's: `hooks.rs`), `t·u` along
+    /// each tangent; after [`Self::fill`], in the steps where some contact has one.
+    pub fn set_surface_velocities(&mut self, surface_velocity: impl Fn(usize) -> Vec3) {
+        for (lane, &index) in self.contacts.iter().enumerate() {
+            if index == usize::MAX {
+                continue;
+            }
+            let velocity = Vec3A::from(surface_velocity(index));
+            for (target, tangent) in self.tangent_target.iter_mut().zip(&self.tangents) {
+                target.set_lane(lane, velocity.dot(tangent.lanes()[lane]));
+            }
+        }
     }
 
     /// Whether any lane bounces (has a restitution above zero).
@@ -800,7 +819,8 @@ impl ContactLanes {
         (applied, total_normal_impulse)
     }
 
-    /// The manifold's friction at the centre of its points, clamped to the cone
+    /// The manifold's friction at the centre of its points, driving the relative tangential
+    /// velocity there toward the surface velocity's (`tangent_target`), clamped to the cone
     /// `|λ_t| ≤ μ Σλ_n`, then its twist about the normal clamped to `μ Σλ_n ⟨r⟩` (`⟨r⟩` the
     /// patch's mean distance from its centre, `contact_model::patch_radius_ratio`), given
     /// `Σλ_n`, and the pass's normal impulse `applied_normal`, which reaches the tangents' linear
@@ -819,7 +839,8 @@ impl ContactLanes {
         for axis in 0..2 {
             let jacobian = &self.tangent[axis];
             let mut velocity = self.tangents[axis].dot(bodies.relative_velocity)
-                + jacobian.spin_velocity(bodies.angular_a, bodies.angular_b);
+                + jacobian.spin_velocity(bodies.angular_a, bodies.angular_b)
+                - self.tangent_target[axis];
             if LOCKED {
                 velocity += self.tangent_coupling[axis] * applied_normal;
             }
