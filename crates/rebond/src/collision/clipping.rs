@@ -70,6 +70,11 @@ impl ClipFeature {
         };
         (kind << 14) | (u16::from(first & 0x7F) << 7) | u16::from(second & 0x7F)
     }
+
+    /// Whether `key` (see [`Self::key`]) is an [`ClipFeature::IncidentVertex`]'s.
+    pub fn is_incident_vertex_key(key: u16) -> bool {
+        key >> 14 == 0
+    }
 }
 
 /// A point of a clipped polygon or segment and the features that made it.
@@ -407,6 +412,10 @@ pub fn reduce_contacts(normal: Vec3, candidates: &[ContactPoint]) -> Manifold {
 /// `normal × tangent` (counter-clockwise about `normal`), any still missing added by `spread`.
 /// `tangent` is a unit direction in the face's plane fixed to the reference body.
 ///
+/// On a `bent` surface, a dropped point that touches and lies outside the kept points' polygon
+/// then takes the place of the nearest kept point that is apart
+/// (`hold_touching_points_outside`).
+///
 /// When a dropped point is deeper than every kept one by more than [`DEEPEST_SLACK`], the kept
 /// point nearest it moves onto it (position and separation), keeping its id: the manifold reaches
 /// the full depth and its set of ids stays the same. On a `bent` surface (triangles of a mesh
@@ -422,8 +431,8 @@ pub fn reduce_contacts_on_face(
         return manifold_of(normal, candidates, 0..candidates.len());
     }
     let bitangent = normal.cross(tangent);
-    let mut chosen = Chosen::default();
     let directions = [tangent, bitangent, -tangent, -bitangent];
+    let mut chosen = Chosen::default();
     for (turn, direction) in directions.iter().enumerate() {
         let farthest = candidates
             .iter()
@@ -446,8 +455,88 @@ pub fn reduce_contacts_on_face(
     }
     spread(normal, candidates, &mut chosen);
     let mut manifold = manifold_of(normal, candidates, chosen.indices().iter().copied());
+    if bent {
+        hold_touching_points_outside(&mut manifold, candidates, chosen.indices());
+    }
     reach_deepest(&mut manifold, candidates, chosen.indices(), bent);
     manifold
+}
+
+/// On a bent surface, gives each dropped candidate that touches (deepest first) and lies outside
+/// the polygon of the kept points the place of the kept point nearest it among those apart, with
+/// its own id, while any kept point is apart. A cap resting across a crease touches at rim points
+/// between the extremes along the tangents, which may all be apart: held at two of its four
+/// touching points, it rocked on for ever. A touching point inside the polygon (a box's face
+/// across a ridge touching along its middle) adds no support, and the corners apart are what
+/// catch the face when it tips.
+fn hold_touching_points_outside(
+    manifold: &mut Manifold,
+    candidates: &[ContactPoint],
+    kept: &[usize],
+) {
+    let normal = manifold.normal;
+    let mut touching: [usize; 2 * MAX_CLIP_VERTICES] = [0; 2 * MAX_CLIP_VERTICES];
+    let mut count = 0;
+    for (index, candidate) in candidates.iter().enumerate() {
+        if candidate.separation < 0.0 && !kept.contains(&index) && count < touching.len() {
+            touching[count] = index;
+            count += 1;
+        }
+    }
+    let touching = &mut touching[..count];
+    touching.sort_by(|&a, &b| {
+        candidates[a]
+            .separation
+            .total_cmp(&candidates[b].separation)
+            .then(a.cmp(&b))
+    });
+    for &index in touching.iter() {
+        let candidate = candidates[index];
+        let points = manifold.points();
+        if points.len() < 3 || !points.iter().any(|point| point.separation > 0.0) {
+            return;
+        }
+        if inside_polygon(points, candidate.position, normal) {
+            continue;
+        }
+        let distance = |point: &ContactPoint| point.position.distance_squared(candidate.position);
+        let nearest_apart = points
+            .iter()
+            .enumerate()
+            .filter(|(_, point)| point.separation > 0.0)
+            .min_by(|(_, a), (_, b)| distance(a).total_cmp(&distance(b)))
+            .map(|(slot, _)| slot);
+        if let Some(slot) = nearest_apart {
+            manifold.points_mut()[slot] = candidate;
+        }
+    }
+}
+
+/// Whether `point` lies inside the convex polygon of `points` (in any order) seen along `normal`:
+/// the points are ordered counter-clockwise about their centre, by half-plane and then by the
+/// cross product (no trigonometry, so the same bits on every platform).
+fn inside_polygon(points: &[ContactPoint], point: Vec3, normal: Vec3) -> bool {
+    let centre = points.iter().map(|p| p.position).sum::<Vec3>() / points.len() as f32;
+    let reference = (points[0].position - centre).normalize_or_zero();
+    let side = normal.cross(reference);
+    let planar = |slot: usize| {
+        let offset = points[slot].position - centre;
+        (offset.dot(reference), offset.dot(side))
+    };
+    let half = |(x, y): (f32, f32)| u8::from(y < 0.0 || (y == 0.0 && x < 0.0));
+    let mut order = [0, 1, 2, 3];
+    let order = &mut order[..points.len().min(MAX_MANIFOLD_POINTS)];
+    order.sort_by(|&a, &b| {
+        let ((ax, ay), (bx, by)) = (planar(a), planar(b));
+        half((ax, ay))
+            .cmp(&half((bx, by)))
+            .then_with(|| (ay * bx).total_cmp(&(ax * by)))
+    });
+    (0..order.len()).all(|k| {
+        let from = points[order[k]].position;
+        let to = points[order[(k + 1) % order.len()]].position;
+        signed_double_area(from, to, point, normal) >= 0.0
+    })
 }
 
 /// Moves kept points of `manifold` (the candidates at `kept`, in order) onto deeper dropped ones
@@ -842,6 +931,31 @@ mod tests {
             ids.sort_unstable();
             assert_eq!(ids, [0, 3, 4, 5], "from {candidates:?}");
             candidates.rotate_left(1);
+        }
+    }
+
+    #[test]
+    fn bent_face_reduction_keeps_the_points_that_touch() {
+        // A cylinder's cap (radius 0.3 m) resting on a terrain across a crease: its rim points
+        // found by the triangles, four touching and four up to 1.4 mm apart, the extremes along
+        // the tangents among the ones apart. Kept by place, the extremes held the cap on two of
+        // its four touching points (the other two moved in), and it rocked at 5 cm/s for ever.
+        let candidates = [
+            contact(-0.2709, -0.1306, 1.167e-3, 0),
+            contact(-0.1056, -0.2828, 1.399e-3, 1),
+            contact(0.1204, -0.2703, -1.66e-4, 2),
+            contact(0.2745, -0.1003, -3.7e-5, 3),
+            contact(-0.1245, 0.2671, -3.6e-5, 4),
+            contact(-0.2786, 0.0971, -1.12e-4, 5),
+            contact(0.1013, 0.2797, 8.66e-4, 6),
+            contact(0.2665, 0.1276, 7.95e-4, 7),
+        ];
+        let manifold = reduce_contacts_on_face(Vec3::Z, Vec3::X, &candidates, true);
+        let mut ids: Vec<u32> = manifold.points().iter().map(|point| point.id).collect();
+        ids.sort_unstable();
+        assert_eq!(ids, [2, 3, 4, 5]);
+        for point in manifold.points() {
+            assert_eq!(point.position, candidates[point.id as usize].position);
         }
     }
 

@@ -80,6 +80,14 @@ const DUPLICATE_DISTANCE: f32 = 1.0e-3;
 /// The id of the deepest point found by GJK/EPA.
 pub(crate) const DEEPEST_POINT_ID: u32 = u32::MAX;
 
+/// Whether a point's id (as [`clip_against_face`] writes it) names a vertex of shape B's face
+/// lying inside shape A's reference face 0: a point of shape B itself, the same wherever A's
+/// face is. A mesh's triangles are each A's face 0, so such a point found by one triangle or by
+/// its neighbour is the same point.
+pub(crate) fn is_vertex_of_b_on_face(id: u32) -> bool {
+    id != DEEPEST_POINT_ID && id >> 23 == 0 && ClipFeature::is_incident_vertex_key(id as u16)
+}
+
 /// A shape's supporting feature along a direction, in world space, on the shape's core.
 pub(crate) struct Feature {
     points: [Vec3; MAX_FEATURE_VERTICES],

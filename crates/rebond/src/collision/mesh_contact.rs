@@ -13,7 +13,7 @@
 //! ends of its rim), and both are kept.
 
 use super::clipping::reduce_contacts_on_face;
-use super::feature_contact::DEEPEST_POINT_ID;
+use super::feature_contact::{is_vertex_of_b_on_face, DEEPEST_POINT_ID};
 use super::manifold::{ContactPoint, Manifold};
 use super::triangle_contact::{collide_triangle_from, TriangleSimplex};
 use crate::math::{Aabb, Pose, Vec3};
@@ -162,8 +162,12 @@ impl MeshScratch {
                     continue;
                 }
                 for point in manifold.points() {
-                    let id = if point.id == DEEPEST_POINT_ID
-                        && keeps_deepest_id(&points[start..], point, same_deepest)
+                    // A vertex of the shape keeps its id whichever triangle finds it, so that a
+                    // corner or rim point resting on a triangle's edge keeps its warm start as
+                    // it sways from one side to the other.
+                    let id = if (point.id == DEEPEST_POINT_ID
+                        && keeps_deepest_id(&points[start..], point, same_deepest))
+                        || is_vertex_of_b_on_face(point.id)
                     {
                         point.id
                     } else {

@@ -10,6 +10,7 @@
 //! contacts, and their impulses go straight back to the contacts. Each point's normal and the two
 //! friction directions are axis parts (`parts.rs`).
 
+use super::contact_model::limit_surface_projection;
 use super::normal_block::NormalBlock;
 use super::parts::{inverse_or_zero, BodyFrame, BodyLanes, JacobianLanes, LinearMasses};
 use super::softness::Softness;
@@ -261,6 +262,9 @@ pub(crate) struct ContactLanes {
     /// `t·u` per tangent, m/s: the velocity of B's contact point relative to A's that friction
     /// drives toward, from the surface velocity `u` (zero but on a conveyor, `hooks.rs`).
     tangent_target: [F32x4; 2],
+    /// `n·(I_A⁻¹(r_A × t) + I_B⁻¹(r_B × t))` per tangent: how a tangent impulse at the points'
+    /// centre turns the bodies about the normal, which the twist's trial impulse takes in.
+    tangent_twist: [F32x4; 2],
     twist_spin_a: Vec3x4,
     twist_spin_b: Vec3x4,
     twist_mass: F32x4,
@@ -293,6 +297,7 @@ impl ContactLanes {
         tangent_coupling: [F32x4::ZERO; 2],
         tangent_impulse: [F32x4::ZERO; 2],
         tangent_target: [F32x4::ZERO; 2],
+        tangent_twist: [F32x4::ZERO; 2],
         twist_spin_a: Vec3x4::ZERO,
         twist_spin_b: Vec3x4::ZERO,
         twist_mass: F32x4::ZERO,
@@ -370,8 +375,9 @@ impl ContactLanes {
         lanes.twist_radius = radius_ratios * (square_distances / counts).sqrt();
         for axis in 0..2 {
             let direction = lanes.tangents[axis];
-            lanes.tangent[axis] =
-                JacobianLanes::new((&a, &b), &masses, (center_a, center_b), direction);
+            let jacobian = JacobianLanes::new((&a, &b), &masses, (center_a, center_b), direction);
+            lanes.tangent_twist[axis] = normal.dot(jacobian.spin_a + jacobian.spin_b);
+            lanes.tangent[axis] = jacobian;
             if masses.locked {
                 lanes.tangent_coupling[axis] = masses.coupling(direction, normal);
             }
@@ -819,13 +825,16 @@ impl ContactLanes {
         (applied, total_normal_impulse)
     }
 
-    /// The manifold's friction at the centre of its points, driving the relative tangential
-    /// velocity there toward the surface velocity's (`tangent_target`), clamped to the cone
-    /// `|λ_t| ≤ μ Σλ_n`, then its twist about the normal clamped to `μ Σλ_n ⟨r⟩` (`⟨r⟩` the
-    /// patch's mean distance from its centre, `contact_model::patch_radius_ratio`), given
-    /// `Σλ_n`, and the pass's normal impulse `applied_normal`, which reaches the tangents' linear
-    /// velocities only through a locked body (`t·M⁻¹n ≠ 0`). Applies the spins to `bodies` and
-    /// returns the linear impulse, for [`PassLanes::finish`].
+    /// The manifold's friction: two tangent impulses at the centre of its points, driving the
+    /// relative tangential velocity there toward the surface velocity's (`tangent_target`), and a
+    /// twist impulse about the normal, kept together within the limit surface
+    /// `(|λ_t| / μΣλ_n)² + (λ_tw / μΣλ_n⟨r⟩)² ≤ 1` (`contact_model::limit_surface_projection`;
+    /// `⟨r⟩` the patch's mean distance from its centre, `contact_model::patch_radius_ratio`),
+    /// given `Σλ_n`, and the pass's normal impulse `applied_normal`, which reaches the tangents'
+    /// linear velocities only through a locked body (`t·M⁻¹n ≠ 0`). The tangents' trial impulses
+    /// are solved from the same velocities, the twist's after them (through
+    /// [`Self::tangent_twist`]), then the three are projected together. Applies the spins to
+    /// `bodies` and returns the linear impulse, for [`PassLanes::finish`].
     #[inline(always)]
     fn solve_friction<const LOCKED: bool>(
         &mut self,
@@ -833,9 +842,10 @@ impl ContactLanes {
         total_normal_impulse: F32x4,
         applied_normal: F32x4,
     ) -> Vec3x4 {
-        let limit = self.friction * total_normal_impulse;
         let old = self.tangent_impulse;
-        let mut total = [F32x4::ZERO; 2];
+        let old_twist = self.twist_impulse;
+        let mut spin = (bodies.angular_b - bodies.angular_a).dot(self.normal);
+        let mut trial = [F32x4::ZERO; 2];
         for axis in 0..2 {
             let jacobian = &self.tangent[axis];
             let mut velocity = self.tangents[axis].dot(bodies.relative_velocity)
@@ -844,31 +854,24 @@ impl ContactLanes {
             if LOCKED {
                 velocity += self.tangent_coupling[axis] * applied_normal;
             }
-            total[axis] = old[axis] - jacobian.mass * velocity;
+            trial[axis] = old[axis] - jacobian.mass * velocity;
+            spin += self.tangent_twist[axis] * (trial[axis] - old[axis]);
         }
-        let length = (total[0] * total[0] + total[1] * total[1]).sqrt();
-        let slides = length.greater_than(limit);
-        let scale = length
-            .greater_than(F32x4::ZERO)
-            .select(limit / length, F32x4::ZERO);
-        for value in &mut total {
-            *value = slides.select(*value * scale, *value);
-        }
-        self.tangent_impulse = total;
+        let [tangent_1, tangent_2, twist] = limit_surface_projection(
+            [trial[0], trial[1], old_twist - self.twist_mass * spin],
+            [self.tangent[0].mass, self.tangent[1].mass, self.twist_mass],
+            self.friction * total_normal_impulse,
+            self.twist_radius,
+        );
+        self.tangent_impulse = [tangent_1, tangent_2];
         let mut linear_impulse = Vec3x4::ZERO;
-        for axis in 0..2 {
-            let applied = total[axis] - old[axis];
+        for (axis, previous) in old.into_iter().enumerate() {
+            let applied = self.tangent_impulse[axis] - previous;
             linear_impulse += self.tangents[axis].scale(applied);
             self.tangent[axis].apply_spin(&mut bodies.angular_a, &mut bodies.angular_b, applied);
         }
-
-        let twist_limit = limit * self.twist_radius;
-        let spin = (bodies.angular_b - bodies.angular_a).dot(self.normal);
-        let old_twist = self.twist_impulse;
-        self.twist_impulse = (old_twist - self.twist_mass * spin)
-            .max(-twist_limit)
-            .min(twist_limit);
-        self.apply_twist(bodies, self.twist_impulse - old_twist);
+        self.twist_impulse = twist;
+        self.apply_twist(bodies, twist - old_twist);
         linear_impulse
     }
 }
