@@ -12,7 +12,7 @@
 //! apart are two places where the shape touches (a cylinder across a ridge, touching with both
 //! ends of its rim), and both are kept.
 
-use super::clipping::reduce_contacts_on_face;
+use super::clipping::{reduce_contacts_on_face, Surface};
 use super::feature_contact::{is_vertex_of_b_on_face, DEEPEST_POINT_ID};
 use super::manifold::{ContactPoint, Manifold};
 use super::triangle_contact::{collide_triangle_from, TriangleSimplex};
@@ -68,12 +68,14 @@ impl MeshScratch {
     /// the merged manifolds from 0, in a deterministic order: triangles by index, groups by their
     /// first triangle. Each triangle's GJK query starts from its simplex in `previous_simplices`,
     /// and `simplices` holds those this query leaves, by triangle index (passed with every group).
+    /// `reach` (m, within `margin`) is how far the two can close in the step.
     pub(crate) fn collide(
         &mut self,
         mesh: &PlacedMesh,
         part: &Shape,
         part_pose: &Pose,
         margin: f32,
+        reach: f32,
         mut emit: impl FnMut(u32, Manifold, &[KeptSimplex]),
     ) {
         self.simplices.clear();
@@ -132,7 +134,7 @@ impl MeshScratch {
                 .unwrap_or_else(|| normal.any_orthonormal_vector());
             emit(
                 group_index,
-                reduce_contacts_on_face(normal, tangent, points, true),
+                reduce_contacts_on_face(normal, tangent, points, Surface::Bent { reach }),
                 &self.simplices,
             );
         }

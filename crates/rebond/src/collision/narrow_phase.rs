@@ -144,9 +144,18 @@ impl<F: FnMut(u32, u32, Manifold)> PartContacts for ColdStart<F> {
 pub struct NarrowPhase {
     polytope: Polytope,
     mesh: MeshScratch,
+    /// The part of every margin that is not motion, m ([`NarrowPhase::set_speculative_distance`]).
+    speculative_distance: f32,
 }
 
 impl NarrowPhase {
+    /// Sets the speculative distance the world adds to every pair's margin (m, default 0): the
+    /// rest of a margin is how far the pair can close in the step, which mesh manifolds keep
+    /// points for (`clipping::Surface::Bent`). Left at 0, the whole margin counts as motion.
+    pub fn set_speculative_distance(&mut self, distance: f32) {
+        self.speculative_distance = distance;
+    }
+
     /// The manifold between two convex shapes (neither a compound, a mesh nor a heightfield), with
     /// the normal from A toward B, or `None` when their surfaces are farther apart than `margin`
     /// metres.
@@ -368,6 +377,7 @@ impl NarrowPhase {
                 pose_a,
             )
         };
+        let reach = (margin - self.speculative_distance).max(0.0);
         let scratch = &mut self.mesh;
         for_each_part(other, other_pose, |child, part, part_pose| {
             let touch = if mesh_is_a {
@@ -387,6 +397,7 @@ impl NarrowPhase {
                 part,
                 &part_pose,
                 margin,
+                reach,
                 |group, manifold, simplices| {
                     let manifold = if mesh_is_a {
                         manifold

@@ -15,7 +15,7 @@
 //! (`box_face_contact`).
 
 use crate::collision::clipping::{
-    clip_by_sides, clip_polygon_within, reduce_contacts_on_face, ClipFeature, ClipPolygon,
+    clip_by_sides, clip_polygon_within, reduce_contacts_on_face, ClipFeature, ClipPolygon, Surface,
     MAX_CLIP_VERTICES, MAX_POLYGON_VERTICES,
 };
 use crate::collision::gjk;
@@ -512,7 +512,7 @@ fn clipped_face_manifold<const CAPACITY: usize>(
         manifold_normal,
         tangent,
         &candidates[..count],
-        false,
+        Surface::Flat,
     ))
 }
 

@@ -93,6 +93,7 @@ impl World {
         contacts.begin_step();
         events.begin_sensor_step();
         *narrow_phase_pair_tests = 0;
+        narrow_phase.set_speculative_distance(settings.speculative_distance);
         for &(key_a, key_b) in broad_phase.pairs() {
             let (Some((index_a, body_a)), Some((index_b, body_b))) = (
                 bodies.at_slot(key_a as usize),
