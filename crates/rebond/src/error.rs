@@ -31,6 +31,10 @@ pub enum ErrorKind {
     IndexOutOfRange { index: u32, len: usize },
     /// A triangle mesh with no triangle of positive area.
     EmptyMesh,
+    /// A mesh triangle's material index that names no material of the mesh's table.
+    MaterialOutOfRange { index: u32, len: usize },
+    /// A list that must give one value per item (a material per triangle) of another length.
+    WrongCount { expected: usize, got: usize },
     /// Heightfield rows that are too few (fewer than 2), too short (fewer than 2 samples) or of
     /// unequal lengths.
     InvalidHeightField,
@@ -127,6 +131,15 @@ impl fmt::Display for ErrorKind {
                 write!(f, "index {index} is out of range for {len} vertices")
             }
             Self::EmptyMesh => write!(f, "the mesh has no triangle of positive area"),
+            Self::MaterialOutOfRange { index, len } => {
+                write!(f, "material {index} is out of range for {len} materials")
+            }
+            Self::WrongCount { expected, got } => {
+                write!(
+                    f,
+                    "expected {expected} values (one per triangle), got {got}"
+                )
+            }
             Self::InvalidHeightField => write!(
                 f,
                 "heightfield rows must be at least 2, each of the same length, at least 2"

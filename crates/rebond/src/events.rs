@@ -93,6 +93,11 @@ pub struct ContactEvent {
     pub collider_b: u32,
     /// Started or stopped.
     pub kind: ContactEventKind,
+    /// The triangle of the body that is a triangle mesh or heightfield (A or B) the pair touches
+    /// on ([`crate::Contact::triangle`]): for a start, where it first touched; for a stop, where
+    /// it last touched. Of the pair's contacts on several triangles, the one pressed hardest (the
+    /// first in contact order when none is pressed yet). `None` between other shapes.
+    pub triangle: Option<u32>,
 }
 
 /// A touching collider pair whose normal force exceeded its threshold during the last step.
@@ -143,23 +148,55 @@ pub struct SensorEvent {
 }
 
 /// Collider `collider_a` of body `a` and collider `collider_b` of body `b`: a touching pair
-/// (smaller handle first) or a sensor overlap (sensor first). Ordered by bodies, then colliders.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+/// (smaller handle first) or a sensor overlap (sensor first). Ordered and compared by bodies,
+/// then colliders: the mesh triangle it carries along names where a touching pair touches, and
+/// a pair touching on another triangle than at the step before is the same pair.
+#[derive(Debug, Clone, Copy)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct ColliderPair {
     a: BodyHandle,
     b: BodyHandle,
     collider_a: u32,
     collider_b: u32,
+    triangle: Option<u32>,
+}
+
+impl ColliderPair {
+    /// What pairs are compared by.
+    fn key(&self) -> (BodyHandle, BodyHandle, u32, u32) {
+        (self.a, self.b, self.collider_a, self.collider_b)
+    }
+}
+
+impl PartialEq for ColliderPair {
+    fn eq(&self, other: &Self) -> bool {
+        self.key() == other.key()
+    }
+}
+
+impl Eq for ColliderPair {}
+
+impl PartialOrd for ColliderPair {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for ColliderPair {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.key().cmp(&other.key())
+    }
 }
 
 /// One collider pair's share of a step's contacts: its normal impulse summed over its manifolds,
-/// N·s, the same weighted by their normals, and whether its surfaces meet.
+/// N·s, the same weighted by their normals, whether its surfaces meet, and the mesh triangle of
+/// its manifold of most impulse (the first one's while none has any) with that impulse.
 #[derive(Debug, Clone, Copy)]
 struct ColliderSum {
     impulse: f32,
     impulse_vector: Vec3,
     surfaces_meet: bool,
+    triangle: Option<(u32, f32)>,
 }
 
 impl ColliderSum {
@@ -167,6 +204,7 @@ impl ColliderSum {
         impulse: 0.0,
         impulse_vector: Vec3::ZERO,
         surfaces_meet: false,
+        triangle: None,
     };
 
     /// Adds one manifold's impulses.
@@ -174,6 +212,9 @@ impl ColliderSum {
         let impulse: f32 = contact.normal_impulses[..contact.manifold.len()]
             .iter()
             .sum();
+        if let Some(triangle) = contact.manifold.triangle {
+            self.keep_triangle((triangle, impulse));
+        }
         self.impulse += impulse;
         self.impulse_vector += impulse * contact.manifold.normal;
         self.surfaces_meet |= contact
@@ -183,8 +224,18 @@ impl ColliderSum {
             .any(|p| p.separation <= 0.0);
     }
 
+    /// Keeps `triangle` (with the impulse on it) if it is pressed harder than the one kept.
+    fn keep_triangle(&mut self, triangle: (u32, f32)) {
+        if self.triangle.is_none_or(|(_, kept)| triangle.1 > kept) {
+            self.triangle = Some(triangle);
+        }
+    }
+
     /// Adds the sum of other manifolds of the same collider pair.
     fn merge(&mut self, other: &Self) {
+        if let Some(triangle) = other.triangle {
+            self.keep_triangle(triangle);
+        }
         self.impulse += other.impulse;
         self.impulse_vector += other.impulse_vector;
         self.surfaces_meet |= other.surfaces_meet;
@@ -306,6 +357,7 @@ impl EventTracker {
                     b: key.body_b,
                     collider_a: 0,
                     collider_b: 0,
+                    triangle: None,
                 };
                 self.add_touching(pair, &sum, bodies, h);
                 continue;
@@ -321,6 +373,7 @@ impl EventTracker {
                     b: key.body_b,
                     collider_a: collider_of(bodies, key.body_a, contact.key.child_a),
                     collider_b: collider_of(bodies, key.body_b, contact.key.child_b),
+                    triangle: None,
                 };
                 match sums.last_mut() {
                     Some((last, _, sum)) if *last == pair => sum.add(contact),
@@ -357,6 +410,7 @@ impl EventTracker {
                 } else {
                     ContactEventKind::Stopped
                 },
+                triangle: pair.triangle,
             });
         });
     }
@@ -373,7 +427,8 @@ impl EventTracker {
         if sum.impulse <= 0.0 && !sum.surfaces_meet {
             return;
         }
-        self.touching.push(pair);
+        let triangle = sum.triangle.map(|(triangle, _)| triangle);
+        self.touching.push(ColliderPair { triangle, ..pair });
         if sum.impulse <= 0.0 {
             return;
         }
@@ -528,6 +583,7 @@ fn push_overlaps(
                 b: body,
                 collider_a: 0,
                 collider_b: 0,
+                triangle: None,
             });
         }
         return;
@@ -550,6 +606,7 @@ fn push_overlaps(
                         b: body,
                         collider_a,
                         collider_b,
+                        triangle: None,
                     });
                 }
             });
@@ -564,6 +621,7 @@ fn force_pair(event: &ContactForceEvent) -> ColliderPair {
         b: event.body_b,
         collider_a: event.collider_a,
         collider_b: event.collider_b,
+        triangle: None,
     }
 }
 

@@ -201,6 +201,13 @@ impl<'a> ContactModification<'a> {
         self.contact.children()
     }
 
+    /// The triangle of the mesh body (A or B) the contact is on, as [`Contact::triangle`]:
+    /// `None` unless one body is a triangle mesh or heightfield. A hook may pick a sound or a
+    /// rule by it; the friction and restitution it starts from are already the triangle's.
+    pub fn triangle(&self) -> Option<u32> {
+        self.contact.triangle()
+    }
+
     /// Body A.
     pub fn body_a(&self) -> &RigidBody {
         self.body_a

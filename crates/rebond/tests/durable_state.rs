@@ -570,10 +570,10 @@ fn a_snapshot_cut_damaged_or_of_a_later_version_is_refused() {
         StateError::Damaged
     );
     // A later build's snapshot version (the first byte of the snapshot) is another build's:
-    // this build writes version 2 (byte 1) and reads versions 1 and 2.
-    assert_eq!(bytes[start], 1);
+    // this build writes version 3 (byte 2) and reads versions 1 to 3.
+    assert_eq!(bytes[start], 2);
     let mut later = bytes.clone();
-    later[start] = 2;
+    later[start] = 3;
     assert_eq!(
         World::load_state_as_other_build(&with_checksum(later)).unwrap_err(),
         StateError::OtherBuild
@@ -587,24 +587,60 @@ fn a_snapshot_cut_damaged_or_of_a_later_version_is_refused() {
     );
 }
 
-/// A version-1 snapshot (an earlier build's: no contact rules) still reads. Version 2 is version
-/// 1's records followed by the bodies' contact rules, so a version-2 snapshot with none, its
-/// version byte set to 0 and the rules' empty list (its last byte) cut, is the version-1
+/// Version-1 and version-2 snapshots (earlier builds': no contact rules, no mesh materials)
+/// still read. Version 2 is version 1's records followed by the bodies' contact rules, and
+/// version 3 version 2's followed by the meshes' materials, so a version-3 snapshot with neither,
+/// its version byte set back and the empty lists (its last bytes) cut, is the earlier version's
 /// snapshot of the same world.
 #[test]
-fn a_version_1_snapshot_still_reads() {
+fn version_1_and_2_snapshots_still_read() {
     let (bytes, start) = small_state();
     let saved = World::load_state_as_other_build(&bytes).unwrap();
-    assert_eq!(bytes.last(), Some(&0), "an empty list of contact rules");
-    let mut version_1 = bytes[..bytes.len() - 1].to_vec();
-    version_1[start] = 0;
-    let payload = (version_1.len() - 32) as u64;
-    version_1[20..28].copy_from_slice(&payload.to_le_bytes());
-    let restored = World::load_state_as_other_build(&with_checksum(version_1)).unwrap();
-    for ((_, a), (_, b)) in saved.bodies().zip(restored.bodies()) {
-        assert_eq!(a.position(), b.position());
-        assert_eq!((b.one_way(), b.surface_velocity()), (None, Vec3::ZERO));
+    assert_eq!(
+        bytes[bytes.len() - 2..],
+        [0, 0],
+        "empty lists of rules and materials"
+    );
+    for version in [0, 1] {
+        let mut earlier = bytes[..bytes.len() - 2 + usize::from(version)].to_vec();
+        earlier[start] = version;
+        let payload = (earlier.len() - 32) as u64;
+        earlier[20..28].copy_from_slice(&payload.to_le_bytes());
+        let restored = World::load_state_as_other_build(&with_checksum(earlier)).unwrap();
+        for ((_, a), (_, b)) in saved.bodies().zip(restored.bodies()) {
+            assert_eq!(a.position(), b.position(), "version {version}");
+            assert_eq!((b.one_way(), b.surface_velocity()), (None, Vec3::ZERO));
+        }
     }
+}
+
+#[test]
+fn a_mesh_rebuilt_from_its_snapshot_keeps_its_materials_and_shares_them_with_no_other() {
+    // Two meshes of the same triangles, one of two materials and one without: two shapes in
+    // the snapshot, each rebuilt as it was.
+    let mesh = r#""type": "trimesh", "vertices": [[0, 0, 0], [1, 0, 0], [0, 0, 1], [1, 0, 1]],
+        "indices": [[0, 2, 1], [1, 2, 3]]"#;
+    let json = format!(
+        r#"{{"bodies": [
+          {{"type": "static", "shape": {{{mesh}, "materials": [{{"friction": 0.05}},
+            {{"restitution": 0.5}}], "triangle_materials": [1, 0]}}}},
+          {{"type": "static", "shape": {{{mesh}}}, "position": [3, 0, 0]}}]}}"#
+    );
+    let world = Scene::from_json(json.as_bytes()).unwrap().world().clone();
+    let rebuilt = World::load_state_as_other_build(&world.save_state()).unwrap();
+    let meshes: Vec<_> = (rebuilt.bodies())
+        .map(|(_, body)| match body.shape() {
+            Shape::TriMesh(mesh) => mesh.clone(),
+            _ => panic!("not a mesh"),
+        })
+        .collect();
+    assert_eq!(meshes[0].material_index(0), Some(1));
+    assert_eq!(meshes[0].triangle_material(1).unwrap().friction, Some(0.05));
+    assert_eq!(
+        meshes[0].triangle_material(0).unwrap().restitution,
+        Some(0.5)
+    );
+    assert!(meshes[1].materials().is_empty());
 }
 
 #[test]

@@ -8,7 +8,7 @@ use rebond::World;
 /// A scene with every shape and every joint kind, things falling, sliding, rolling, hanging,
 /// driven and asleep: a static floor, a sphere, a box, a capsule, a cylinder, a hull and a
 /// compound (one child with rolling resistance) dropped on it; a heightfield and a triangle-mesh
-/// ramp with bodies rolling on them (one with rolling resistance) and a hull and a lying
+/// ramp (of two materials) with bodies rolling on them (one with rolling resistance) and a hull and a lying
 /// cylinder on them (whose triangle queries start from last step's simplices); a fixed, a ball (limits,
 /// friction), a revolute (limits, motor), a prismatic (limits, motor) and two distance joints
 /// (spring, rope).
@@ -47,7 +47,9 @@ const EVERY_KIND: &str = r#"{
     {"name": "tumbler", "shape": {"type": "box", "half_extents": [0.2, 0.2, 0.2]}, "position": [11, 1.5, -1]},
     {"name": "ramp", "type": "static", "shape": {"type": "trimesh",
      "vertices": [[-2, 0, -2], [2, 1, -2], [2, 1, 2], [-2, 0, 2], [0, 0.5, 0]],
-     "indices": [[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]}, "position": [0, 0, 12]},
+     "indices": [[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]],
+     "materials": [{"friction": 0.1}, {"restitution": 0.5, "rolling_resistance": 0.02}],
+     "triangle_materials": [0, 1, 1, 0]}, "position": [0, 0, 12]},
     {"name": "skid", "shape": {"type": "capsule", "radius": 0.15, "half_height": 0.2},
      "position": [0.5, 1.5, 12]},
     {"name": "nugget", "shape": {"type": "convex_hull", "points": [[-0.2, 0, -0.2], [0.2, 0, -0.2],

@@ -16,7 +16,7 @@ use crate::limits::{
 use crate::mass::MassProperties;
 use crate::material::Material;
 use crate::math::{normalize_rotation, rotate_tensor, skew, Aabb, Mat3, Pose, Quat, Vec3};
-use crate::shape::Shape;
+use crate::shape::{Shape, TriangleMaterial};
 
 mod desc;
 mod kinematic;
@@ -659,26 +659,36 @@ impl RigidBody {
     }
 
     /// The surface material of compound child `child` (its own where it has one, else the
+    /// body's), or of mesh triangle `triangle` (its material's values where it has one, else the
     /// body's), or the body's for any other shape; the rolling radius is the child's shape's,
     /// or the body's shape's.
-    pub(crate) fn material_of_child(&self, child: u32) -> Material {
-        let own = match &self.shape {
-            Shape::Compound(compound) => compound.children().get(child as usize),
-            _ => None,
+    pub(crate) fn material_of_child(&self, child: u32, triangle: Option<u32>) -> Material {
+        let (own, rolling_radius) = match &self.shape {
+            Shape::Compound(compound) => match compound.children().get(child as usize) {
+                Some(child) => (
+                    TriangleMaterial {
+                        friction: child.friction,
+                        restitution: child.restitution,
+                        rolling_resistance: child.rolling_resistance,
+                    },
+                    child.shape.rolling_radius(),
+                ),
+                None => (TriangleMaterial::default(), self.shape.rolling_radius()),
+            },
+            Shape::TriMesh(mesh) => (
+                triangle
+                    .and_then(|triangle| mesh.triangle_material(triangle))
+                    .copied()
+                    .unwrap_or_default(),
+                self.shape.rolling_radius(),
+            ),
+            _ => (TriangleMaterial::default(), self.shape.rolling_radius()),
         };
         Material {
-            rolling_resistance: own
-                .and_then(|child| child.rolling_resistance)
-                .unwrap_or(self.rolling_resistance),
-            rolling_radius: own
-                .map_or(&self.shape, |child| &child.shape)
-                .rolling_radius(),
-            friction: own
-                .and_then(|child| child.friction)
-                .unwrap_or(self.friction),
-            restitution: own
-                .and_then(|child| child.restitution)
-                .unwrap_or(self.restitution),
+            rolling_resistance: own.rolling_resistance.unwrap_or(self.rolling_resistance),
+            rolling_radius,
+            friction: own.friction.unwrap_or(self.friction),
+            restitution: own.restitution.unwrap_or(self.restitution),
         }
     }
 

@@ -82,6 +82,15 @@ impl Contact {
         (self.key.child_a, self.key.child_b)
     }
 
+    /// The triangle of the body that is a triangle mesh or heightfield (A or B: two meshes never
+    /// touch) the contact is on, as [`crate::shape::Shape::triangle`] numbers them; `None` between
+    /// other shapes. A mesh manifold merged from several coplanar triangles of one material names
+    /// the triangle of its deepest point. The contact's friction and restitution are that
+    /// triangle's material's ([`crate::shape::TriMesh::with_materials`]).
+    pub fn triangle(&self) -> Option<u32> {
+        self.manifold.triangle
+    }
+
     /// Unit world normal, from A toward B.
     pub fn normal(&self) -> Vec3 {
         self.manifold.normal

@@ -29,6 +29,10 @@ pub struct Manifold {
     pub normal: Vec3,
     points: [ContactPoint; MAX_MANIFOLD_POINTS],
     count: usize,
+    /// The triangle of a mesh or heightfield the manifold was found on, on whichever side the
+    /// mesh is (two meshes never touch): the triangle of its deepest point, for a manifold merged
+    /// from several (`mesh_contact.rs`). `None` between other shapes.
+    pub triangle: Option<u32>,
 }
 
 impl Manifold {
@@ -38,6 +42,7 @@ impl Manifold {
             normal,
             points: [ContactPoint::default(); MAX_MANIFOLD_POINTS],
             count: 0,
+            triangle: None,
         }
     }
 

@@ -11,6 +11,10 @@
 //! point) keeps its id across triangles, so a rolling ball keeps its impulse. Two such points far
 //! apart are two places where the shape touches (a cylinder across a ridge, touching with both
 //! ends of its rim), and both are kept.
+//!
+//! Triangles of different materials ([`crate::shape::TriMesh::with_materials`]) never merge, so
+//! each manifold has one material: a box across the border of ice and rubber gets a manifold on
+//! each. A merged manifold names the triangle of its deepest point.
 
 use super::clipping::{reduce_contacts_on_face, Surface};
 use super::feature_contact::{is_vertex_of_b_on_face, DEEPEST_POINT_ID};
@@ -42,6 +46,8 @@ struct Group {
     normal: Vec3,
     start: usize,
     len: usize,
+    /// The triangle of its deepest point.
+    triangle: u32,
 }
 
 /// The GJK simplex a query left for one triangle (by index), to start the next from.
@@ -124,7 +130,7 @@ impl MeshScratch {
         // lies under the shape within the sideways reach of a normal bent by up to
         // `ACTIVE_EDGE_ANGLE` (`triangle_contact::holds_foot`), at most the shape's radius away.
         let same_deepest = part.bounding_radius() * ACTIVE_EDGE_ANGLE.sin() + SAME_POINT_DISTANCE;
-        self.merge(same_deepest);
+        self.merge(same_deepest, |triangle| mesh.shape.material_index(triangle));
         let tangent_axis = mesh.pose.transform_vector(Vec3::X);
         for (group_index, group) in (0u32..).zip(&self.groups) {
             let points = &self.points[group.start..group.start + group.len];
@@ -132,11 +138,10 @@ impl MeshScratch {
             let tangent = (tangent_axis - normal * normal.dot(tangent_axis))
                 .try_normalize()
                 .unwrap_or_else(|| normal.any_orthonormal_vector());
-            emit(
-                group_index,
-                reduce_contacts_on_face(normal, tangent, points, Surface::Bent { reach }),
-                &self.simplices,
-            );
+            let mut manifold =
+                reduce_contacts_on_face(normal, tangent, points, Surface::Bent { reach });
+            manifold.triangle = Some(group.triangle);
+            emit(group_index, manifold, &self.simplices);
         }
     }
 
@@ -144,8 +149,9 @@ impl MeshScratch {
     /// triangle's index mixed in and merging points found twice: points within
     /// [`SAME_POINT_DISTANCE`], and deepest points within `same_deepest`, m (of a rounded shape:
     /// one point, whose id is kept); a deepest point farther from the group's is a point of its
-    /// own, with its triangle's index mixed into its id.
-    fn merge(&mut self, same_deepest: f32) {
+    /// own, with its triangle's index mixed into its id. Only manifolds of triangles of the same
+    /// `material` index merge.
+    fn merge(&mut self, same_deepest: f32, material: impl Fn(u32) -> Option<u32>) {
         self.groups.clear();
         self.points.clear();
         let Self {
@@ -158,10 +164,19 @@ impl MeshScratch {
         let mut taken = 0;
         while taken < manifolds.len() {
             let normal = manifolds[taken].1.normal;
+            let surface = material(manifolds[taken].0);
+            let merges = |(triangle, manifold): &(u32, Manifold)| {
+                manifold.normal.dot(normal) >= MERGE_COSINE && material(*triangle) == surface
+            };
             let start = points.len();
-            for (triangle, manifold) in manifolds.iter() {
-                if manifold.normal.dot(normal) < MERGE_COSINE || manifold.is_empty() {
+            let (mut deepest_triangle, mut deepest) = (manifolds[taken].0, f32::INFINITY);
+            for entry @ (triangle, manifold) in manifolds.iter() {
+                if !merges(entry) || manifold.is_empty() {
                     continue;
+                }
+                let depth = manifold.deepest_separation();
+                if depth < deepest {
+                    (deepest_triangle, deepest) = (*triangle, depth);
                 }
                 for point in manifold.points() {
                     // A vertex of the shape keeps its id whichever triangle finds it, so that a
@@ -183,12 +198,13 @@ impl MeshScratch {
                     normal,
                     start,
                     len: points.len() - start,
+                    triangle: deepest_triangle,
                 });
             }
             // Mark the merged manifolds as used by emptying them, then find the next unused one.
-            for (_, manifold) in manifolds.iter_mut() {
-                if manifold.normal.dot(normal) >= MERGE_COSINE {
-                    *manifold = Manifold::new(manifold.normal);
+            for entry in manifolds.iter_mut() {
+                if merges(entry) {
+                    entry.1 = Manifold::new(entry.1.normal);
                 }
             }
             while taken < manifolds.len() && manifolds[taken].1.is_empty() {

@@ -232,7 +232,14 @@ impl ShapeKind {
             Self::ConvexHull => &["points"],
             Self::Compound => &["children"],
             Self::Halfspace => &["normal"],
-            Self::Trimesh => &["vertices", "indices", "file", "scale"],
+            Self::Trimesh => &[
+                "vertices",
+                "indices",
+                "file",
+                "scale",
+                "materials",
+                "triangle_materials",
+            ],
             Self::Heightfield => &["heights", "scale"],
         }
     }
@@ -255,6 +262,19 @@ pub(super) struct ShapeEntry {
     pub(super) file: Option<String>,
     pub(super) scale: Option<[f64; 3]>,
     pub(super) heights: Option<Vec<Vec<f64>>>,
+    /// Extension of the contract: a trimesh's table of surface materials.
+    pub(super) materials: Option<Vec<JsonObject<MaterialEntry>>>,
+    /// Extension of the contract: each triangle's index into `materials`.
+    pub(super) triangle_materials: Option<Vec<u32>>,
+}
+
+/// One surface material of a trimesh, as written: each value left out is the body's.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct MaterialEntry {
+    pub(super) friction: Option<f64>,
+    pub(super) restitution: Option<f64>,
+    pub(super) rolling_resistance: Option<f64>,
 }
 
 impl ShapeEntry {
@@ -272,6 +292,8 @@ impl ShapeEntry {
             ("file", self.file.is_some()),
             ("scale", self.scale.is_some()),
             ("heights", self.heights.is_some()),
+            ("materials", self.materials.is_some()),
+            ("triangle_materials", self.triangle_materials.is_some()),
         ]
         .into_iter()
         .filter_map(|(field, present)| present.then_some(field))

@@ -6,10 +6,10 @@ use std::path::Path;
 
 use crate::error::ErrorKind;
 use crate::math::Vec3;
-use crate::shape::Shape;
+use crate::shape::{Shape, TriMesh, TriangleMaterial};
 
 use super::convert::{scalar, vector};
-use super::format::ShapeEntry;
+use super::format::{MaterialEntry, ShapeEntry};
 use super::{join, LoadError, SceneError};
 
 /// Where the mesh files a scene names are found: among files given with the scene (by the name
@@ -98,7 +98,41 @@ pub(super) fn trimesh(
         (None, Some(_), None) => return Err(missing(place, "indices", "trimesh").into()),
     };
     let scaled = vertices.into_iter().map(|vertex| vertex * scale).collect();
-    Shape::trimesh(scaled, &indices).map_err(|error| SceneError::from(error.within(place)).into())
+    let mesh = match (&entry.materials, &entry.triangle_materials) {
+        (None, None) => TriMesh::new(scaled, &indices),
+        (Some(materials), Some(triangle_materials)) => {
+            let materials = (materials.iter().enumerate())
+                .map(|(index, entry)| material(entry, &field(&format!("materials[{index}]"))))
+                .collect::<Result<Vec<_>, _>>()?;
+            TriMesh::with_materials(scaled, &indices, materials, triangle_materials)
+        }
+        (Some(_), None) => {
+            let message = "required field is missing (a trimesh with `materials` needs it)";
+            return Err(SceneError::new(field("triangle_materials"), message).into());
+        }
+        (None, Some(_)) => {
+            let message =
+                "required field is missing (a trimesh with `triangle_materials` needs it)";
+            return Err(SceneError::new(field("materials"), message).into());
+        }
+    };
+    mesh.map(Shape::TriMesh)
+        .map_err(|error| SceneError::from(error.within(place)).into())
+}
+
+/// One of a trimesh's `materials`, its values narrowed (their ranges are the mesh's to check);
+/// errors are placed under `place`.
+fn material(entry: &MaterialEntry, place: &str) -> Result<TriangleMaterial, SceneError> {
+    let value = |name: &str, value: Option<f64>| {
+        value
+            .map(|value| scalar(&join(place, name), value))
+            .transpose()
+    };
+    Ok(TriangleMaterial {
+        friction: value("friction", entry.friction)?,
+        restitution: value("restitution", entry.restitution)?,
+        rolling_resistance: value("rolling_resistance", entry.rolling_resistance)?,
+    })
 }
 
 /// A `heightfield` entry; errors are placed under `place`.

@@ -26,7 +26,7 @@ pub use halfspace::{Halfspace, HALFSPACE_EXTENT};
 pub use heightfield::{HeightField, MIN_SOLID_DEPTH};
 pub use sphere::Sphere;
 pub use triangle::{Triangle, ACTIVE_EDGE_ANGLE};
-pub use trimesh::TriMesh;
+pub use trimesh::{TriMesh, TriangleMaterial};
 
 use std::sync::Arc;
 
@@ -119,7 +119,7 @@ impl Shape {
             Shape::Capsule(capsule) => Shape::capsule(capsule.radius(), capsule.half_height()),
             Shape::Cylinder(cylinder) => Shape::cylinder(cylinder.radius(), cylinder.half_height()),
             Shape::ConvexHull(hull) => return hull.check_decoded(),
-            Shape::TriMesh(mesh) => Shape::trimesh(mesh.vertices().to_vec(), mesh.indices()),
+            Shape::TriMesh(mesh) => mesh.rebuilt().map(Shape::TriMesh),
             Shape::HeightField(heightfield) => return heightfield.check_decoded(),
             // Both normalise rotations or normals, which may move a last bit: checked, not
             // compared.
@@ -157,6 +157,15 @@ impl Shape {
         match self {
             Shape::TriMesh(mesh) => mesh.triangle(index),
             Shape::HeightField(heightfield) => heightfield.triangle(index),
+            _ => None,
+        }
+    }
+
+    /// The index into its mesh's [`TriMesh::materials`] of triangle `index`'s surface; `None`
+    /// for a mesh without materials, a heightfield or any other shape.
+    pub(crate) fn material_index(&self, index: u32) -> Option<u32> {
+        match self {
+            Shape::TriMesh(mesh) => mesh.material_index(index),
             _ => None,
         }
     }

@@ -4,7 +4,9 @@ use std::sync::Arc;
 
 use super::bvh::Bvh;
 use super::triangle::{edge_flags, Triangle};
-use crate::error::{check_length, check_named, Error, ErrorKind, Result};
+use crate::error::{
+    check_length, check_named, check_non_negative, check_range, Error, ErrorKind, Result,
+};
 use crate::limits::MAX_SIZE;
 use crate::math::{Aabb, Pose, Vec3};
 
@@ -32,6 +34,23 @@ struct TriMeshData {
     edge_flags: Vec<u8>,
     bvh: Bvh,
     bounds: Aabb,
+    /// The mesh's table of surface materials; empty for a mesh of the body's material.
+    materials: Vec<TriangleMaterial>,
+    /// Each triangle's index into `materials`; empty with them.
+    triangle_materials: Vec<u32>,
+}
+
+/// The surface of some of a mesh's triangles ([`TriMesh::with_materials`]): each value left
+/// `None` (the default) is the body's, as for a compound's child.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct TriangleMaterial {
+    /// Coulomb friction coefficient, ≥ 0.
+    pub friction: Option<f32>,
+    /// Coefficient of restitution, 0 to 1.
+    pub restitution: Option<f32>,
+    /// Rolling resistance coefficient, ≥ 0, dimensionless (as [`crate::BodyDesc`]'s).
+    pub rolling_resistance: Option<f32>,
 }
 
 impl TriMesh {
@@ -41,6 +60,53 @@ impl TriMesh {
     /// area. Errors: a non-finite vertex (field `vertices[i]`), an index out of range
     /// (`indices[k]`), or no triangle of positive area (`indices`).
     pub fn new(vertices: Vec<Vec3>, indices: &[[u32; 3]]) -> Result<Self> {
+        Self::build(vertices, indices, Vec::new(), &[])
+    }
+
+    /// A mesh as [`TriMesh::new`] makes it whose triangle `k` of `indices` has the surface
+    /// `materials[triangle_materials[k]]` (one index per given triangle, zero-area ones
+    /// included): a contact with the mesh takes the friction, restitution and rolling resistance
+    /// of the triangle it touches, each the body's where the material leaves it `None`. Errors,
+    /// besides [`TriMesh::new`]'s: `materials[i].friction` or `materials[i].rolling_resistance`
+    /// negative or not finite, `materials[i].restitution` outside 0 to 1, `triangle_materials`
+    /// not one per triangle, `triangle_materials[k]` out of range.
+    pub fn with_materials(
+        vertices: Vec<Vec3>,
+        indices: &[[u32; 3]],
+        materials: Vec<TriangleMaterial>,
+        triangle_materials: &[u32],
+    ) -> Result<Self> {
+        for (index, material) in materials.iter().enumerate() {
+            check_material(material)
+                .map_err(|error| error.within(&format!("materials[{index}]")))?;
+        }
+        if triangle_materials.len() != indices.len() {
+            let kind = ErrorKind::WrongCount {
+                expected: indices.len(),
+                got: triangle_materials.len(),
+            };
+            return Err(Error::new("triangle_materials", kind));
+        }
+        if let Some((index, &bad)) = (triangle_materials.iter().enumerate())
+            .find(|&(_, &material)| material as usize >= materials.len())
+        {
+            let kind = ErrorKind::MaterialOutOfRange {
+                index: bad,
+                len: materials.len(),
+            };
+            return Err(Error::new(format!("triangle_materials[{index}]"), kind));
+        }
+        Self::build(vertices, indices, materials, triangle_materials)
+    }
+
+    /// [`TriMesh::new`] with the checked `materials` and their `triangle_materials`, one per
+    /// given triangle (both empty for a mesh of the body's material).
+    fn build(
+        vertices: Vec<Vec3>,
+        indices: &[[u32; 3]],
+        materials: Vec<TriangleMaterial>,
+        triangle_materials: &[u32],
+    ) -> Result<Self> {
         for (index, &vertex) in vertices.iter().enumerate() {
             check_named(
                 |field| check_length(field, vertex, MAX_SIZE),
@@ -48,6 +114,7 @@ impl TriMesh {
             )?;
         }
         let mut triangles = Vec::with_capacity(indices.len());
+        let mut kept_materials = Vec::with_capacity(triangle_materials.len());
         for (index, triangle) in indices.iter().enumerate() {
             if let Some(&bad) = triangle.iter().find(|&&i| i as usize >= vertices.len()) {
                 let kind = ErrorKind::IndexOutOfRange {
@@ -60,6 +127,7 @@ impl TriMesh {
             let area = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
             if area.try_normalize().is_some() {
                 triangles.push(*triangle);
+                kept_materials.extend(triangle_materials.get(index));
             }
         }
         if triangles.is_empty() {
@@ -82,8 +150,25 @@ impl TriMesh {
                 edge_flags,
                 bvh,
                 bounds,
+                materials,
+                triangle_materials: kept_materials,
             }),
         })
+    }
+
+    /// The mesh that its own vertices, triangles and materials build: a decoded mesh is checked
+    /// against it.
+    pub(crate) fn rebuilt(&self) -> Result<Self> {
+        let data = &self.data;
+        if data.materials.is_empty() && data.triangle_materials.is_empty() {
+            return Self::new(data.vertices.clone(), &data.triangles);
+        }
+        Self::with_materials(
+            data.vertices.clone(),
+            &data.triangles,
+            data.materials.clone(),
+            &data.triangle_materials,
+        )
     }
 
     /// The vertices, metres, body frame.
@@ -104,6 +189,24 @@ impl TriMesh {
             vertices: [vertices[0]?, vertices[1]?, vertices[2]?],
             edge_flags: self.data.edge_flags.get(index as usize).copied()?,
         })
+    }
+
+    /// The mesh's table of surface materials ([`TriMesh::with_materials`]); empty for a mesh of
+    /// the body's material.
+    pub fn materials(&self) -> &[TriangleMaterial] {
+        &self.data.materials
+    }
+
+    /// The index into [`TriMesh::materials`] of triangle `index`'s surface; `None` for a mesh
+    /// without materials or past the end.
+    pub fn material_index(&self, index: u32) -> Option<u32> {
+        self.data.triangle_materials.get(index as usize).copied()
+    }
+
+    /// The surface of triangle `index`; `None` for a mesh without materials or past the end.
+    pub fn triangle_material(&self, index: u32) -> Option<&TriangleMaterial> {
+        let material = self.material_index(index)?;
+        self.data.materials.get(material as usize)
     }
 
     /// The box around the mesh in the body frame.
@@ -141,6 +244,8 @@ impl TriMesh {
         data.vertices.capacity() * std::mem::size_of::<Vec3>()
             + data.triangles.capacity() * std::mem::size_of::<[u32; 3]>()
             + data.edge_flags.capacity()
+            + data.materials.capacity() * std::mem::size_of::<TriangleMaterial>()
+            + data.triangle_materials.capacity() * std::mem::size_of::<u32>()
             + data.bvh.heap_bytes()
             + std::mem::size_of::<TriMeshData>()
     }
@@ -149,6 +254,20 @@ impl TriMesh {
     pub fn shares_geometry(&self, other: &TriMesh) -> bool {
         Arc::ptr_eq(&self.data, &other.data)
     }
+}
+
+/// Checks a triangle material's values, naming the field.
+fn check_material(material: &TriangleMaterial) -> Result<()> {
+    if let Some(friction) = material.friction {
+        check_non_negative("friction", friction)?;
+    }
+    if let Some(restitution) = material.restitution {
+        check_range("restitution", restitution, 0.0, 1.0)?;
+    }
+    if let Some(resistance) = material.rolling_resistance {
+        check_non_negative("rolling_resistance", resistance)?;
+    }
+    Ok(())
 }
 
 /// The box around `bounds` (body frame) placed at `pose`, from its eight corners.

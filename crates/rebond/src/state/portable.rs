@@ -25,7 +25,7 @@ use crate::joint::{Joint, JointDesc, JointFrames, JointSet, JointType, Motor, Sp
 use crate::mass::MassProperties;
 use crate::material::CombineRule;
 use crate::math::{Mat3, Pose, Quat, Vec3};
-use crate::shape::{CompoundChild, Shape};
+use crate::shape::{CompoundChild, Shape, TriMesh, TriangleMaterial};
 use crate::{World, WorldSettings};
 
 /// A portable snapshot, by version. Reading takes any variant this build knows; a snapshot of a
@@ -36,11 +36,13 @@ pub(crate) enum Snapshot {
     V1(SnapshotV1),
     /// Version 2: version 1's records and the bodies' contact rules.
     V2(SnapshotV2),
+    /// Version 3: version 2's records and the triangle meshes' materials.
+    V3(SnapshotV3),
 }
 
 /// How many versions of [`Snapshot`] this build reads: its variants, numbered from 0 in its
 /// encoding.
-pub(crate) const SNAPSHOT_VERSIONS: u32 = 2;
+pub(crate) const SNAPSHOT_VERSIONS: u32 = 3;
 
 /// Version 2 of a snapshot: version 1's, and the contact rules of the bodies that have some.
 #[derive(Serialize, Deserialize)]
@@ -49,6 +51,80 @@ pub(crate) struct SnapshotV2 {
     pub scene: Option<SceneV1>,
     /// By ascending slot.
     contact_rules: Vec<ContactRulesV2>,
+}
+
+/// Version 3 of a snapshot: version 2's, and the materials of the triangle meshes that have
+/// some.
+#[derive(Serialize, Deserialize)]
+pub(crate) struct SnapshotV3 {
+    pub world: WorldV1,
+    pub scene: Option<SceneV1>,
+    /// By ascending slot.
+    contact_rules: Vec<ContactRulesV2>,
+    /// By ascending shape.
+    mesh_materials: Vec<MeshMaterialsV3>,
+}
+
+/// The materials of the triangle mesh [`WorldV1::shapes`]`[shape]`
+/// ([`crate::shape::TriMesh::with_materials`]).
+#[derive(Serialize, Deserialize, PartialEq)]
+struct MeshMaterialsV3 {
+    shape: u32,
+    /// Friction, restitution and rolling resistance; `None` for the body's.
+    materials: Vec<[Option<f32>; 3]>,
+    /// Each triangle's index into `materials`, one per triangle of the record.
+    triangle_materials: Vec<u32>,
+}
+
+impl MeshMaterialsV3 {
+    /// The materials of `shape` as the record of shape `index`; `None` for a shape without.
+    fn of(shape: &Shape, index: u32) -> Option<Self> {
+        let Shape::TriMesh(mesh) = shape else {
+            return None;
+        };
+        if mesh.materials().is_empty() {
+            return None;
+        }
+        let materials = (mesh.materials().iter())
+            .map(|m| [m.friction, m.restitution, m.rolling_resistance])
+            .collect();
+        let triangle_materials = (0..mesh.indices().len() as u32)
+            .map(|triangle| mesh.material_index(triangle).unwrap_or_default())
+            .collect();
+        Some(Self {
+            shape: index,
+            materials,
+            triangle_materials,
+        })
+    }
+
+    /// Gives `shapes[self.shape]`, a triangle mesh, its materials, checked as the constructor
+    /// checks them.
+    fn apply(&self, shapes: &mut [Shape]) -> Result<(), String> {
+        let index = self.shape;
+        let place = |error| format!("shape {index}: {error}");
+        let Some(Shape::TriMesh(mesh)) = shapes.get(index as usize) else {
+            return Err(format!("shape {index} is not a trimesh to give materials"));
+        };
+        let materials = (self.materials.iter())
+            .map(
+                |&[friction, restitution, rolling_resistance]| TriangleMaterial {
+                    friction,
+                    restitution,
+                    rolling_resistance,
+                },
+            )
+            .collect();
+        let mesh = TriMesh::with_materials(
+            mesh.vertices().to_vec(),
+            mesh.indices(),
+            materials,
+            &self.triangle_materials,
+        )
+        .map_err(place)?;
+        shapes[index as usize] = Shape::TriMesh(mesh);
+        Ok(())
+    }
 }
 
 /// A body's contact rules ([`crate::hooks`]), body frame.
@@ -330,7 +406,7 @@ struct JointV1 {
     angle: f32,
 }
 
-impl SnapshotV2 {
+impl SnapshotV3 {
     /// The snapshot of `world`, and of a scene's `scene` part.
     pub fn of(world: &World, scene: Option<SceneV1>) -> Self {
         let (bodies, _, _) = world.portable_parts();
@@ -344,16 +420,23 @@ impl SnapshotV2 {
                 })
             })
             .collect();
+        let (world_record, shapes) = WorldV1::of(world);
+        let mesh_materials = (0..)
+            .zip(&shapes)
+            .filter_map(|(index, shape)| MeshMaterialsV3::of(shape, index))
+            .collect();
         Self {
-            world: WorldV1::of(world),
+            world: world_record,
             scene,
             contact_rules,
+            mesh_materials,
         }
     }
 
-    /// The world of the snapshot, with its bodies' contact rules ([`WorldV1::restore`]).
+    /// The world of the snapshot, with its meshes' materials and its bodies' contact rules
+    /// ([`WorldV1::restore`]).
     pub fn restore_world(self) -> Result<World, String> {
-        let mut world = self.world.restore()?;
+        let mut world = self.world.restore(&self.mesh_materials)?;
         for rules in self.contact_rules {
             let slot = rules.slot as usize;
             world
@@ -370,23 +453,32 @@ impl SnapshotV2 {
 
 impl Snapshot {
     /// The latest version of the snapshot, whatever version it was written in: a version 1
-    /// snapshot has no contact rules.
-    pub fn into_latest(self) -> SnapshotV2 {
+    /// snapshot has no contact rules, and neither it nor a version 2 one mesh materials.
+    pub fn into_latest(self) -> SnapshotV3 {
         match self {
-            Self::V1(snapshot) => SnapshotV2 {
+            Self::V1(snapshot) => SnapshotV3 {
                 world: snapshot.world,
                 scene: snapshot.scene,
                 contact_rules: Vec::new(),
+                mesh_materials: Vec::new(),
             },
-            Self::V2(snapshot) => snapshot,
+            Self::V2(snapshot) => SnapshotV3 {
+                world: snapshot.world,
+                scene: snapshot.scene,
+                contact_rules: snapshot.contact_rules,
+                mesh_materials: Vec::new(),
+            },
+            Self::V3(snapshot) => snapshot,
         }
     }
 }
 
 impl WorldV1 {
-    fn of(world: &World) -> Self {
+    /// The record of `world`, and its distinct shapes in the order of its shape records.
+    fn of(world: &World) -> (Self, Vec<Shape>) {
         let (bodies, joints, ignored) = world.portable_parts();
         let mut shapes = Vec::new();
+        let mut distinct = Vec::new();
         let mut shape_index: HashMap<Vec<u8>, u32> = HashMap::new();
         let body_slots = bodies
             .slots()
@@ -394,10 +486,13 @@ impl WorldV1 {
                 generation,
                 item: body.map(|body| {
                     let record = shape_record(&body.shape);
-                    // Shapes compare by their encoding: equal records are one shape.
-                    let key = postcard::to_stdvec(&record).unwrap_or_default();
+                    // Shapes compare by their encoding, a mesh's materials included: equal
+                    // records are one shape.
+                    let materials = MeshMaterialsV3::of(&body.shape, 0);
+                    let key = postcard::to_stdvec(&(&record, materials)).unwrap_or_default();
                     let shape = *shape_index.entry(key).or_insert_with(|| {
                         shapes.push(record);
+                        distinct.push(body.shape.clone());
                         shapes.len() as u32 - 1
                     });
                     BodyV1::of(body, shape)
@@ -405,7 +500,7 @@ impl WorldV1 {
             })
             .collect();
         let (joint_slots, free_joints) = joints.slots();
-        Self {
+        let record = Self {
             identity: bodies.world(),
             settings: SettingsV1::of(world.settings()),
             shapes,
@@ -423,15 +518,19 @@ impl WorldV1 {
                 .iter()
                 .map(|(a, b)| [a.slot() as u32, b.slot() as u32])
                 .collect(),
-        }
+        };
+        (record, distinct)
     }
 
-    /// The world of the snapshot, its handles those of the saved world; contacts start cold.
-    /// Describes the first value refused.
-    pub fn restore(self) -> Result<World, String> {
-        let shapes = (self.shapes.iter().enumerate())
+    /// The world of the snapshot, its meshes given `mesh_materials`, its handles those of the
+    /// saved world; contacts start cold. Describes the first value refused.
+    fn restore(self, mesh_materials: &[MeshMaterialsV3]) -> Result<World, String> {
+        let mut shapes = (self.shapes.iter().enumerate())
             .map(|(index, shape)| build_shape(shape).map_err(|e| format!("shape {index}: {e}")))
             .collect::<Result<Vec<Shape>, String>>()?;
+        for materials in mesh_materials {
+            materials.apply(&mut shapes)?;
+        }
         let body_slots = (self.bodies.into_iter().enumerate())
             .map(|(slot, entry)| {
                 let body = entry

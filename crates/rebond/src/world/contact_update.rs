@@ -179,8 +179,8 @@ impl World {
                 continue;
             };
             contact.material = Material::combine(
-                body_a.material_of_child(contact.key.child_a),
-                body_b.material_of_child(contact.key.child_b),
+                body_a.material_of_child(contact.key.child_a, contact.manifold.triangle),
+                body_b.material_of_child(contact.key.child_b, contact.manifold.triangle),
                 settings.friction_combine,
                 settings.restitution_combine,
             );

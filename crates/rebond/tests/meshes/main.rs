@@ -9,6 +9,7 @@ mod common;
 mod cylinders;
 mod floors;
 mod geometry;
+mod materials;
 mod queries;
 #[path = "../common/random.rs"]
 mod random;
@@ -32,6 +33,12 @@ pub fn floor_quads(size: f32, cells: u32) -> Shape {
 }
 
 fn floor(size: f32, cells: u32, shared: bool) -> Shape {
+    let (vertices, indices) = floor_triangles(size, cells, shared);
+    Shape::trimesh(vertices, &indices).unwrap()
+}
+
+/// The vertices and triangles of [`floor_mesh`] (`shared`) or [`floor_quads`].
+pub fn floor_triangles(size: f32, cells: u32, shared: bool) -> (Vec<Vec3>, Vec<[u32; 3]>) {
     let corner = |i: u32, j: u32| {
         let x = (j as f32 / cells as f32 - 0.5) * size;
         let z = (i as f32 / cells as f32 - 0.5) * size;
@@ -67,7 +74,7 @@ fn floor(size: f32, cells: u32, shared: bool) -> Shape {
             }
         }
     }
-    Shape::trimesh(vertices, &indices).unwrap()
+    (vertices, indices)
 }
 
 /// The horizontal unit direction at `angle` radians from +X toward −Z (about +Y).
