@@ -687,7 +687,7 @@ fn box_on_a_hull_keeps_its_ids() {
     check_ids_hold_still(&shape(Kind::Hull), &block, Quat::IDENTITY);
 }
 
-/// The hexagonal face gives six points, which `clipping::reduce_contacts_on_face` cuts to four by
+/// The hexagonal face gives six points, which `reduction::reduce_contacts_on_face` cuts to four by
 /// their place on the face, not by their depth, which a 0.5° tilt changes.
 #[test]
 fn hull_on_a_box_keeps_its_ids() {

@@ -9,12 +9,13 @@
 
 use std::f32::consts::TAU;
 
-use super::clipping::{clip_polygon, clip_segment, reduce_contacts, ClipFeature, ClipVertex};
+use super::clipping::{clip_polygon, clip_segment, ClipFeature, ClipVertex};
 use super::closed_form::parallel_capsules;
 use super::epa::{ContactInfo, Polytope};
 use super::gjk::SimplexCache;
 use super::manifold::{ContactPoint, Manifold, MAX_MANIFOLD_POINTS};
 use super::polyhedron::Polyhedron;
+use super::reduction::reduce_contacts;
 use super::PosedCore;
 use crate::math::{Pose, Vec3};
 use crate::shape::Shape;

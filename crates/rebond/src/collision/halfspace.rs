@@ -3,8 +3,8 @@
 
 use std::f32::consts::TAU;
 
-use super::clipping::reduce_contacts;
 use super::manifold::{ContactPoint, Manifold};
+use super::reduction::reduce_contacts;
 use crate::math::{Pose, Vec3};
 use crate::shape::{Halfspace, Shape};
 

@@ -16,9 +16,9 @@
 //! each manifold has one material: a box across the border of ice and rubber gets a manifold on
 //! each. A merged manifold names the triangle of its deepest point.
 
-use super::clipping::{reduce_contacts_on_face, Surface};
 use super::feature_contact::{is_vertex_of_b_on_face, DEEPEST_POINT_ID};
 use super::manifold::{ContactPoint, Manifold};
+use super::reduction::{reduce_contacts_on_face, Surface};
 use super::triangle_contact::{collide_triangle_from, TriangleSimplex};
 use crate::math::{Aabb, Pose, Vec3};
 use crate::shape::{Shape, Triangle, ACTIVE_EDGE_ANGLE};

@@ -17,6 +17,7 @@ mod mesh_contact;
 pub mod narrow_phase;
 pub mod polyhedron;
 pub mod polyhedron_contact;
+pub mod reduction;
 mod separating_axis;
 pub(crate) mod time_of_impact;
 mod triangle_closest;

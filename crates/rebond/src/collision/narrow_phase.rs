@@ -151,7 +151,7 @@ pub struct NarrowPhase {
 impl NarrowPhase {
     /// Sets the speculative distance the world adds to every pair's margin (m, default 0): the
     /// rest of a margin is how far the pair can close in the step, which mesh manifolds keep
-    /// points for (`clipping::Surface::Bent`). Left at 0, the whole margin counts as motion.
+    /// points for (`reduction::Surface::Bent`). Left at 0, the whole margin counts as motion.
     pub fn set_speculative_distance(&mut self, distance: f32) {
         self.speculative_distance = distance;
     }

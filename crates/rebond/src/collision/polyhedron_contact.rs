@@ -15,8 +15,8 @@
 //! (`box_face_contact`).
 
 use crate::collision::clipping::{
-    clip_by_sides, clip_polygon_within, reduce_contacts_on_face, ClipFeature, ClipPolygon, Surface,
-    MAX_CLIP_VERTICES, MAX_POLYGON_VERTICES,
+    clip_by_sides, clip_polygon_within, ClipFeature, ClipPolygon, MAX_CLIP_VERTICES,
+    MAX_POLYGON_VERTICES,
 };
 use crate::collision::gjk;
 use crate::collision::manifold::{ContactPoint, Manifold};
@@ -24,6 +24,7 @@ use crate::collision::polyhedron::{
     box_face_against, box_face_loop, box_face_sides, box_vertex, FacePlane, Frame, Polyhedron,
     Topology, BOX_FACE_LOOPS,
 };
+use crate::collision::reduction::{reduce_contacts_on_face, Surface};
 use crate::collision::separating_axis::{
     best_face_axis, edge_query, EdgeAxis, FaceAxis, ABSOLUTE_TOLERANCE,
 };

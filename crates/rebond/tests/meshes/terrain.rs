@@ -284,7 +284,7 @@ fn shapes_poured_on_terrain_are_at_rest_with_sleeping_off() {
     // resting on one face reads under 1 mm/s, one rolling or rocking reads cm/s. Measured:
     // seeds 1 to 12 reach 0.05 mm/s to 4.1 cm/s (seed 12: 4.1 cm/s; seeds 5 and 9: 2.4 cm/s;
     // seed 7: 1.1 cm/s; the other eight under 4 mm/s). Before the merged manifolds held their
-    // touching rim points (`clipping::hold_touching_points_outside`), caps across bent
+    // touching rim points (`reduction::hold_touching_points_outside`), caps across bent
     // triangles rocked on at up to 6.1 cm/s (seed 11), and with friction in one cone up to
     // 20 cm/s (seed 12).
     for seed in 1..=12 {
