@@ -158,6 +158,7 @@ impl TriMesh {
 
     /// The mesh that its own vertices, triangles and materials build: a decoded mesh is checked
     /// against it.
+    #[cfg(feature = "serde")]
     pub(crate) fn rebuilt(&self) -> Result<Self> {
         let data = &self.data;
         if data.materials.is_empty() && data.triangle_materials.is_empty() {
