@@ -20,7 +20,7 @@ const BUILTIN_SCENES: [(&str, usize); 17] = [
     ("terrain", 501),
     ("level", 151),
     ("soak", 47),
-    ("platformer", 20),
+    ("platformer", 19),
 ];
 
 /// The value of a `label  value` line of a summary.
