@@ -125,11 +125,10 @@ impl Viewer {
     /// Answers one input event; `viewport` is the screen size in physical pixels.
     pub fn handle_event(&mut self, event: &Event, viewport: Vec2) -> rebond::Result<()> {
         match event {
-            Event::KeyPress { kind, .. } => {
-                if !self.drive_character(*kind, true) {
-                    if let Some(action) = action_for_key(*kind) {
-                        self.apply(action, viewport)?;
-                    }
+            // The guard hands the character its keys; any other key does its action.
+            Event::KeyPress { kind, .. } if !self.drive_character(*kind, true) => {
+                if let Some(action) = action_for_key(*kind) {
+                    self.apply(action, viewport)?;
                 }
             }
             Event::KeyRelease { kind, .. } => {
@@ -277,10 +276,28 @@ mod tests {
     }
 
     fn press(viewer: &mut Viewer, key: Key) {
-        let event = Event::KeyPress {
-            kind: key,
-            modifiers: Modifiers::default(),
-            handled: false,
+        send_key(viewer, key, true);
+    }
+
+    fn release_key(viewer: &mut Viewer, key: Key) {
+        send_key(viewer, key, false);
+    }
+
+    /// Sends `key` going down, or up.
+    fn send_key(viewer: &mut Viewer, kind: Key, down: bool) {
+        let modifiers = Modifiers::default();
+        let event = if down {
+            Event::KeyPress {
+                kind,
+                modifiers,
+                handled: false,
+            }
+        } else {
+            Event::KeyRelease {
+                kind,
+                modifiers,
+                handled: false,
+            }
         };
         viewer.handle_event(&event, VIEWPORT).expect("handled");
     }
@@ -370,15 +387,6 @@ mod tests {
         press(&mut viewer, Key::R);
         assert_eq!(viewer.simulation.world().body_count(), 3);
         assert_eq!(viewer.simulation.steps(), 0);
-    }
-
-    fn release_key(viewer: &mut Viewer, key: Key) {
-        let event = Event::KeyRelease {
-            kind: key,
-            modifiers: Modifiers::default(),
-            handled: false,
-        };
-        viewer.handle_event(&event, VIEWPORT).expect("handled");
     }
 
     #[test]
