@@ -187,4 +187,70 @@ mod tests {
         let (highest, last) = run(&mut scene, &mut player, 2);
         assert!(highest <= 3.0 && last < 3.0, "it falls: {highest}, {last}");
     }
+
+    /// The built-in `platformer` scene with its player moved to `start`, and the player.
+    fn platformer_from(start: Vec3) -> (Scene, Player) {
+        let json = crate::builtin::find("platformer").expect("built in").json;
+        let mut scene = Scene::from_json(json.as_bytes()).expect("a valid scene");
+        let player = Player::new(scene.character().expect("a character")).expect("valid");
+        let body = scene.body_handle("player").expect("named");
+        let world = scene.world_mut();
+        let body = world.body_mut(body).expect("the player");
+        body.set_position(start).expect("a position");
+        (scene, player)
+    }
+
+    #[test]
+    fn the_platformers_character_jumps_up_both_ledges() {
+        // From the ground under the first ledge (top 1.2 m) a jump at 6 m/s rises 1.83 m, through
+        // it, and lands on it; from there a jump while walking 2.67 m toward -x (40 steps at
+        // 4 m/s) clears the second ledge's edge (x = -5) 1.77 m up and lands on its top, 2.2 m
+        // up. Each landing puts the centre 0.81 m above the top, less at most the 1 cm offset
+        // (measured: 2.01 and 3.01 m, at x = -5.67).
+        let (mut scene, mut player) = platformer_from(Vec3::new(-3.0, 0.81, 0.0));
+        run(&mut scene, &mut player, 2);
+        player.jump();
+        let (_, on_first) = run(&mut scene, &mut player, 90);
+        assert!(
+            on_first > 1.2 + 0.80 && on_first < 1.2 + 0.811,
+            "{on_first}"
+        );
+        player.jump();
+        player.set_walk(-Vec3::X);
+        run(&mut scene, &mut player, 40);
+        player.set_walk(Vec3::ZERO);
+        run(&mut scene, &mut player, 90);
+        let on_second = position(&scene);
+        assert!(
+            on_second.y > 2.2 + 0.80 && on_second.y < 2.2 + 0.811,
+            "{on_second}"
+        );
+        assert!(on_second.x > -7.0 && on_second.x < -5.0, "{on_second}");
+    }
+
+    #[test]
+    fn the_platformers_door_opens_when_pushed_and_closes_again() {
+        // The character walks 1 s toward -x into the door, 0.6 m from its hinge: it pushes with
+        // up to 1,000 N, 600 N·m, past the motor's 300 N·m, and the door swings open (measured:
+        // 1.16 rad). Walked away, the motor's spring (200 N·m/rad, damped) closes it: 3 s later
+        // it is within 0.01 rad of shut (measured 0.002 rad, asleep).
+        let (mut scene, mut player) = platformer_from(Vec3::new(-1.8, 0.81, -3.3));
+        let door = scene.body_handle("door").expect("named");
+        let angle = |scene: &Scene| {
+            let rotation = scene.world().body(door).expect("the door").rotation();
+            rotation.to_axis_angle().1
+        };
+        let mut widest = 0.0f32;
+        player.set_walk(-Vec3::X);
+        for _ in 0..60 {
+            run(&mut scene, &mut player, 1);
+            widest = widest.max(angle(&scene));
+        }
+        assert!(widest > 0.5, "opened to {widest} rad");
+        player.set_walk(Vec3::new(0.0, 0.0, -1.0));
+        run(&mut scene, &mut player, 30);
+        player.set_walk(Vec3::ZERO);
+        run(&mut scene, &mut player, 150);
+        assert!(angle(&scene) < 0.01, "{} rad", angle(&scene));
+    }
 }
