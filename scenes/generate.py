@@ -85,7 +85,7 @@ def ground_box(half_width):
 
 
 def write_scene(file_name, bodies, gravity=None, substeps=None, compact=False, joints=None,
-                restitution_threshold=None):
+                restitution_threshold=None, character=None):
     """Writes a scene with one body (and joint) per line; `compact` drops the spaces inside each
     line."""
     separators = (",", ":") if compact else (", ", ": ")
@@ -97,6 +97,8 @@ def write_scene(file_name, bodies, gravity=None, substeps=None, compact=False, j
         lines.append(f'  "substeps": {substeps},')
     if restitution_threshold is not None:
         lines.append(f'  "restitution_threshold": {restitution_threshold},')
+    if character is not None:
+        lines.append(f'  "character": {json.dumps(character, separators=separators)},')
     lines.append('  "bodies": [')
     body_lines = [indent + json.dumps(body, separators=separators) for body in bodies]
     lines.append(",\n".join(body_lines))
@@ -834,6 +836,95 @@ def soak():
     write_scene("soak.json", bodies, joints=joints, compact=True)
 
 
+def slope(name, low_end, angle, length, half_width):
+    """A static plank rising along +x at `angle` radians, its top face meeting the ground (y = 0)
+    at x = `low_end[0]`, z = `low_end[1]`."""
+    half_thickness = 0.1
+    rotation = axis_angle((0.0, 0.0, 1.0), angle)
+    # The top face's low edge is the centre plus the turned local (-length/2, half_thickness, 0).
+    edge = rotate(rotation, [-length / 2.0, half_thickness, 0.0])
+    center = [low_end[0] - edge[0], -edge[1], low_end[1]]
+    return {
+        "name": name, "type": "static",
+        "shape": {"type": "box", "half_extents": [length / 2.0, half_thickness, half_width]},
+        "position": rounded(center), "rotation": rounded(rotation, 6),
+    }
+
+
+def platformer():
+    """A level for the viewer's keyboard-driven character (a kinematic capsule, `player`): stairs
+    of 0.25 m steps up to a landing, slopes of 30 and 60 degrees, two one-way ledges to jump up
+    through, a conveyor carrying crates, a platform moving on a looping path, a self-closing door
+    on a motorised hinge, and crates to push."""
+    bodies = [ground_box(20.0)]
+    # Stairs along +x from x = 2: four steps 0.25 m high and 0.6 m deep, then a 2 m landing 1 m up.
+    for step in range(4):
+        height = 0.25 * (step + 1)
+        bodies.append({
+            "name": f"stair_{step}", "type": "static",
+            "shape": {"type": "box", "half_extents": [0.3, height / 2.0, 1.5]},
+            "position": [2.3 + 0.6 * step, height / 2.0, 0.0],
+        })
+    bodies.append({
+        "name": "landing", "type": "static",
+        "shape": {"type": "box", "half_extents": [1.0, 0.5, 1.5]}, "position": [5.4, 0.5, 0.0],
+    })
+    # Slopes: 30 degrees is walked up, 60 is steeper than the character's 45-degree limit.
+    bodies.append(slope("slope_30", (2.0, -4.5), math.radians(30.0), 4.0, 1.5))
+    bodies.append(slope("slope_60", (2.0, -8.5), math.radians(60.0), 2.5, 1.5))
+    # One-way ledges on the -x side, solid from above only: 1.2 m up, then 2.2 m up.
+    for index, (x, top) in enumerate([(-3.0, 1.2), (-6.0, 2.2)]):
+        bodies.append({
+            "name": f"ledge_{index}", "type": "static", "one_way": [0.0, 1.0, 0.0],
+            "shape": {"type": "box", "half_extents": [1.0, 0.05, 1.5]},
+            "position": rounded([x, top - 0.05, 0.0]),
+        })
+    # A conveyor belt at +z whose surface runs along +x at 1.5 m/s, two crates on it.
+    bodies.append({
+        "name": "conveyor", "type": "static", "surface_velocity": [1.5, 0.0, 0.0],
+        "shape": {"type": "box", "half_extents": [3.0, 0.1, 1.0]}, "position": [0.0, 0.1, 4.5],
+    })
+    for index, x in enumerate([-2.5, -1.0]):
+        bodies.append({
+            "name": f"belt_crate_{index}", "shape": {"type": "box", "half_extents": [0.3, 0.3, 0.3]},
+            "mass": 20.0, "position": [x, 0.5, 4.5],
+        })
+    # A platform 0.25 m high (a step) that waits 1 s at x = -4, moves to x = 2 at 2 m/s, waits,
+    # and comes back, forever.
+    def at(time, x):
+        return {"time": time, "position": [x, 0.15, 8.0]}
+    bodies.append({
+        "name": "platform", "type": "kinematic",
+        "shape": {"type": "box", "half_extents": [1.0, 0.1, 1.0]},
+        "path": {"loop": True, "points": [at(0.0, -4.0), at(1.0, -4.0), at(4.0, 2.0),
+                                          at(5.0, 2.0), at(8.0, -4.0)]},
+    })
+    # A door 2 m high and 1.2 m wide hinged at its edge about +y, held 5 cm off the ground by the
+    # hinge; a position motor closes it again after the character pushes it open.
+    bodies.append({
+        "name": "door", "shape": {"type": "box", "half_extents": [0.05, 1.0, 0.6]},
+        "mass": 20.0, "position": [-3.0, 1.05, -3.1],
+    })
+    joints = [{
+        "name": "door_hinge", "type": "revolute", "body_b": "door", "anchor": [-3.0, 1.05, -2.5],
+        "axis": [0.0, 1.0, 0.0],
+        "motor": {"target_position": 0.0, "stiffness": 200.0, "damping": 60.0, "max_force": 300.0},
+    }]
+    for index, (x, z) in enumerate([(-1.0, -2.0), (-1.0, -3.0), (-1.5, -2.5)]):
+        bodies.append({
+            "name": f"crate_{index}", "shape": {"type": "box", "half_extents": [0.25, 0.25, 0.25]},
+            "mass": 10.0, "position": [x, 0.25, z],
+        })
+    # The player: a capsule 1.6 m tall standing 1 cm above the ground (the controller's offset).
+    bodies.append({
+        "name": "player", "type": "kinematic",
+        "shape": {"type": "capsule", "radius": 0.3, "half_height": 0.5},
+        "position": [0.0, 0.81, 0.0],
+    })
+    character = {"body": "player", "walk_speed": 4.0, "jump_speed": 6.0}
+    write_scene("platformer.json", bodies, joints=joints, character=character)
+
+
 if __name__ == "__main__":
     showcase()
     pyramid()
@@ -851,3 +942,4 @@ if __name__ == "__main__":
     terrain()
     level()
     soak()
+    platformer()

@@ -126,6 +126,13 @@ pub const BUILTIN_SCENES: &[BuiltinScene] = &[
         json: include_str!("../../../scenes/soak.json"),
         files: &[],
     },
+    BuiltinScene {
+        name: "platformer",
+        description: "a character to walk with WASD and Space in `rebond view`: stairs, slopes, \
+                      one-way ledges, a conveyor, a moving platform, a hinged door, crates",
+        json: include_str!("../../../scenes/platformer.json"),
+        files: &[],
+    },
 ];
 
 /// The built-in scene called `name`.

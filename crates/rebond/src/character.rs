@@ -76,6 +76,7 @@ const WALKABLE_SLACK: f32 = 1e-6;
 /// How a character moves: every length in metres, angles in radians. Checked by
 /// [`CharacterController::new`], whose errors name the field.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CharacterSettings {
     /// The character's up direction, any finite non-zero length (normalised), default `+Y`.
     pub up: Vec3,

@@ -3,7 +3,9 @@
 mod common;
 
 use common::scene_path;
+use rebond::character::CharacterController;
 use rebond::scene::Scene;
+use rebond::{QueryFilter, Vec3};
 
 /// The built-in scene `name`, every body kept awake when `can_sleep` is false.
 fn load(name: &str, can_sleep: bool) -> Scene {
@@ -140,4 +142,125 @@ fn the_car_drives_straight_over_symmetric_bumps() {
         widest = widest.max(scene.world().body(chassis).unwrap().position().z.abs());
     }
     assert!(widest < 0.05, "the chassis went {widest} m sideways");
+}
+
+/// Walks the `platformer` scene's character from `start` along `direction` at the scene's walking
+/// speed for `steps` steps, gravity pulling it down while it is in the air, as a game (and
+/// `rebond view`) drives it; returns the lowest and the last position of its centre.
+fn walk_the_platformer(start: Vec3, direction: Vec3, steps: usize) -> (f32, Vec3) {
+    let mut scene = load("platformer", true);
+    let character = *scene.character().expect("the scene names its character");
+    let dt = scene.timestep().engine_seconds;
+    let gravity = scene.world().settings().gravity.y;
+    scene
+        .world_mut()
+        .body_mut(character.body)
+        .unwrap()
+        .set_position(start)
+        .unwrap();
+    let mut controller = CharacterController::new(character.settings).unwrap();
+    let (mut fall_speed, mut lowest) = (0.0, f32::INFINITY);
+    for _ in 0..steps {
+        let desired = (direction * character.walk_speed + Vec3::Y * fall_speed) * dt;
+        let world = scene.world_mut();
+        let moved = controller
+            .move_body(world, character.body, desired, dt, &QueryFilter::default())
+            .unwrap();
+        fall_speed = if moved.is_grounded() {
+            0.0
+        } else {
+            fall_speed + gravity * dt
+        };
+        scene.step().unwrap();
+        lowest = lowest.min(scene.world().body(character.body).unwrap().position().y);
+    }
+    let last = scene.world().body(character.body).unwrap().position();
+    (lowest, last)
+}
+
+/// The character's centre standing on flat ground: the capsule's half height (0.5 m) and radius
+/// (0.3 m) above the surface, plus the controller's 1 cm offset.
+const STANDING_HEIGHT: f32 = 0.81;
+
+#[test]
+fn the_platformer_character_climbs_the_stairs_to_the_landing() {
+    // Four 0.25 m steps (under the 0.3 m step height) from x = 2 to 4.4, a landing 1 m up to
+    // x = 6.4. Walking +x at 4 m/s for 1.4 s covers 5.6 m if no step slows it (measured:
+    // 5.599998 m). Never below the ground: the centre stays within 1 mm of its standing height
+    // (measured: 0.81 exactly). It ends standing on the landing: a step up drops onto the step
+    // and keeps a gap of at most the offset, so the centre lies between 1 m + 0.81 m and one
+    // offset (1 cm) lower (measured: 1.8057 m).
+    let (lowest, last) = walk_the_platformer(Vec3::new(0.0, STANDING_HEIGHT, 0.0), Vec3::X, 84);
+    assert!(lowest > STANDING_HEIGHT - 1e-3, "sank to {lowest}");
+    let on_landing = 1.0 + STANDING_HEIGHT;
+    assert!(
+        last.y > on_landing - 0.01 && last.y < on_landing + 1e-3,
+        "ends at {last}"
+    );
+    assert!((last.x - 5.6).abs() < 0.01, "ends at {last}");
+}
+
+#[test]
+fn the_platformer_character_walks_up_the_30_degree_slope_and_not_the_60_degree_one() {
+    // The 30° slope's top face meets the ground at x = 2 (z = -4.5). Walked up at full lateral
+    // speed (`docs/games.md`), after 0.85 s at 4 m/s the character is at x = 3.4, 1.4 m up the
+    // slope, its bottom sphere's centre (0.3 m + 0.01 m from the face along its normal) at
+    // (x − 2) tan 30° + 0.31 / cos 30° above the ground, its centre 0.5 m higher. Bounds 1 mm,
+    // f32 rounding of 51 moves (measured: x = 3.4, y off by 2.6e-5 m).
+    let start = Vec3::new(0.0, STANDING_HEIGHT, -4.5);
+    let (_, last) = walk_the_platformer(start, Vec3::X, 51);
+    let angle = 30f32.to_radians();
+    let expected_y = (last.x - 2.0) * angle.tan() + 0.31 / angle.cos() + 0.5;
+    assert!((last.x - 3.4).abs() < 1e-3, "ends at {last}");
+    assert!(
+        (last.y - expected_y).abs() < 1e-3,
+        "ends at {last}, not {expected_y}"
+    );
+    // The 60° slope is a wall: walking into it for a second, the character stays on the ground
+    // (measured: 0.81 m exactly) and stops where its bottom sphere, 0.31 m from the slope's
+    // face, touches it: x = 2 − 0.31 (1 − cos 60°) / sin 60° = 1.82102 (measured 1.82104).
+    let start = Vec3::new(0.0, STANDING_HEIGHT, -8.5);
+    let (_, last) = walk_the_platformer(start, Vec3::X, 60);
+    let angle = 60f32.to_radians();
+    let against = 2.0 - 0.31 * (1.0 - angle.cos()) / angle.sin();
+    assert!((last.x - against).abs() < 1e-3, "ends at {last}");
+    assert!((last.y - STANDING_HEIGHT).abs() < 1e-3, "ends at {last}");
+}
+
+#[test]
+fn the_platformer_platform_follows_its_path_and_the_conveyor_carries_a_crate() {
+    // After 2.5 s the platform is 1.5 s into its 3 s run from x = -4 to x = 2: at x = -1,
+    // moving at 2 m/s. Its pose is set from the path exactly; the clock sums the f32 steps, so
+    // it is off 2.5 s by a few microseconds, a few micrometres of travel: bound 1e-4 m
+    // (measured: 2.5000002 s, x = -0.99999964 m, 2.0000052 m/s).
+    let mut scene = load("platformer", true);
+    for _ in 0..150 {
+        scene.step().unwrap();
+    }
+    let platform = scene
+        .world()
+        .body(scene.body_handle("platform").unwrap())
+        .unwrap();
+    let time = platform.path_time() as f32;
+    assert!((time - 2.5).abs() < 1e-4, "{time}");
+    assert!((platform.position().x - (-4.0 + 2.0 * (time - 1.0))).abs() < 1e-4);
+    assert!((platform.linear_velocity().x - 2.0).abs() < 1e-4);
+    // The crate set on the belt (moving at 1.5 m/s along +x, friction 0.5 with the crate)
+    // speeds up at μg until it rides at the belt's speed, having slipped behind it by
+    // v² / (2 μ g) − v h / 2 over substeps of h = 1/480 s (`docs/kinematic.md`): at 2.5 s it is
+    // at x = -1 + 1.5 · 2.5 − 0.2294 + 0.0016 = 2.5222 m (measured 2.5222). Bound 1 mm: the
+    // crate settles 0.02 mm into the belt, and the contact spring's give shifts when it stops
+    // slipping. It rides at the belt's speed (measured 1.5000001 m/s).
+    let crate_ = scene
+        .world()
+        .body(scene.body_handle("belt_crate_1").unwrap())
+        .unwrap();
+    let (speed, mu, substep) = (1.5f32, 0.5, 1.0 / 480.0);
+    let slip = speed * speed / (2.0 * mu * 9.81) - speed * substep / 2.0;
+    assert!(
+        (crate_.position().x - (-1.0 + speed * 2.5 - slip)).abs() < 1e-3,
+        "{}",
+        crate_.position()
+    );
+    assert!((crate_.linear_velocity().x - 1.5).abs() < 1e-3);
 }

@@ -724,3 +724,82 @@ fn a_box_character_walks_and_climbs_a_step_too() {
     );
     assert!(position.x > 2.0, "{position}");
 }
+
+/// A scene file names its character with the top-level `character`: the body, its speeds and
+/// the controller's settings; bad values are refused at their JSON path.
+#[test]
+fn a_scene_names_its_character_and_bad_values_are_refused_at_their_path() {
+    use rebond::scene::{Scene, DEFAULT_CHARACTER_JUMP_SPEED, DEFAULT_CHARACTER_WALK_SPEED};
+
+    let scene_with = |character: &str| {
+        format!(
+            r#"{{ "character": {character}, "bodies": [
+                {{ "name": "player", "type": "kinematic",
+                   "shape": {{ "type": "capsule", "radius": 0.3, "half_height": 0.5 }} }},
+                {{ "name": "crate", "shape": {{ "type": "box", "half_extents": [1, 1, 1] }} }} ] }}"#
+        )
+    };
+    let scene = Scene::from_json(
+        scene_with(
+            r#"{ "body": "player", "walk_speed": 3, "jump_speed": 0,
+                 "max_slope_angle": 0.5, "max_step_height": 0.2 }"#,
+        )
+        .as_bytes(),
+    )
+    .unwrap();
+    let character = scene.character().unwrap();
+    assert_eq!(character.body, scene.body_handle("player").unwrap());
+    assert_eq!((character.walk_speed, character.jump_speed), (3.0, 0.0));
+    let expected = CharacterSettings {
+        max_slope_angle: 0.5,
+        max_step_height: 0.2,
+        ..CharacterSettings::default()
+    };
+    assert_eq!(character.settings, expected);
+
+    let defaults = Scene::from_json(scene_with(r#"{ "body": "player" }"#).as_bytes()).unwrap();
+    let character = defaults.character().unwrap();
+    assert_eq!(character.walk_speed, DEFAULT_CHARACTER_WALK_SPEED);
+    assert_eq!(character.jump_speed, DEFAULT_CHARACTER_JUMP_SPEED);
+    assert_eq!(character.settings, CharacterSettings::default());
+    let none = Scene::from_json(br#"{ "bodies": [] }"#).unwrap();
+    assert!(none.character().is_none());
+
+    for (character, place) in [
+        (r#"{ "body": "nobody" }"#, "character.body"),
+        (r#"{ "body": "crate" }"#, "character.body"),
+        (r#"{ }"#, "character.body"),
+        (
+            r#"{ "body": "player", "walk_speed": 0 }"#,
+            "character.walk_speed",
+        ),
+        (
+            r#"{ "body": "player", "walk_speed": 101 }"#,
+            "character.walk_speed",
+        ),
+        (
+            r#"{ "body": "player", "walk_speed": 1e39 }"#,
+            "character.walk_speed",
+        ),
+        (
+            r#"{ "body": "player", "jump_speed": -1 }"#,
+            "character.jump_speed",
+        ),
+        (
+            r#"{ "body": "player", "max_slope_angle": 1.5 }"#,
+            "character.max_slope_angle",
+        ),
+        (
+            r#"{ "body": "player", "max_step_height": -0.1 }"#,
+            "character.max_step_height",
+        ),
+        (
+            r#"{ "body": "player", "run_speed": 8 }"#,
+            "character.run_speed",
+        ),
+        (r#"[ "player" ]"#, "character"),
+    ] {
+        let error = Scene::from_json(scene_with(character).as_bytes()).unwrap_err();
+        assert_eq!(error.place, place, "{character}: {}", error.message);
+    }
+}

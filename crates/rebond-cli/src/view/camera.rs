@@ -98,6 +98,13 @@ impl OrbitCamera {
         self.target + self.distance * self.backward()
     }
 
+    /// The camera's heading on the ground (the horizontal part of its view direction) and the
+    /// screen's right, both horizontal unit vectors.
+    pub fn ground_heading_and_right(&self) -> (Vec3, Vec3) {
+        let (sin, cos) = self.yaw.sin_cos();
+        (Vec3::new(-sin, 0.0, -cos), Vec3::new(cos, 0.0, -sin))
+    }
+
     /// The screen's right and up directions in the world.
     fn right_and_up(&self) -> (Vec3, Vec3) {
         let backward = self.backward();

@@ -1,5 +1,6 @@
 //! The keys and mouse gestures of the viewer. One table binds keys to actions; the help overlay
-//! is written from the same table, so it lists exactly the keys that work.
+//! is written from the same table, so it lists exactly the keys that work. In a scene that names
+//! a character, W, A, S, D and Space drive it instead: P and M still pause and slow down.
 
 use three_d::Key;
 
@@ -54,6 +55,12 @@ pub const KEY_BINDINGS: &[KeyBinding] = &[
         description: "pause / resume",
     },
     KeyBinding {
+        key: Key::P,
+        label: "P",
+        action: Action::TogglePause,
+        description: "pause / resume",
+    },
+    KeyBinding {
         key: Key::N,
         label: "N",
         action: Action::StepOnce,
@@ -68,6 +75,12 @@ pub const KEY_BINDINGS: &[KeyBinding] = &[
     KeyBinding {
         key: Key::S,
         label: "S",
+        action: Action::ToggleSlowMotion,
+        description: "slow motion (1/4 speed) on / off",
+    },
+    KeyBinding {
+        key: Key::M,
+        label: "M",
         action: Action::ToggleSlowMotion,
         description: "slow motion (1/4 speed) on / off",
     },
@@ -133,6 +146,22 @@ pub const KEY_BINDINGS: &[KeyBinding] = &[
     },
 ];
 
+/// The keys that walk a scene's character, each with the way it walks: forward (+1) or back
+/// (−1) along the camera's heading on the ground, and right (+1) or left (−1) across it.
+pub const WALK_KEYS: [(Key, f32, f32); 4] = [
+    (Key::W, 1.0, 0.0),
+    (Key::S, -1.0, 0.0),
+    (Key::A, 0.0, -1.0),
+    (Key::D, 0.0, 1.0),
+];
+
+/// The key that makes a scene's character jump.
+pub const JUMP_KEY: Key = Key::Space;
+
+/// The help's lines for a scene's character.
+pub const CHARACTER_HELP: &[(&str, &str)] =
+    &[("W A S D", "walk, as the camera faces"), ("Space", "jump")];
+
 /// The help's lines for the mouse.
 pub const MOUSE_HELP: &[(&str, &str)] = &[
     ("left drag", "on a body: pull it; elsewhere: turn"),
@@ -169,6 +198,12 @@ pub fn help_lines() -> Vec<String> {
             binding.description
         ));
     }
+    lines.push("Character (if the scene has one)".to_owned());
+    lines.extend(
+        CHARACTER_HELP
+            .iter()
+            .map(|(keys, description)| format!("  {keys:<11}{description}")),
+    );
     lines.push("Mouse".to_owned());
     lines.extend(
         MOUSE_HELP
@@ -202,6 +237,24 @@ mod tests {
             assert!(help.contains(binding.description));
         }
         assert_eq!(action_for_key(Key::X), None);
+    }
+
+    #[test]
+    fn the_characters_keys_leave_every_action_a_key() {
+        // Space and S serve the character in a scene that has one: their actions keep P and M.
+        let character_keys: Vec<Key> = (WALK_KEYS.iter().map(|(key, _, _)| *key))
+            .chain([JUMP_KEY])
+            .collect();
+        for binding in KEY_BINDINGS {
+            assert!(
+                KEY_BINDINGS
+                    .iter()
+                    .any(|other| other.action == binding.action
+                        && !character_keys.contains(&other.key)),
+                "{:?} has no key beside the character's",
+                binding.action
+            );
+        }
     }
 
     #[test]

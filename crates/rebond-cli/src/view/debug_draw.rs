@@ -130,7 +130,7 @@ mod tests {
 
     fn viewer_after_steps(steps: usize) -> Viewer {
         let scene = Scene::from_json(SCENE.as_bytes()).expect("a valid scene");
-        let mut simulation = Simulation::new(&scene);
+        let mut simulation = Simulation::new(&scene).expect("no character");
         for _ in 0..steps {
             simulation.step().expect("a step");
         }

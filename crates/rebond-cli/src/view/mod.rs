@@ -1,14 +1,15 @@
 //! `rebond view`: a window that simulates a scene live, testbed style. Every shape is drawn lit
 //! and solid, a halfspace as a ground grid; an orbit camera turns, pans and zooms; keys pause,
 //! step, reset and slow the simulation and toggle debug drawing; the mouse drags bodies on a
-//! spring and shoots balls. `--screenshot FILE --steps N` saves one frame as PNG and exits.
+//! spring and shoots balls; W, A, S, D and Space walk and jump the character a scene names.
+//! `--screenshot FILE --steps N` saves one frame as PNG and exits.
 //!
 //! The module splits by concept: [`simulation`] (the stepping world and the user's pokes),
-//! [`drag`] (the mouse spring), [`picking`] (ray casts, which the engine lacks), [`camera`],
-//! [`controls`] (the key table and help), [`viewer`] (input to actions), [`mesh`] (a triangle
-//! mesh per shape), [`ground`], [`palette`], [`debug_draw`] with [`joint_draw`], [`overlay`]
-//! (text panels), [`render`] (three-d drawing), [`screenshot`] and [`window`] (winit's event
-//! loop).
+//! [`drag`] (the mouse spring), [`player`] (the scene's character under the keyboard),
+//! [`picking`] (ray casts, which the engine lacks), [`camera`], [`controls`] (the key table and
+//! help), [`viewer`] (input to actions), [`mesh`] (a triangle mesh per shape), [`ground`],
+//! [`palette`], [`debug_draw`] with [`joint_draw`], [`overlay`] (text panels), [`render`]
+//! (three-d drawing), [`screenshot`] and [`window`] (winit's event loop).
 
 mod camera;
 mod controls;
@@ -20,6 +21,7 @@ mod mesh;
 mod overlay;
 mod palette;
 mod picking;
+mod player;
 mod render;
 mod screenshot;
 mod simulation;
@@ -81,7 +83,11 @@ impl fmt::Display for ViewError {
 /// report, or nothing).
 pub fn view(source: &SceneSource, options: &ViewOptions) -> Result<String, ViewError> {
     let scene = source.load()?;
-    let simulation = Simulation::new(&scene);
+    // The scene checked its character's settings as it loaded; the controller checks them again.
+    let simulation = Simulation::new(&scene).map_err(|error| Failure::InvalidScene {
+        source: source.label(),
+        error: error.within("character").into(),
+    })?;
     let mode = match &options.screenshot {
         Some(path) => Mode::Screenshot {
             path: path.clone(),

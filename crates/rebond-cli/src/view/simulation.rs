@@ -10,6 +10,7 @@ use rebond::{BodyDesc, BodyHandle, BodyType, RigidBody, Shape, World};
 use super::drag::Drag;
 use super::palette::{body_colour, Rgb};
 use super::picking::{pick, Ray};
+use super::player::Player;
 use rebond::scene::Scene;
 
 /// Simulated time per second of wall clock in slow motion.
@@ -85,11 +86,14 @@ pub struct Simulation {
     balls_shot: u32,
     /// Goes up whenever bodies are added or removed, so the renderer knows to rebuild.
     body_set_version: u64,
+    /// The scene's character, moved by the keys before each step, if the scene names one.
+    player: Option<Player>,
 }
 
 impl Simulation {
-    /// A simulation of `scene` as loaded, running (not paused), at normal speed.
-    pub fn new(scene: &Scene) -> Self {
+    /// A simulation of `scene` as loaded, running (not paused), at normal speed; an error when
+    /// the settings of the character it names are refused.
+    pub fn new(scene: &Scene) -> rebond::Result<Self> {
         let world = scene.world().clone();
         // The scene lists its bodies by name and the world by handle, both as references into
         // the same storage: their addresses pair them up.
@@ -109,7 +113,8 @@ impl Simulation {
                 })
             })
             .collect();
-        Self {
+        let player = scene.character().map(Player::new).transpose()?;
+        Ok(Self {
             initial_world: world.clone(),
             initial_bodies: bodies.clone(),
             world,
@@ -123,7 +128,8 @@ impl Simulation {
             drag: None,
             balls_shot: 0,
             body_set_version: 0,
-        }
+            player,
+        })
     }
 
     /// The world as it is now.
@@ -180,8 +186,17 @@ impl Simulation {
         self.step()
     }
 
-    /// Back to the scene as loaded: shot balls go, the drag ends; pause and speed stay.
+    /// The scene's character, if it names one.
+    pub fn player_mut(&mut self) -> Option<&mut Player> {
+        self.player.as_mut()
+    }
+
+    /// Back to the scene as loaded: shot balls go, the drag ends, the character stands where it
+    /// started; pause and speed stay.
     pub fn reset(&mut self) {
+        if let Some(player) = &mut self.player {
+            player.reset();
+        }
         self.world = self.initial_world.clone();
         self.bodies = self.initial_bodies.clone();
         self.drag = None;
@@ -213,8 +228,11 @@ impl Simulation {
         Ok(())
     }
 
-    /// One step of the world, with the drag spring acting during it.
+    /// One step of the world, the character moved first, with the drag spring acting during it.
     pub fn step(&mut self) -> rebond::Result<()> {
+        if let Some(player) = &mut self.player {
+            player.before_step(&mut self.world, self.timestep as f32)?;
+        }
         if let Some(drag) = &self.drag {
             if drag.apply(&mut self.world, self.timestep as f32).is_err() {
                 self.drag = None;
@@ -317,6 +335,7 @@ mod tests {
 
     fn simulation() -> Simulation {
         Simulation::new(&Scene::from_json(SCENE.as_bytes()).expect("a valid scene"))
+            .expect("no character")
     }
 
     fn ball_height(simulation: &Simulation) -> f32 {

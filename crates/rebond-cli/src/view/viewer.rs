@@ -6,7 +6,7 @@ use rebond::{Aabb, BodyType, Vec3};
 use three_d::{Event, MouseButton, PhysicalPoint};
 
 use super::camera::OrbitCamera;
-use super::controls::{action_for_key, Action};
+use super::controls::{action_for_key, Action, JUMP_KEY, WALK_KEYS};
 use super::simulation::Simulation;
 
 /// What is drawn besides the bodies.
@@ -65,6 +65,8 @@ pub struct Viewer {
     cursor: Option<Vec2>,
     /// Whether the user asked to close the viewer.
     quit: bool,
+    /// Which of [`WALK_KEYS`] are held down.
+    walk_keys_held: [bool; 4],
 }
 
 impl Viewer {
@@ -80,6 +82,7 @@ impl Viewer {
             gesture: None,
             cursor: None,
             quit: false,
+            walk_keys_held: [false; 4],
         }
     }
 
@@ -122,10 +125,14 @@ impl Viewer {
     /// Answers one input event; `viewport` is the screen size in physical pixels.
     pub fn handle_event(&mut self, event: &Event, viewport: Vec2) -> rebond::Result<()> {
         match event {
-            Event::KeyPress { kind, .. } => {
+            // The guard hands the character its keys; any other key does its action.
+            Event::KeyPress { kind, .. } if !self.drive_character(*kind, true) => {
                 if let Some(action) = action_for_key(*kind) {
                     self.apply(action, viewport)?;
                 }
+            }
+            Event::KeyRelease { kind, .. } => {
+                self.drive_character(*kind, false);
             }
             Event::MousePress {
                 button,
@@ -178,7 +185,46 @@ impl Viewer {
             }
             _ => {}
         }
+        self.steer_character();
         Ok(())
+    }
+
+    /// Passes a key going down (`pressed`) or up to the scene's character; returns whether the
+    /// key is one of the character's (none are without a character).
+    fn drive_character(&mut self, key: three_d::Key, pressed: bool) -> bool {
+        let Some(player) = self.simulation.player_mut() else {
+            return false;
+        };
+        if key == JUMP_KEY {
+            if pressed {
+                player.jump();
+            }
+            return true;
+        }
+        match WALK_KEYS
+            .iter()
+            .position(|(walk_key, _, _)| *walk_key == key)
+        {
+            Some(index) => {
+                self.walk_keys_held[index] = pressed;
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Points the character's walk where the held keys ask, as the camera now faces.
+    fn steer_character(&mut self) {
+        let (heading, right) = self.camera.ground_heading_and_right();
+        let Some(player) = self.simulation.player_mut() else {
+            return;
+        };
+        let direction = (WALK_KEYS.iter().zip(self.walk_keys_held))
+            .filter(|(_, held)| *held)
+            .fold(Vec3::ZERO, |sum, ((_, forward, across), _)| {
+                sum + heading * *forward + right * *across
+            });
+        player.set_walk(direction);
     }
 }
 
@@ -226,14 +272,32 @@ mod tests {
 
     fn viewer() -> Viewer {
         let scene = Scene::from_json(SCENE.as_bytes()).expect("a valid scene");
-        Viewer::new(Simulation::new(&scene), VIEWPORT)
+        Viewer::new(Simulation::new(&scene).expect("no character"), VIEWPORT)
     }
 
     fn press(viewer: &mut Viewer, key: Key) {
-        let event = Event::KeyPress {
-            kind: key,
-            modifiers: Modifiers::default(),
-            handled: false,
+        send_key(viewer, key, true);
+    }
+
+    fn release_key(viewer: &mut Viewer, key: Key) {
+        send_key(viewer, key, false);
+    }
+
+    /// Sends `key` going down, or up.
+    fn send_key(viewer: &mut Viewer, kind: Key, down: bool) {
+        let modifiers = Modifiers::default();
+        let event = if down {
+            Event::KeyPress {
+                kind,
+                modifiers,
+                handled: false,
+            }
+        } else {
+            Event::KeyRelease {
+                kind,
+                modifiers,
+                handled: false,
+            }
         };
         viewer.handle_event(&event, VIEWPORT).expect("handled");
     }
@@ -323,6 +387,57 @@ mod tests {
         press(&mut viewer, Key::R);
         assert_eq!(viewer.simulation.world().body_count(), 3);
         assert_eq!(viewer.simulation.steps(), 0);
+    }
+
+    #[test]
+    fn wasd_walks_the_character_as_the_camera_faces_and_space_jumps() {
+        let scene = Scene::from_json(
+            br#"{"character": {"body": "player", "walk_speed": 3},
+            "bodies": [
+            {"name": "ground", "type": "static",
+             "shape": {"type": "box", "half_extents": [20, 0.5, 20]}, "position": [0, -0.5, 0]},
+            {"name": "player", "type": "kinematic",
+             "shape": {"type": "capsule", "radius": 0.3, "half_height": 0.5},
+             "position": [0, 0.81, 0]}
+        ]}"#,
+        )
+        .expect("a valid scene");
+        let mut viewer = Viewer::new(Simulation::new(&scene).expect("valid"), VIEWPORT);
+        let player = scene.body_handle("player").expect("named");
+        let position = |viewer: &Viewer| {
+            let body = viewer.simulation.world().body(player).expect("the player");
+            body.position()
+        };
+        let (heading, right) = viewer.camera.ground_heading_and_right();
+        // W and D held for 20 steps at 3 m/s: 1 m along the heading plus the right, halved.
+        press(&mut viewer, Key::W);
+        press(&mut viewer, Key::D);
+        for _ in 0..20 {
+            viewer.simulation.step().expect("a step");
+        }
+        let walked = position(&viewer) - Vec3::new(0.0, 0.81, 0.0);
+        let expected = (heading + right).normalize();
+        assert!(
+            (walked - expected).length() < 1e-3,
+            "{walked} not {expected}"
+        );
+        release_key(&mut viewer, Key::W);
+        release_key(&mut viewer, Key::D);
+        // Space jumps rather than pausing; S walks rather than slowing down; P and M do those.
+        press(&mut viewer, Key::Space);
+        press(&mut viewer, Key::S);
+        assert!(!viewer.simulation.is_paused() && !viewer.simulation.is_slow_motion());
+        for _ in 0..10 {
+            viewer.simulation.step().expect("a step");
+        }
+        assert!(position(&viewer).y > 1.2, "jumped to {}", position(&viewer));
+        release_key(&mut viewer, Key::S);
+        press(&mut viewer, Key::P);
+        press(&mut viewer, Key::M);
+        assert!(viewer.simulation.is_paused() && viewer.simulation.is_slow_motion());
+        // A reset puts the character back where it started.
+        press(&mut viewer, Key::R);
+        assert_eq!(position(&viewer), Vec3::new(0.0, 0.81, 0.0));
     }
 
     #[test]

@@ -3,7 +3,7 @@
 use crate::common::{rebond, rebond_in, TestDir};
 
 /// Every built-in scene the brief asks for, with its body count (ground included).
-const BUILTIN_SCENES: [(&str, usize); 16] = [
+const BUILTIN_SCENES: [(&str, usize); 17] = [
     ("showcase", 31),
     ("pyramid", 211),
     ("column", 11),
@@ -20,6 +20,7 @@ const BUILTIN_SCENES: [(&str, usize); 16] = [
     ("terrain", 501),
     ("level", 151),
     ("soak", 47),
+    ("platformer", 19),
 ];
 
 /// The value of a `label  value` line of a summary.

@@ -329,6 +329,25 @@ fn joints_are_drawn_with_their_anchors_axes_and_limits() {
 
 #[test]
 #[cfg_attr(not(rebond_has_xvfb), ignore = "needs xvfb-run (apt-get install xvfb)")]
+fn the_platformer_screenshot_shows_its_level_and_character() {
+    // A second in: the crates ride the belt, the platform has set off, the door hangs on its
+    // hinge. The picture is not blank, its static level and ground cover a good part of it, and
+    // the moving bodies the report places on screen are drawn there in their colours.
+    let dir = TestDir::new("view_platformer");
+    let (stdout, picture) = screenshot(&dir, OsStr::new("platformer"), "60");
+    assert!(stdout.starts_with("scene            platformer (built-in)\n"));
+    assert!(stdout.contains("bodies           19\n"), "{stdout}");
+    let found = assert_shows_scene(&stdout, &picture, 0.2);
+    let player = body_lines(&stdout)
+        .into_iter()
+        .find(|body| body.name == "player")
+        .expect("the player's line");
+    assert!(player.pixel.is_some(), "the player is on screen");
+    assert!(found >= 6, "only {found} bodies seen");
+}
+
+#[test]
+#[cfg_attr(not(rebond_has_xvfb), ignore = "needs xvfb-run (apt-get install xvfb)")]
 fn an_unwritable_screenshot_is_an_error_line() {
     let dir = TestDir::new("view_unwritable");
     let path = dir.path("missing-directory").join("frame.png");

@@ -1,7 +1,8 @@
 //! From the file's model to the engine's descriptions: every number narrowed to `f32` and checked,
 //! every error placed at the path of the value the user wrote (`bodies[3].shape.radius`).
 
-use crate::body::{BodyDesc, BodyHandle, KinematicPath, LockedAxes, PathPoint};
+use crate::body::{BodyDesc, BodyHandle, BodyType, KinematicPath, LockedAxes, PathPoint};
+use crate::character::{CharacterController, CharacterSettings};
 use crate::filter::InteractionGroups;
 use crate::joint::{JointDesc, Motor};
 use crate::limits::{MAX_TIMESTEP, MIN_TIMESTEP};
@@ -10,11 +11,14 @@ use crate::shape::{CompoundChild, Shape};
 use crate::world::WorldSettings;
 
 use super::format::{
-    BodyEntry, ChildEntry, GroupsEntry, JointEntry, MotorEntry, PathEntry, SceneFile, ShapeEntry,
-    ShapeKind,
+    BodyEntry, CharacterEntry, ChildEntry, GroupsEntry, JointEntry, MotorEntry, PathEntry,
+    SceneFile, ShapeEntry, ShapeKind,
 };
 use super::meshes::{heightfield, trimesh, MeshFiles};
-use super::{join, LoadError, SceneError, Timestep, DEFAULT_TIMESTEP};
+use super::{
+    join, LoadError, SceneCharacter, SceneError, Timestep, DEFAULT_CHARACTER_JUMP_SPEED,
+    DEFAULT_CHARACTER_WALK_SPEED, DEFAULT_TIMESTEP, MAX_CHARACTER_SPEED,
+};
 
 /// Narrows a file number to `f32`, refusing one beyond the `f32` range.
 pub(super) fn scalar(place: &str, value: f64) -> Result<f32, SceneError> {
@@ -148,6 +152,67 @@ pub(super) fn timestep(value: Option<f64>) -> Result<Timestep, SceneError> {
             format!("must be positive, got {}", number(seconds)),
         ))
     }
+}
+
+/// The scene's character: `find_body` gives the handle and type of a body by name. Errors are
+/// placed under `character`; the controller's settings are checked by
+/// [`CharacterController::new`], whose errors name the same fields.
+pub(super) fn character(
+    entry: &CharacterEntry,
+    find_body: impl Fn(&str) -> Option<(BodyHandle, BodyType)>,
+) -> Result<SceneCharacter, SceneError> {
+    let body = match find_body(&entry.body) {
+        Some((handle, BodyType::Kinematic)) => handle,
+        Some(_) => {
+            let message = format!("\"{}\" must be a kinematic body", entry.body);
+            return Err(SceneError::new("character.body", message));
+        }
+        None => {
+            let message = format!("no body is named \"{}\"", entry.body);
+            return Err(SceneError::new("character.body", message));
+        }
+    };
+    let speed = |name: &str, value: Option<f64>, default: f32, zero_allowed: bool| {
+        let place = format!("character.{name}");
+        let speed = match value {
+            Some(value) => scalar(&place, value)?,
+            None => default,
+        };
+        if speed <= MAX_CHARACTER_SPEED && (speed > 0.0 || zero_allowed && speed == 0.0) {
+            return Ok(speed);
+        }
+        let lowest = if zero_allowed { "from 0" } else { "above 0" };
+        let message = format!(
+            "must lie {lowest} to {MAX_CHARACTER_SPEED} m/s, got {}",
+            number(f64::from(speed))
+        );
+        Err(SceneError::new(place, message))
+    };
+    let mut settings = CharacterSettings::default();
+    if let Some(value) = entry.max_slope_angle {
+        settings.max_slope_angle = scalar("character.max_slope_angle", value)?;
+    }
+    if let Some(value) = entry.max_step_height {
+        settings.max_step_height = scalar("character.max_step_height", value)?;
+    }
+    CharacterController::new(settings)
+        .map_err(|error| SceneError::from(error.within("character")))?;
+    Ok(SceneCharacter {
+        body,
+        walk_speed: speed(
+            "walk_speed",
+            entry.walk_speed,
+            DEFAULT_CHARACTER_WALK_SPEED,
+            false,
+        )?,
+        jump_speed: speed(
+            "jump_speed",
+            entry.jump_speed,
+            DEFAULT_CHARACTER_JUMP_SPEED,
+            true,
+        )?,
+        settings,
+    })
 }
 
 /// A file number for a message: plain notation for ordinary magnitudes, scientific otherwise.

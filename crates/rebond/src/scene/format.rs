@@ -75,6 +75,19 @@ pub(super) struct SceneFile {
     pub(super) restitution_combine: Option<CombineEntry>,
     pub(super) bodies: Vec<JsonObject<BodyEntry>>,
     pub(super) joints: Option<Vec<JsonObject<JointEntry>>>,
+    /// Extension of the contract: the body a player drives as a character, and how.
+    pub(super) character: Option<JsonObject<CharacterEntry>>,
+}
+
+/// The scene's character, as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct CharacterEntry {
+    pub(super) body: String,
+    pub(super) walk_speed: Option<f64>,
+    pub(super) jump_speed: Option<f64>,
+    pub(super) max_slope_angle: Option<f64>,
+    pub(super) max_step_height: Option<f64>,
 }
 
 /// How two surfaces' values combine, as written: one of [`CombineRule`]'s variants in snake case,

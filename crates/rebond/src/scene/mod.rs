@@ -37,15 +37,26 @@ use std::path::{Path, PathBuf};
 use serde::de::DeserializeOwned;
 
 use crate::body::{BodyHandle, RigidBody};
+use crate::character::CharacterSettings;
 use crate::error::ErrorKind;
 use crate::joint::{Joint, JointHandle, JointType};
 use crate::world::World;
-use convert::{body_desc, joint_desc, timestep, world_settings};
+use convert::{body_desc, character, joint_desc, timestep, world_settings};
 use format::{BodyEntry, JointEntry, JsonObject, SceneFile};
 use meshes::MeshFiles;
 
 /// Default seconds per step when a scene leaves `timestep` out.
 pub const DEFAULT_TIMESTEP: f64 = 1.0 / 60.0;
+
+/// Default walking speed of a scene's character, m/s: a brisk walk.
+pub const DEFAULT_CHARACTER_WALK_SPEED: f32 = 4.0;
+
+/// Default take-off speed of a scene's character's jump, m/s: under standard gravity it rises
+/// `v² / 2g` = 1.27 m.
+pub const DEFAULT_CHARACTER_JUMP_SPEED: f32 = 5.0;
+
+/// The fastest a scene's character walks or jumps, m/s.
+pub const MAX_CHARACTER_SPEED: f32 = 100.0;
 
 /// An invalid scene: where in the file, and what is wrong.
 #[derive(Debug, Clone, PartialEq)]
@@ -200,6 +211,25 @@ struct SceneJoint {
     handle: JointHandle,
 }
 
+/// The character a scene names (its `character` field): a kinematic body a player drives with a
+/// [`crate::character::CharacterController`], walking at `walk_speed` and jumping at
+/// `jump_speed`. The scene only names it; the program that reads the scene moves it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct SceneCharacter {
+    /// The character's body, kinematic.
+    pub body: BodyHandle,
+    /// Walking speed along the ground, m/s, above 0 and at most [`MAX_CHARACTER_SPEED`]; default
+    /// [`DEFAULT_CHARACTER_WALK_SPEED`].
+    pub walk_speed: f32,
+    /// Upward speed a jump starts with, m/s, 0 to [`MAX_CHARACTER_SPEED`]; default
+    /// [`DEFAULT_CHARACTER_JUMP_SPEED`]. Gravity then slows it: a jump rises `v² / 2g`.
+    pub jump_speed: f32,
+    /// The controller's settings, checked: the scene's `max_slope_angle` and `max_step_height`,
+    /// the defaults of [`CharacterSettings`] otherwise.
+    pub settings: CharacterSettings,
+}
+
 /// A scene checked and loaded into a world, ready to step.
 ///
 /// Stepping never removes a body or a joint (a broken joint stays, broken), so the handle of every
@@ -217,6 +247,7 @@ pub struct Scene {
     #[cfg_attr(feature = "serde", serde(skip))]
     joint_indices: HashMap<String, usize>,
     timestep: Timestep,
+    character: Option<SceneCharacter>,
 }
 
 impl Scene {
@@ -270,12 +301,20 @@ impl Scene {
             body_indices: HashMap::new(),
             joint_indices: HashMap::new(),
             timestep,
+            character: None,
         };
         for entry in &file.bodies {
             scene.push_body(entry, &files)?;
         }
         for entry in file.joints.as_deref().unwrap_or_default() {
             scene.push_joint(entry)?;
+        }
+        if let Some(entry) = &file.character {
+            let find_body = |name: &str| {
+                let handle = scene.body_handle(name)?;
+                Some((handle, scene.world.body(handle).ok()?.body_type()))
+            };
+            scene.character = Some(character(entry, find_body)?);
         }
         Ok(scene)
     }
@@ -355,6 +394,11 @@ impl Scene {
     /// The world holding every body of the scene.
     pub fn world(&self) -> &World {
         &self.world
+    }
+
+    /// The character the scene names, if any.
+    pub fn character(&self) -> Option<&SceneCharacter> {
+        self.character.as_ref()
     }
 
     /// Seconds per step.
@@ -497,6 +541,7 @@ impl Scene {
                     timestep: timestep(Some(names.timestep)).map_err(|error| {
                         StateError::Inconsistent(format!("the timestep: {error}"))
                     })?,
+                    character: None,
                 };
                 (names.step, scene)
             }
