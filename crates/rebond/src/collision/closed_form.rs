@@ -1,10 +1,11 @@
 //! Contacts in closed form for the rounded shapes: sphere/sphere, sphere/capsule,
-//! capsule/capsule and sphere/box. Every function returns the manifold with the normal from A
-//! toward B, or `None` when the surfaces are farther apart than `margin`.
+//! capsule/capsule, sphere/box, and a sphere or capsule against a cylinder's side. Every function
+//! returns the manifold with the normal from A toward B, or `None` when the surfaces are farther
+//! apart than `margin`.
 
 use super::manifold::{ContactPoint, Manifold};
 use crate::math::{Pose, Vec3};
-use crate::shape::{Capsule, Cuboid, Sphere};
+use crate::shape::{Capsule, Cuboid, Cylinder, Sphere};
 
 /// Below this squared length, metres², two centres or a segment count as coincident and a
 /// fallback direction is used.
@@ -230,6 +231,103 @@ pub(super) fn parallel_capsules(
         }
     }
     (!manifold.is_empty()).then_some(manifold)
+}
+
+/// Deepest overlap, as a fraction of the cylinder's radius and of the axial room between the
+/// contact and the nearer end of the cylinder's side, that [`rounded_segment_cylinder_side`]
+/// answers: deeper, the shortest way out may be through a cap, which GJK/EPA finds.
+const SIDE_DEPTH_FRACTION: f32 = 0.5;
+
+/// What [`rounded_segment_cylinder_side`] finds.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CylinderSide {
+    /// The contact is on the cylinder's side: its manifold, or `None` beyond the margin.
+    Side(Option<Manifold>),
+    /// The nearest part of the cylinder is a rim or a cap, or the shapes overlap deeply: the
+    /// general routine (GJK/EPA and feature clipping) answers.
+    Elsewhere,
+}
+
+/// A sphere or capsule A (the segment `segment_a` rounded by `radius_a`; a sphere's segment is
+/// its centre twice) against cylinder B, where they meet on B's side. The cylinder lies within
+/// the capsule of radius `r` about its core's axis (the side's straight stretch, `±(h − r_c)`),
+/// so where the closest points `p_A`, `p_B` of A's segment and that axis fall inside the axis,
+/// the side is where they meet, exactly: `n = (p_B − p_A)/|p_B − p_A|`,
+/// `separation = |p_B − p_A| − r_A − r`. A capsule lying along the side touches along the
+/// stretch both share: two points, as capsules side by side ([`parallel_capsules`]), at most as
+/// far as the sharp cylinder's ends, as the cylinder's other contacts are. The
+/// closest points of GJK on a round side are only as good as its tolerance, and its normal
+/// leans by about the square root of it (1 % on a car's wheel rolling onto a bump).
+pub fn rounded_segment_cylinder_side(
+    segment_a: [Vec3; 2],
+    radius_a: f32,
+    b: &Cylinder,
+    pose_b: &Pose,
+    margin: f32,
+) -> CylinderSide {
+    let core_half_height = b.half_height() - b.convex_radius();
+    let radius = b.radius();
+    let axis = pose_b.transform_vector(Vec3::Y);
+    let segment_b = [
+        pose_b.position - axis * core_half_height,
+        pose_b.position + axis * core_half_height,
+    ];
+    let [start_a, end_a] = segment_a;
+    let [start_b, end_b] = segment_b;
+    let (direction_a, direction_b) = (end_a - start_a, end_b - start_b);
+    let length_b = 2.0 * core_half_height;
+    let parallel = direction_a.normalize_or_zero().cross(axis).length() < PARALLEL_SINE
+        && direction_a.length_squared() > COINCIDENT_SQUARED;
+    // Where along B's axis the contact lies, metres from its start: the middle of the stretch
+    // both share for parallel segments, else the closest point.
+    let along = if parallel {
+        let low = (start_a - start_b).dot(axis);
+        let high = (end_a - start_b).dot(axis);
+        let (low, high) = (low.min(high).max(0.0), low.max(high).min(length_b));
+        if high - low <= 1.0e-3 * length_b {
+            return CylinderSide::Elsewhere;
+        }
+        0.5 * (low + high)
+    } else {
+        let (_, t) = closest_segment_parameters(start_a, direction_a, start_b, direction_b);
+        t * length_b
+    };
+    let room = along.min(length_b - along);
+    if room <= 0.0 {
+        return CylinderSide::Elsewhere;
+    }
+    let on_b = start_b + axis * along;
+    let on_a = closest_on_segment(start_a, end_a, on_b);
+    let offset = on_b - on_a;
+    let distance_squared = offset.length_squared();
+    if distance_squared <= COINCIDENT_SQUARED {
+        return CylinderSide::Elsewhere;
+    }
+    let distance = distance_squared.sqrt();
+    let normal = offset / distance;
+    let separation = distance - radius_a - radius;
+    if -separation > SIDE_DEPTH_FRACTION * radius.min(room) {
+        return CylinderSide::Elsewhere;
+    }
+    if parallel {
+        // Held at the sharp cylinder's ends, as its features are (`feature_contact`): a wheel
+        // across a bar rests on the full width of its tread.
+        let sharp = [
+            pose_b.position - axis * b.half_height(),
+            pose_b.position + axis * b.half_height(),
+        ];
+        return CylinderSide::Side(parallel_capsules(
+            segment_a, radius_a, sharp, radius, normal, margin,
+        ));
+    }
+    let surface_a = on_a + normal * radius_a;
+    let surface_b = on_b - normal * radius;
+    let point = ContactPoint {
+        position: 0.5 * (surface_a + surface_b),
+        separation,
+        id: 0,
+    };
+    CylinderSide::Side(single_point(normal, point, margin))
 }
 
 /// Sphere A against box B. With the sphere's centre `c` in the box frame: outside the box, the

@@ -1,7 +1,7 @@
 //! The narrow phase: contact manifolds between two shapes placed in the world.
 //!
-//! Pairs are routed by shape kind to the best routine: closed forms for spheres and capsules,
-//! the plane test for halfspaces, the separating-axis test for boxes and hulls (pairs with a hull
+//! Pairs are routed by shape kind to the best routine: closed forms for spheres and capsules
+//! (and for either against a cylinder's side), the plane test for halfspaces, the separating-axis test for boxes and hulls (pairs with a hull
 //! rejected by GJK first when they are apart beyond the margin, unless they touched at the last
 //! query), and GJK/EPA with
 //! feature clipping for everything with a cylinder or a capsule against a polyhedron. Before
@@ -9,7 +9,10 @@
 //! child by child. A [`NarrowPhase`] keeps the scratch space from pair to pair, so that a
 //! steady step allocates nothing.
 
-use super::closed_form::{capsule_capsule, sphere_box, sphere_capsule, sphere_sphere};
+use super::closed_form::{
+    capsule_capsule, rounded_segment_cylinder_side, sphere_box, sphere_capsule, sphere_sphere,
+    CylinderSide,
+};
 use super::epa::Polytope;
 use super::feature_contact::collide_features;
 use super::gjk::{self, SimplexCache};
@@ -188,6 +191,22 @@ impl NarrowPhase {
             return self
                 .collide_convex_from(shape_b, pose_b, shape_a, pose_a, margin, cache)
                 .map(Manifold::flipped);
+        }
+        let rounded_segment = match shape_a {
+            Shape::Sphere(sphere) => Some(([pose_a.position; 2], sphere.radius())),
+            Shape::Capsule(capsule) => Some((
+                capsule.segment().map(|end| pose_a.transform_point(end)),
+                capsule.radius(),
+            )),
+            _ => None,
+        };
+        if let (Some((segment, radius)), Shape::Cylinder(cylinder)) = (rounded_segment, shape_b) {
+            if let CylinderSide::Side(manifold) =
+                rounded_segment_cylinder_side(segment, radius, cylinder, pose_b, margin)
+            {
+                *cache = PartCache::Cold;
+                return manifold;
+            }
         }
         match (shape_a, shape_b) {
             (Shape::Halfspace(_), Shape::Halfspace(_))
