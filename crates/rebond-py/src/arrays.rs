@@ -64,7 +64,7 @@ fn shape_text(shape: &[usize]) -> String {
 }
 
 /// `[1, 2]`: the place of the flat `index` in an array of `shape`.
-fn index_text(mut index: usize, shape: &[usize]) -> String {
+pub fn index_text(mut index: usize, shape: &[usize]) -> String {
     let mut parts = vec![0; shape.len()];
     for (part, &size) in parts.iter_mut().zip(shape).rev() {
         if size > 0 {

@@ -17,9 +17,9 @@ use crate::world::{load_scene, step_count, World};
 #[pyclass(module = "rebond")]
 pub struct Batch {
     /// The world every copy starts from, and `reset` returns to.
-    initial: Sim,
+    pub(crate) initial: Sim,
     /// The copies.
-    sims: Vec<Sim>,
+    pub(crate) sims: Vec<Sim>,
 }
 
 #[pymethods]
@@ -172,11 +172,6 @@ impl Batch {
     /// Sets every body's angular velocity in every world: array (count, bodies, 3).
     fn set_angular_velocities(&mut self, py: Python<'_>, a: &Bound<'_, PyAny>) -> PyResult<()> {
         self.write(py, a, Input::AngularVelocity, "set_angular_velocities")
-    }
-
-    /// Adds forces for the next step only: array (count, bodies, 3).
-    fn apply_forces(&mut self, py: Python<'_>, a: &Bound<'_, PyAny>) -> PyResult<()> {
-        self.write(py, a, Input::Force, "apply_forces")
     }
 
     /// Sets every motor's target in every world: array (count, motors).

@@ -7,8 +7,10 @@
 
 mod arrays;
 mod batch;
+mod drive;
 mod errors;
 mod json;
+mod readouts;
 mod sim;
 mod world;
 

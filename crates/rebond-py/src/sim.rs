@@ -4,6 +4,9 @@
 use rebond::scene::Scene;
 use rebond::{BodyHandle, JointHandle, Motor, Vec3};
 
+use crate::drive::Loads;
+use crate::readouts::StepEvents;
+
 /// A per-body quantity that the getters read.
 #[derive(Debug, Clone, Copy)]
 pub enum Quantity {
@@ -34,8 +37,6 @@ pub enum Input {
     LinearVelocity,
     /// Replaces the angular velocity, rad/s.
     AngularVelocity,
-    /// Adds a force at the centre of mass for the next step, N.
-    Force,
 }
 
 /// A world with its scene's names, stepped with the scene's timestep.
@@ -50,6 +51,10 @@ pub struct Sim {
     motors: Vec<JointHandle>,
     /// Steps taken so far.
     steps: u64,
+    /// Forces and torques for every step of the next `step(n)`.
+    loads: Loads,
+    /// Contact and sensor events of the last `step(n)`.
+    events: StepEvents,
 }
 
 impl Sim {
@@ -61,6 +66,8 @@ impl Sim {
             bodies: Vec::new(),
             motors: Vec::new(),
             steps: 0,
+            loads: Loads::default(),
+            events: StepEvents::default(),
         };
         sim.refresh();
         sim
@@ -113,6 +120,31 @@ impl Sim {
         self.source.as_deref()
     }
 
+    /// Body handles in scene order.
+    pub fn bodies(&self) -> &[BodyHandle] {
+        &self.bodies
+    }
+
+    /// Joints with a motor, in scene order.
+    pub fn motors(&self) -> &[JointHandle] {
+        &self.motors
+    }
+
+    /// The forces and torques held for the next `step(n)`.
+    pub fn loads(&self) -> &Loads {
+        &self.loads
+    }
+
+    /// The forces and torques held for the next `step(n)`, to change.
+    pub fn loads_mut(&mut self) -> &mut Loads {
+        &mut self.loads
+    }
+
+    /// Contact and sensor events of the last `step(n)`.
+    pub fn events(&self) -> &StepEvents {
+        &self.events
+    }
+
     /// Number of bodies.
     pub fn body_count(&self) -> usize {
         self.bodies.len()
@@ -158,15 +190,28 @@ impl Sim {
         self.scene.timestep().seconds
     }
 
-    /// Steps `count` times; the error is the command line's `step N failed: ...`, N counted from
-    /// the world's first step.
+    /// Steps `count` times with the held loads on every step, then drops them; the error is
+    /// the command line's `step N failed: ...`, N counted from the world's first step.
     pub fn step(&mut self, count: u64) -> Result<(), String> {
+        self.events.clear();
+        let result = self.step_loaded(count);
+        self.loads.clear();
+        result
+    }
+
+    /// Steps `count` times, giving the held loads before each step and keeping its events.
+    fn step_loaded(&mut self, count: u64) -> Result<(), String> {
         for _ in 0..count {
             self.steps += 1;
-            if let Err(error) = self.scene.step() {
+            let stepped = self
+                .loads
+                .apply(self.scene.world_mut(), &self.bodies)
+                .and_then(|()| self.scene.step());
+            if let Err(error) = stepped {
                 let message = format!("step {} failed: {error}", self.steps);
                 return Err(crate::errors::with_source(self.source(), message));
             }
+            self.events.record(self.scene.world(), &self.bodies);
         }
         Ok(())
     }
@@ -202,7 +247,6 @@ impl Sim {
             match input {
                 Input::LinearVelocity => body.set_linear_velocity(value)?,
                 Input::AngularVelocity => body.set_angular_velocity(value)?,
-                Input::Force => body.apply_force(value)?,
             }
         }
         Ok(())

@@ -266,11 +266,6 @@ impl World {
         self.write(a, Input::AngularVelocity, "set_angular_velocities")
     }
 
-    /// Adds a force, N, at each body's centre of mass for the next step only: array (bodies, 3).
-    fn apply_forces(&mut self, a: &Bound<'_, PyAny>) -> PyResult<()> {
-        self.write(a, Input::Force, "apply_forces")
-    }
-
     /// Sets the target of every joint with a motor (`motor_names()` order): a velocity (rad/s,
     /// m/s) for velocity motors, a position (rad, m) for position motors. Array (motors,).
     fn set_motor_targets(&mut self, a: &Bound<'_, PyAny>) -> PyResult<()> {

@@ -112,7 +112,7 @@ def test_set_linear_velocities_and_apply_forces():
     velocities = world.linear_velocities()
     assert velocities[0] == pytest.approx([1, 0, 0])
     assert velocities[1] == pytest.approx([0, 0.2, 0])  # a / m * dt = 4 / 2 * 0.1
-    world.step()  # the force was for one step only
+    world.step()  # the force was for the one step call only
     assert world.linear_velocities()[1] == pytest.approx([0, 0.2, 0])
     world.set_angular_velocities([[0, 0, 3], [0, 0, 0]])
     assert world.angular_velocities()[0, 2] == pytest.approx(3)

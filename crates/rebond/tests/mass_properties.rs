@@ -267,3 +267,56 @@ fn centre_of_mass_off_the_origin_is_integrated_and_the_origin_reported() {
         body.position()
     );
 }
+
+#[test]
+fn set_mass_scales_inertia_and_the_response_to_forces() {
+    // A box made 4 times heavier: its inertia scales by 4 (I = m (b² + c²) / 12 keeps its
+    // shape), so one step of the same force and torque changes its velocities a quarter as much.
+    let settings = WorldSettings {
+        gravity: Vec3::ZERO,
+        ..WorldSettings::default()
+    };
+    let mut world = World::new(settings).unwrap();
+    let shape = Shape::cuboid(Vec3::new(0.5, 0.25, 0.125)).unwrap();
+    let handle = world.add_body(BodyDesc::dynamic(shape).mass(2.0)).unwrap();
+    let before = world.body(handle).unwrap().local_inertia();
+    world.body_mut(handle).unwrap().set_mass(8.0).unwrap();
+    let body = world.body(handle).unwrap();
+    assert_close(body.mass(), 8.0, RELATIVE, "mass");
+    assert_matrix_close(body.local_inertia(), before * 4.0, RELATIVE, "inertia");
+    assert_matrix_close(
+        body.world_inverse_inertia(),
+        before.inverse() * 0.25,
+        RELATIVE,
+        "inverse inertia",
+    );
+    let dt = 1.0 / 60.0;
+    let body = world.body_mut(handle).unwrap();
+    body.apply_force(Vec3::new(16.0, 0.0, 0.0)).unwrap();
+    body.apply_torque(Vec3::new(0.0, 0.0, 1.0)).unwrap();
+    world.step(dt).unwrap();
+    let body = world.body(handle).unwrap();
+    // Δv = F dt / m and Δω = τ dt / I_zz with I_zz = m (1² + 0.5²) / 12 for the 1 × 0.5 × 0.25
+    // box: a few f32 roundings over 8 substeps, within RELATIVE.
+    assert_close(body.linear_velocity().x, 16.0 * dt / 8.0, RELATIVE, "vx");
+    let inertia_z = 8.0 * (1.0 + 0.25) / 12.0;
+    assert_close(body.angular_velocity().z, dt / inertia_z, RELATIVE, "wz");
+}
+
+#[test]
+fn set_mass_refuses_bad_masses_and_leaves_static_bodies() {
+    let mut world = World::new(WorldSettings::default()).unwrap();
+    let shape = Shape::sphere(0.5).unwrap();
+    let ball = world
+        .add_body(BodyDesc::dynamic(shape.clone()).mass(1.0))
+        .unwrap();
+    let wall = world.add_body(BodyDesc::static_body(shape)).unwrap();
+    for bad in [0.0, -1.0, f32::NAN, 1.0e10] {
+        let error = world.body_mut(ball).unwrap().set_mass(bad).unwrap_err();
+        assert!(error.to_string().starts_with("mass"), "{error}");
+        assert_eq!(world.body(ball).unwrap().mass(), 1.0);
+    }
+    world.body_mut(wall).unwrap().set_mass(5.0).unwrap();
+    assert_eq!(world.body(wall).unwrap().mass(), 0.0);
+    assert_eq!(world.body(wall).unwrap().inverse_mass(), 0.0);
+}

@@ -135,14 +135,55 @@ class World:
         """Sets every body's linear velocity, m/s: (bodies, 3)."""
     def set_angular_velocities(self, a: npt.ArrayLike) -> None:
         """Sets every body's angular velocity, rad/s: (bodies, 3)."""
-    def apply_forces(self, a: npt.ArrayLike) -> None:
-        """Adds a force at each centre of mass, N, for the next step only: (bodies, 3)."""
+    def apply_forces(self, a: npt.ArrayLike, points: Optional[npt.ArrayLike] = None) -> None:
+        """Adds forces, N, (bodies, 3), at the centres of mass or at world ``points`` (bodies, 3),
+        acting on every step of the next ``step(n)``."""
     def set_motor_targets(self, a: npt.ArrayLike) -> None:
         """Sets each motor's target velocity or position: (motors,)."""
     def ray_cast(
         self, origin: Vector, direction: Vector, max_distance: float = ...
     ) -> Optional[RayHit]:
         """The nearest body the ray meets within ``max_distance`` m, or ``None``."""
+    def apply_torques(self, a: npt.ArrayLike) -> None:
+        """Adds torques, N·m, world axes, (bodies, 3), for every step of the next ``step(n)``."""
+    def masses(self) -> FloatArray:
+        """Body masses, kg, (bodies,); 0 for static and kinematic bodies."""
+    def frictions(self) -> FloatArray:
+        """Body friction coefficients, (bodies,)."""
+    def restitutions(self) -> FloatArray:
+        """Body restitutions, (bodies,)."""
+    def set_masses(self, a: npt.ArrayLike) -> None:
+        """Sets dynamic bodies' masses, kg, (bodies,); inertia scales with the mass."""
+    def set_frictions(self, a: npt.ArrayLike) -> None:
+        """Sets body friction coefficients (>= 0), (bodies,)."""
+    def set_restitutions(self, a: npt.ArrayLike) -> None:
+        """Sets body restitutions (0 to 1), (bodies,)."""
+    def gravity(self) -> FloatArray:
+        """The world's gravity, m/s², (3,)."""
+    def set_gravity(self, a: npt.ArrayLike) -> None:
+        """Sets the world's gravity, m/s², (3,)."""
+    def motor_gains(self) -> FloatArray:
+        """Stiffness and damping of every motor, (motors, 2); zeros unless a position motor."""
+    def set_motor_gains(self, stiffness: npt.ArrayLike, damping: npt.ArrayLike) -> None:
+        """Sets the stiffness and damping of position motors, (motors,) each."""
+    def contact_forces(self) -> FloatArray:
+        """Contact force on each body over the last step, N, (bodies, 3)."""
+    def joint_forces(self) -> FloatArray:
+        """Force of each joint on its ``body_b`` over the last step, N, (joints, 3)."""
+    def joint_torques(self) -> FloatArray:
+        """Torque of each joint on its ``body_b`` over the last step, N·m, (joints, 3)."""
+    def contact_events(self) -> list[tuple[Literal["started", "stopped"], int, int]]:
+        """``(kind, body_a, body_b)`` of every step of the last ``step(n)``."""
+    def sensor_events(self) -> list[tuple[Literal["entered", "exited"], int, int]]:
+        """``(kind, sensor, body)`` of every step of the last ``step(n)``."""
+    def ray_casts(
+        self, origins: npt.ArrayLike, directions: npt.ArrayLike, max_distance: float = ...
+    ) -> FloatArray:
+        """Distances along rays (rays, 3) to the nearest body, m, (rays,); inf for a miss."""
+    def ray_hits(
+        self, origins: npt.ArrayLike, directions: npt.ArrayLike, max_distance: float = ...
+    ) -> tuple[FloatArray, npt.NDArray[np.int64], FloatArray]:
+        """Distances (rays,), body indices (rays,) (-1 for a miss) and normals (rays, 3)."""
 
 class Batch:
     """``count`` copies of one world, stepped in parallel on every core without the GIL."""
@@ -180,7 +221,48 @@ class Batch:
         """(count, bodies, 3)."""
     def set_angular_velocities(self, a: npt.ArrayLike) -> None:
         """(count, bodies, 3)."""
-    def apply_forces(self, a: npt.ArrayLike) -> None:
-        """(count, bodies, 3), for the next step only."""
+    def apply_forces(self, a: npt.ArrayLike, points: Optional[npt.ArrayLike] = None) -> None:
+        """(count, bodies, 3), with ``points`` (count, bodies, 3); for every step of the next
+        ``step(n)``."""
     def set_motor_targets(self, a: npt.ArrayLike) -> None:
         """(count, motors)."""
+    def apply_torques(self, a: npt.ArrayLike) -> None:
+        """(count, bodies, 3), N·m, for every step of the next ``step(n)``."""
+    def masses(self) -> FloatArray:
+        """(count, bodies), kg."""
+    def frictions(self) -> FloatArray:
+        """(count, bodies)."""
+    def restitutions(self) -> FloatArray:
+        """(count, bodies)."""
+    def set_masses(self, a: npt.ArrayLike) -> None:
+        """(count, bodies), kg."""
+    def set_frictions(self, a: npt.ArrayLike) -> None:
+        """(count, bodies)."""
+    def set_restitutions(self, a: npt.ArrayLike) -> None:
+        """(count, bodies)."""
+    def gravity(self) -> FloatArray:
+        """(count, 3), m/s²."""
+    def set_gravity(self, a: npt.ArrayLike) -> None:
+        """(count, 3), m/s²."""
+    def motor_gains(self) -> FloatArray:
+        """(count, motors, 2)."""
+    def set_motor_gains(self, stiffness: npt.ArrayLike, damping: npt.ArrayLike) -> None:
+        """(count, motors) each."""
+    def contact_forces(self) -> FloatArray:
+        """(count, bodies, 3), N."""
+    def joint_forces(self) -> FloatArray:
+        """(count, joints, 3), N."""
+    def joint_torques(self) -> FloatArray:
+        """(count, joints, 3), N·m."""
+    def contact_events(self) -> list[list[tuple[Literal["started", "stopped"], int, int]]]:
+        """One list a world."""
+    def sensor_events(self) -> list[list[tuple[Literal["entered", "exited"], int, int]]]:
+        """One list a world."""
+    def ray_casts(
+        self, origins: npt.ArrayLike, directions: npt.ArrayLike, max_distance: float = ...
+    ) -> FloatArray:
+        """Rays (count, rays, 3): distances (count, rays), inf for a miss."""
+    def ray_hits(
+        self, origins: npt.ArrayLike, directions: npt.ArrayLike, max_distance: float = ...
+    ) -> tuple[FloatArray, npt.NDArray[np.int64], FloatArray]:
+        """Distances (count, rays), body indices (count, rays), normals (count, rays, 3)."""

@@ -728,6 +728,26 @@ impl RigidBody {
         Ok(())
     }
 
+    /// Sets the mass of a dynamic body, kg, from [`MIN_MASS`] to [`MAX_MASS`], as if its shape
+    /// were made of a denser or lighter material: the centre of mass stays, and the inertia keeps
+    /// its distribution, `I_new = (m_new / m_old) · I_old` (so `I⁻¹_new = (m_old / m_new) · I⁻¹_old`).
+    /// Static and kinematic bodies have no mass to set (they move as if infinitely heavy): the
+    /// call leaves them as they are once `mass` is checked. Wakes the body.
+    pub fn set_mass(&mut self, mass: f32) -> Result<()> {
+        check_positive("mass", mass)?;
+        check_range("mass", mass, MIN_MASS, MAX_MASS)?;
+        if self.is_dynamic() {
+            let scale = mass / self.mass;
+            self.local_inertia *= scale;
+            self.local_inverse_inertia *= self.mass / mass;
+            self.mass = mass;
+            self.inverse_mass = 1.0 / mass;
+            self.update_world_inverse_inertia();
+            self.wake();
+        }
+        Ok(())
+    }
+
     /// Sets the Coulomb friction coefficient, ≥ 0.
     pub fn set_friction(&mut self, friction: f32) -> Result<()> {
         self.friction = check_non_negative("friction", friction)?;
