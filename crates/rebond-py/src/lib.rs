@@ -7,8 +7,11 @@
 
 mod arrays;
 mod batch;
+mod dicts;
 mod errors;
 mod json;
+mod robust;
+mod scenes;
 mod sim;
 mod world;
 
@@ -24,6 +27,7 @@ fn _rebond(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add("SceneError", py.get_type::<errors::SceneError>())?;
     module.add("StepError", py.get_type::<errors::StepError>())?;
     module.add("StateError", py.get_type::<errors::StateError>())?;
+    module.add_function(wrap_pyfunction!(scenes::builtin_scenes, module)?)?;
     module.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

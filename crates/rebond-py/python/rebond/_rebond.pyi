@@ -53,7 +53,7 @@ class World:
         """An empty world; defaults as in a scene file ((0, -9.81, 0), 1/60 s, 8)."""
     @staticmethod
     def from_scene(scene: Scene) -> "World":
-        """The world of a scene file (path) or of a dict in the scene format."""
+        """The world of a scene file (path), a built-in scene's name, or a dict."""
     def add_body(
         self,
         shape: Mapping[str, Any],
@@ -148,7 +148,7 @@ class Batch:
     """``count`` copies of one world, stepped in parallel on every core without the GIL."""
 
     def __init__(self, scene: Scene, count: int) -> None:
-        """Copies of a scene file (path), a dict in the scene format, or a ``World``."""
+        """Copies of a scene file (path), a built-in scene, a dict, or a ``World``."""
     @property
     def count(self) -> int:
         """Number of worlds."""
@@ -184,3 +184,6 @@ class Batch:
         """(count, bodies, 3), for the next step only."""
     def set_motor_targets(self, a: npt.ArrayLike) -> None:
         """(count, motors)."""
+
+def builtin_scenes() -> list[tuple[str, str]]:
+    """The scenes built into rebond, (name, description), loadable by name from anywhere."""
