@@ -10,8 +10,9 @@ random every step. rebond solves each step in 4 substeps (`examples/cartpole.py`
 timed with one 0.02 s step and with four 0.005 s steps per environment step.
 
 Rows:
-  rebond Batch env loop  apply_forces, Batch.step (parallel), the four getters, observations,
-                         rewards and resets of finished episodes: a full vectorised env step
+  rebond Batch env loop  rebond.gym.VectorEnv.step: apply_forces, Batch.step (parallel), the
+                         four getters, observations, rewards and autoresets of finished
+                         episodes with their final observations: a full vectorised env step
   rebond Batch.step      the parallel step alone
   mujoco python loop     one MjData per env, ctrl set and mj_step called from Python, qpos and
                          qvel read: what a Gymnasium vector env over MuJoCo does
@@ -31,7 +32,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples"))
 
-from cartpole import CartPoleBatch  # noqa: E402
+from cartpole import make_vector_env  # noqa: E402
 
 MJCF = """
 <mujoco model="cartpole">
@@ -74,16 +75,17 @@ def best_rate(run, steps: int, envs: int, rounds: int = 3) -> float:
 
 
 def rebond_rows(envs: int, steps: int) -> list[tuple[str, float]]:
-    batch = CartPoleBatch(envs, seed=0)
+    vector_env = make_vector_env(envs)
+    vector_env.reset(seed=0)
     rng = np.random.default_rng(0)
     actions = rng.integers(0, 2, size=(steps, envs))
 
     def env_loop(count: int) -> None:
         for step in range(count):
-            batch.step(actions[step % steps])
+            vector_env.step(actions[step % steps])
 
     def raw_step(count: int) -> None:
-        batch.batch.step(count)
+        vector_env.batch.step(count)
 
     env_loop(20)
     return [

@@ -1,4 +1,4 @@
-"""A cart-pole built from joints, as a Gymnasium environment and as a batch of environments.
+"""A cart-pole built from joints, as a Gymnasium environment and as a vector environment.
 
 The cart slides along x on a prismatic joint to the world; the pole turns on a revolute joint
 about z at the cart's centre. Actions push the cart with +-10 N (``World.apply_forces``), as
@@ -18,6 +18,7 @@ import numpy as np
 from gymnasium import spaces
 
 import rebond
+import rebond.gym
 
 TIMESTEP = 0.02
 SUBSTEPS = 4
@@ -136,51 +137,57 @@ class CartPoleEnv(gym.Env):
         return observe(w.positions(), w.rotations(), w.linear_velocities(), w.angular_velocities())
 
 
-class CartPoleBatch:
-    """``count`` cart-poles in one ``rebond.Batch``, stepped together, each reset on its own
-    when its episode ends (with a random push, as the single environment's random start)."""
+def cartpole_observation(env: rebond.gym.VectorEnv) -> np.ndarray:
+    """(x, x_dot, theta, theta_dot) of every cart-pole of a vector environment, (num_envs, 4)."""
+    b = env.batch
+    return observe(b.positions(), b.rotations(), b.linear_velocities(), b.angular_velocities())
 
-    def __init__(self, count: int, seed: int = 0) -> None:
-        self.batch = rebond.Batch(cartpole_scene(), count)
-        self.rng = np.random.default_rng(seed)
-        self.steps = np.zeros(count, dtype=np.int64)
-        self.episodes = 0
-        self.reset()
 
-    def reset(self, indices: Optional[np.ndarray] = None) -> np.ndarray:
-        """Resets the worlds at ``indices`` (all when ``None``) with random starting speeds."""
-        count = self.batch.count
-        indices = np.arange(count) if indices is None else np.asarray(indices)
-        self.batch.reset(indices)
-        linear = self.batch.linear_velocities()
-        angular = self.batch.angular_velocities()
-        x_dot, theta_dot = self.rng.uniform(-0.05, 0.05, size=(2, len(indices))).astype(np.float32)
-        linear[indices, 0, 0] = x_dot
-        linear[indices, 1, 0] = x_dot + theta_dot * POLE_HALF_LENGTH
-        angular[indices, 1, 2] = -theta_dot
-        self.batch.set_linear_velocities(linear)
-        self.batch.set_angular_velocities(angular)
-        self.steps[indices] = 0
-        return self.observe()
+def push_the_carts(env: rebond.gym.VectorEnv, actions: np.ndarray) -> None:
+    env.batch.apply_forces(pushes(actions))
 
-    def observe(self) -> np.ndarray:
-        b = self.batch
-        return observe(b.positions(), b.rotations(), b.linear_velocities(), b.angular_velocities())
 
-    def step(self, actions: np.ndarray):
-        """One step of every environment: observations (count, 4), rewards, terminated and
-        truncated flags; finished environments are reset (their observation is the new start)."""
-        self.batch.apply_forces(pushes(actions))
-        self.batch.step()
-        self.steps += 1
-        observation = self.observe()
-        terminated = (np.abs(observation[:, 0]) > X_LIMIT) | (np.abs(observation[:, 2]) > ANGLE_LIMIT)
-        truncated = self.steps >= MAX_STEPS
-        done = np.flatnonzero(terminated | truncated)
-        if len(done):
-            self.episodes += len(done)
-            observation = self.reset(done)
-        return observation, np.ones(len(actions), dtype=np.float32), terminated, truncated
+def one_a_step(
+    env: rebond.gym.VectorEnv, actions: np.ndarray, observations: np.ndarray
+) -> np.ndarray:
+    return np.ones(env.num_envs)
+
+
+def fallen(env: rebond.gym.VectorEnv, observations: np.ndarray) -> np.ndarray:
+    """The cart off the track or the pole past 12 degrees."""
+    return (np.abs(observations[:, 0]) > X_LIMIT) | (np.abs(observations[:, 2]) > ANGLE_LIMIT)
+
+
+def random_start_speeds(env: rebond.gym.VectorEnv, indices: np.ndarray) -> None:
+    """Starts the cart-poles at ``indices`` upright and centred with a random cart speed and
+    pole rate within +-0.05, from the environment's seeded generator."""
+    linear = env.batch.linear_velocities()
+    angular = env.batch.angular_velocities()
+    x_dot, theta_dot = env.np_random.uniform(-0.05, 0.05, size=(2, len(indices)))
+    linear[indices, 0, 0] = x_dot
+    linear[indices, 1, 0] = x_dot + theta_dot * POLE_HALF_LENGTH
+    angular[indices, 1, 2] = -theta_dot
+    env.batch.set_linear_velocities(linear)
+    env.batch.set_angular_velocities(angular)
+
+
+def make_vector_env(num_envs: int, **options: Any) -> rebond.gym.VectorEnv:
+    """``num_envs`` cart-poles in one ``rebond.Batch``, as a Gymnasium vector environment: each
+    resets on its own when its episode ends, its last observation in ``info["final_obs"]``.
+    ``options`` replace the task's arguments to ``rebond.gym.VectorEnv`` or add others."""
+    high = np.array([2 * X_LIMIT, np.inf, 2 * ANGLE_LIMIT, np.inf], dtype=np.float32)
+    task: dict[str, Any] = {
+        "action_space": spaces.Discrete(2),
+        "observation_space": spaces.Box(-high, high, dtype=np.float32),
+        "observe": cartpole_observation,
+        "act": push_the_carts,
+        "reward": one_a_step,
+        "terminated": fallen,
+        "reset_noise": random_start_speeds,
+        "max_episode_steps": MAX_STEPS,
+    }
+    task.update(options)
+    return rebond.gym.VectorEnv(cartpole_scene(), num_envs, **task)
 
 
 def balancing_policy(observation: np.ndarray) -> np.ndarray:
@@ -199,15 +206,17 @@ def main() -> None:
         if terminated or truncated:
             break
     print(f"balancing policy: episode of {length} steps (the most is {MAX_STEPS})")
-    batch = CartPoleBatch(1000)
+    envs = make_vector_env(1000)
+    envs.reset(seed=0)
     rng = np.random.default_rng(1)
+    episodes = 0
     for _ in range(100):
-        batch.step(rng.integers(0, 2, size=1000))
+        _, _, terminated, truncated, _ = envs.step(rng.integers(0, 2, size=1000))
+        episodes += int(np.sum(terminated | truncated))
     print(
-        f"1000 cart-poles, 100 steps of random pushes: {batch.episodes} episodes ended "
+        f"1000 cart-poles, 100 steps of random pushes: {episodes} episodes ended "
         f"(one lasts about 20 steps)"
     )
-
 
 if __name__ == "__main__":
     main()

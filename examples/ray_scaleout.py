@@ -1,6 +1,7 @@
 """Cart-poles spread over a Ray cluster: remote actors, each owning a ``rebond.Batch``.
 
-Each actor holds a batch of cart-poles (``cartpole.CartPoleBatch``) and steps it with random
+Each actor holds a batch of cart-poles (``cartpole.make_vector_env``, a Gymnasium vector
+environment over a ``rebond.Batch``) and steps it with random
 pushes; the driver starts the actors, runs them at once, and adds up what they did. Within an
 actor the batch steps on all the cores Ray gives it (rebond uses a thread pool the size of
 ``RAYON_NUM_THREADS``, which the actor sets to its ``num_cpus``).
@@ -36,9 +37,11 @@ class BatchWorker:
     def __init__(self, worlds: int, seed: int, threads: int) -> None:
         # rebond's thread pool starts at the first parallel call: size it to this actor's cores.
         os.environ.setdefault("RAYON_NUM_THREADS", str(threads))
-        from cartpole import CartPoleBatch
+        from cartpole import make_vector_env
 
-        self.envs = CartPoleBatch(worlds, seed=seed)
+        self.envs = make_vector_env(worlds)
+        self.envs.reset(seed=seed)
+        self.episodes = 0
         self.rng = np.random.default_rng(seed)
 
     def run(self, steps: int) -> dict[str, Any]:
@@ -47,12 +50,13 @@ class BatchWorker:
         start = time.perf_counter()
         observation = None
         for _ in range(steps):
-            actions = self.rng.integers(0, 2, size=self.envs.batch.count)
-            observation, *_ = self.envs.step(actions)
+            actions = self.rng.integers(0, 2, size=self.envs.num_envs)
+            observation, _, terminated, truncated, _ = self.envs.step(actions)
+            self.episodes += int(np.sum(terminated | truncated))
         seconds = time.perf_counter() - start
         return {
-            "env_steps": steps * self.envs.batch.count,
-            "episodes": self.envs.episodes,
+            "env_steps": steps * self.envs.num_envs,
+            "episodes": self.episodes,
             "seconds": seconds,
             "checksum": float(np.sum(np.abs(observation))) if observation is not None else 0.0,
         }

@@ -4,7 +4,6 @@
 //! success, 1 when a file cannot be read or written, 2 for an invalid scene or bad arguments.
 
 mod bench;
-mod builtin;
 mod failure;
 mod record;
 mod run;
@@ -20,7 +19,6 @@ use std::process::ExitCode;
 use clap::{Args, Parser, Subcommand};
 
 use crate::bench::BenchOptions;
-use crate::builtin::BUILTIN_SCENES;
 #[cfg(not(feature = "viewer"))]
 use crate::failure::Failure;
 use crate::run::{RunLength, RunOptions};
@@ -28,6 +26,7 @@ use crate::soak::SoakOptions;
 use crate::source::SceneSource;
 #[cfg(feature = "viewer")]
 use crate::view::{ViewError, ViewOptions};
+use rebond::scene::BUILTIN_SCENES;
 
 /// Why a command failed: a [`Failure`](failure::Failure) of the scene or a file, or for `view` a
 /// window that cannot be opened.

@@ -2,9 +2,8 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::builtin::{self, BuiltinScene};
 use crate::failure::Failure;
-use rebond::scene::{LoadError, Scene};
+use rebond::scene::{BuiltinScene, LoadError, Scene};
 
 /// The scene a command was given.
 #[derive(Debug, Clone)]
@@ -23,7 +22,7 @@ impl SceneSource {
         }
         argument
             .to_str()
-            .and_then(builtin::find)
+            .and_then(rebond::scene::builtin)
             .map(Self::Builtin)
             .ok_or_else(|| Failure::UnknownScene {
                 argument: argument.display().to_string(),
@@ -42,14 +41,7 @@ impl SceneSource {
     pub fn load(&self) -> Result<Scene, Failure> {
         let loaded = match self {
             Self::File(path) => Scene::from_file(path),
-            Self::Builtin(scene) => {
-                let files: Vec<(&str, &[u8])> = scene
-                    .files
-                    .iter()
-                    .map(|(name, contents)| (*name, contents.as_bytes()))
-                    .collect();
-                Scene::from_json_with_files(scene.json.as_bytes(), &files)
-            }
+            Self::Builtin(scene) => scene.load(),
         };
         loaded.map_err(|error| match error {
             LoadError::Read { path, error } => Failure::io(&path, "cannot read scene", error),

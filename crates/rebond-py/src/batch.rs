@@ -1,14 +1,15 @@
 //! `rebond.Batch`: copies of one world stepped in parallel on every core, without the GIL.
 
 use numpy::PyArrayDyn;
-use pyo3::exceptions::{PyIndexError, PyValueError};
+use pyo3::exceptions::{PyIndexError, PyMemoryError, PyValueError};
 use pyo3::prelude::*;
 use rayon::prelude::*;
 
 use crate::arrays::{input, output};
 use crate::errors::StepError;
+use crate::robust::{copies, step_in_rounds, whole_number, StepCount};
 use crate::sim::{Input, Quantity, Sim};
-use crate::world::{load_scene, step_count, World};
+use crate::world::{load_scene, World};
 
 /// `count` copies of one world, stepped in parallel; arrays have a leading batch axis.
 ///
@@ -24,17 +25,17 @@ pub struct Batch {
 
 #[pymethods]
 impl Batch {
-    /// `count` copies of `scene`: a path to a scene file, a dict in the scene format, or a
-    /// `World` (copied in its current state).
+    /// `count` copies of `scene`: a path to a scene file or a built-in scene's name, a dict in
+    /// the scene format, or a `World` (copied in its current state). A `count` whose copies
+    /// cannot fit in memory raises `MemoryError` before any is made.
     #[new]
-    fn new(scene: &Bound<'_, PyAny>, count: i64) -> PyResult<Self> {
-        let Some(count) = usize::try_from(count).ok().filter(|&count| count > 0) else {
-            return Err(PyValueError::new_err(format!(
-                "count: must be at least 1, got {count}"
-            )));
-        };
+    fn new(scene: &Bound<'_, PyAny>, count: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let count = whole_number(count, "count", 1)?;
         let initial = load_scene(scene)?;
-        let sims = vec![initial.clone(); count];
+        let count = usize::try_from(count).map_err(|_| {
+            PyMemoryError::new_err(format!("count: {count} worlds cannot be addressed"))
+        })?;
+        let sims = copies(&initial, count)?;
         Ok(Self { initial, sims })
     }
 
@@ -77,17 +78,28 @@ impl Batch {
 
     /// Advances every world by `n` steps, in parallel on all cores, without the GIL. A failed
     /// step raises `StepError` for the first failing world (`world 3: step 12 failed: ...`);
-    /// the other worlds have still stepped.
-    #[pyo3(signature = (n = 1))]
-    fn step(&mut self, py: Python<'_>, n: i64) -> PyResult<()> {
-        let n = step_count(n)?;
+    /// the other worlds have still stepped. Ctrl-C stops it within about a tenth of a second
+    /// with `KeyboardInterrupt`, every world having taken the same whole number of steps.
+    #[pyo3(signature = (n = StepCount(1)))]
+    fn step(&mut self, py: Python<'_>, n: StepCount) -> PyResult<()> {
         let sims = &mut self.sims;
-        let results: Vec<Result<(), String>> =
-            py.allow_threads(|| sims.par_iter_mut().map(|sim| sim.step(n)).collect());
-        for (index, result) in results.into_iter().enumerate() {
-            if let Err(message) = result {
-                return Err(StepError::new_err(format!("world {index}: {message}")));
-            }
+        sims.iter_mut().for_each(Sim::begin_call);
+        let mut failures: Vec<Option<String>> = vec![None; sims.len()];
+        let rounds = step_in_rounds(py, n.0, |steps| {
+            sims.par_iter_mut()
+                .zip(failures.par_iter_mut())
+                .filter(|(_, failure)| failure.is_none())
+                .for_each(|(sim, failure)| *failure = sim.step_round(steps).err());
+            Ok::<(), std::convert::Infallible>(())
+        });
+        self.sims.iter_mut().for_each(Sim::end_call);
+        let Ok(()) = rounds?;
+        if let Some((index, message)) = failures
+            .into_iter()
+            .enumerate()
+            .find_map(|(index, failure)| Some((index, failure?)))
+        {
+            return Err(StepError::new_err(format!("world {index}: {message}")));
         }
         Ok(())
     }

@@ -7,10 +7,13 @@
 
 mod arrays;
 mod batch;
+mod dicts;
 mod drive;
 mod errors;
 mod json;
 mod readouts;
+mod robust;
+mod scenes;
 mod sim;
 mod world;
 
@@ -26,6 +29,7 @@ fn _rebond(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add("SceneError", py.get_type::<errors::SceneError>())?;
     module.add("StepError", py.get_type::<errors::StepError>())?;
     module.add("StateError", py.get_type::<errors::StateError>())?;
+    module.add_function(wrap_pyfunction!(scenes::builtin_scenes, module)?)?;
     module.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -190,17 +190,21 @@ impl Sim {
         self.scene.timestep().seconds
     }
 
-    /// Steps `count` times with the held loads on every step, then drops them; the error is
-    /// the command line's `step N failed: ...`, N counted from the world's first step.
-    pub fn step(&mut self, count: u64) -> Result<(), String> {
+    /// Starts a `step(n)` call, which may run in several rounds ([`Self::step_round`]): the
+    /// events of the call before are dropped.
+    pub fn begin_call(&mut self) {
         self.events.clear();
-        let result = self.step_loaded(count);
-        self.loads.clear();
-        result
     }
 
-    /// Steps `count` times, giving the held loads before each step and keeping its events.
-    fn step_loaded(&mut self, count: u64) -> Result<(), String> {
+    /// Ends a `step(n)` call, even one cut short: the held loads are dropped.
+    pub fn end_call(&mut self) {
+        self.loads.clear();
+    }
+
+    /// Steps `count` times within a `step(n)` call, giving the held loads before each step and
+    /// keeping its events; the error is the command line's `step N failed: ...`, N counted from
+    /// the world's first step.
+    pub fn step_round(&mut self, count: u64) -> Result<(), String> {
         for _ in 0..count {
             self.steps += 1;
             let stepped = self

@@ -8,19 +8,21 @@ use rebond::scene::Scene;
 use rebond::{QueryFilter, Ray, Vec3};
 
 use crate::arrays::{input, output};
-use crate::errors::{invalid_scene, load_failed, StepError};
+use crate::dicts::dict_error;
+use crate::errors::StepError;
 use crate::json::{join, to_bytes, to_json};
+use crate::robust::{step_in_rounds, StepCount};
 use crate::sim::{Input, Quantity, Sim};
 
-/// Loads a scene given as a path (`str` or `os.PathLike`), a dict in the scene format, or a
-/// `World` (copied).
+/// Loads a scene given as a path (`str` or `os.PathLike`) or a built-in scene's name, a dict
+/// in the scene format, or a `World` (copied).
 pub fn load_scene(scene: &Bound<'_, PyAny>) -> PyResult<Sim> {
     if let Ok(world) = scene.downcast::<World>() {
         return Ok(world.borrow().sim.clone());
     }
     if scene.downcast::<PyDict>().is_ok() {
         let bytes = to_bytes(&to_json(scene, "")?)?;
-        let loaded = Scene::from_json(&bytes).map_err(|error| invalid_scene(None, &error))?;
+        let loaded = Scene::from_json(&bytes).map_err(|error| dict_error(&error))?;
         return Ok(Sim::new(loaded, None));
     }
     let Ok(path) = scene.extract::<std::path::PathBuf>() else {
@@ -29,9 +31,7 @@ pub fn load_scene(scene: &Bound<'_, PyAny>) -> PyResult<Sim> {
             "scene: expected a path, a dict in the scene format or a World, got a {type_name}"
         )));
     };
-    let label = path.display().to_string();
-    let loaded = Scene::from_file(&path).map_err(|error| load_failed(&label, &error))?;
-    Ok(Sim::new(loaded, Some(label)))
+    crate::scenes::load_path(&path)
 }
 
 /// A body's place in the scene given as its index: the body's name, as the scene format wants.
@@ -53,11 +53,6 @@ fn body_reference(sim: &Sim, value: &Bound<'_, PyAny>, field: &str) -> PyResult<
                 names.len()
             ))
         })
-}
-
-/// `n` of `step(n)`, which must not be negative.
-pub fn step_count(n: i64) -> PyResult<u64> {
-    u64::try_from(n).map_err(|_| PyValueError::new_err(format!("n: must not be negative, got {n}")))
 }
 
 /// A simulated world: bodies, joints, and the scene's timestep.
@@ -95,13 +90,14 @@ impl World {
             }
         }
         let bytes = to_bytes(&serde_json::Value::Object(object))?;
-        let scene = Scene::from_json(&bytes).map_err(|error| invalid_scene(None, &error))?;
+        let scene = Scene::from_json(&bytes).map_err(|error| dict_error(&error))?;
         Ok(Self {
             sim: Sim::new(scene, None),
         })
     }
 
-    /// The world of a scene: a path to a scene file, or a dict in the scene format.
+    /// The world of a scene: a path to a scene file, the name of a built-in scene
+    /// (`builtin_scenes()`; a path that exists wins), or a dict in the scene format.
     #[staticmethod]
     fn from_scene(scene: &Bound<'_, PyAny>) -> PyResult<Self> {
         Ok(Self {
@@ -131,7 +127,7 @@ impl World {
             .sim
             .scene_mut()
             .add_body_json(&bytes)
-            .map_err(|error| invalid_scene(None, &error))?;
+            .map_err(|error| dict_error(&error))?;
         self.sim.refresh();
         Ok(index)
     }
@@ -168,17 +164,20 @@ impl World {
             .sim
             .scene_mut()
             .add_joint_json(&bytes)
-            .map_err(|error| invalid_scene(None, &error))?;
+            .map_err(|error| dict_error(&error))?;
         self.sim.refresh();
         Ok(index)
     }
 
-    /// Advances the world by `n` steps of its timestep, without the GIL.
-    #[pyo3(signature = (n = 1))]
-    fn step(&mut self, py: Python<'_>, n: i64) -> PyResult<()> {
-        let n = step_count(n)?;
+    /// Advances the world by `n` steps of its timestep, without the GIL. Ctrl-C stops it within
+    /// about a tenth of a second with `KeyboardInterrupt`, after a whole number of steps.
+    #[pyo3(signature = (n = StepCount(1)))]
+    fn step(&mut self, py: Python<'_>, n: StepCount) -> PyResult<()> {
         let sim = &mut self.sim;
-        py.allow_threads(|| sim.step(n)).map_err(StepError::new_err)
+        sim.begin_call();
+        let rounds = step_in_rounds(py, n.0, |steps| sim.step_round(steps));
+        self.sim.end_call();
+        rounds?.map_err(StepError::new_err)
     }
 
     /// A copy of this world, which steps on exactly as this one would.

@@ -190,7 +190,7 @@ mod tests {
 
     /// The built-in `platformer` scene with its player moved to `start`, and the player.
     fn platformer_from(start: Vec3) -> (Scene, Player) {
-        let json = crate::builtin::find("platformer").expect("built in").json;
+        let json = rebond::scene::builtin("platformer").expect("built in").json;
         let mut scene = Scene::from_json(json.as_bytes()).expect("a valid scene");
         let player = Player::new(scene.character().expect("a character")).expect("valid");
         let body = scene.body_handle("player").expect("named");

@@ -4,6 +4,24 @@
 copies of a world stepped in parallel on every core with the GIL released. See docs/python.md.
 """
 
-from ._rebond import Batch, RayHit, SceneError, StateError, StepError, World, __version__
+from ._rebond import (
+    Batch,
+    RayHit,
+    SceneError,
+    StateError,
+    StepError,
+    World,
+    __version__,
+    builtin_scenes,
+)
 
-__all__ = ["Batch", "RayHit", "SceneError", "StateError", "StepError", "World", "__version__"]
+__all__ = [
+    "Batch",
+    "RayHit",
+    "SceneError",
+    "StateError",
+    "StepError",
+    "World",
+    "__version__",
+    "builtin_scenes",
+]

@@ -53,7 +53,7 @@ class World:
         """An empty world; defaults as in a scene file ((0, -9.81, 0), 1/60 s, 8)."""
     @staticmethod
     def from_scene(scene: Scene) -> "World":
-        """The world of a scene file (path) or of a dict in the scene format."""
+        """The world of a scene file (path), a built-in scene's name, or a dict."""
     def add_body(
         self,
         shape: Mapping[str, Any],
@@ -189,7 +189,7 @@ class Batch:
     """``count`` copies of one world, stepped in parallel on every core without the GIL."""
 
     def __init__(self, scene: Scene, count: int) -> None:
-        """Copies of a scene file (path), a dict in the scene format, or a ``World``."""
+        """Copies of a scene file (path), a built-in scene, a dict, or a ``World``."""
     @property
     def count(self) -> int:
         """Number of worlds."""
@@ -266,3 +266,6 @@ class Batch:
         self, origins: npt.ArrayLike, directions: npt.ArrayLike, max_distance: float = ...
     ) -> tuple[FloatArray, npt.NDArray[np.int64], FloatArray]:
         """Distances (count, rays), body indices (count, rays), normals (count, rays, 3)."""
+
+def builtin_scenes() -> list[tuple[str, str]]:
+    """The scenes built into rebond, (name, description), loadable by name from anywhere."""

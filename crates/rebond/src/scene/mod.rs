@@ -24,6 +24,7 @@
 //! Every value is checked before anything is built: an invalid scene is a [`SceneError`] naming
 //! the place of the bad value in the file (`bodies[3].shape.radius`) and what is wrong with it.
 
+mod builtin;
 mod convert;
 mod format;
 mod meshes;
@@ -41,6 +42,7 @@ use crate::character::CharacterSettings;
 use crate::error::ErrorKind;
 use crate::joint::{Joint, JointHandle, JointType};
 use crate::world::World;
+pub use builtin::{builtin, BuiltinScene, BUILTIN_SCENES};
 use convert::{body_desc, character, joint_desc, timestep, world_settings};
 use format::{BodyEntry, JointEntry, JsonObject, SceneFile};
 use meshes::MeshFiles;
