@@ -19,7 +19,7 @@ pub struct Batch {
     /// The world every copy starts from, and `reset` returns to.
     initial: Sim,
     /// The copies.
-    sims: Vec<Sim>,
+    pub sims: Vec<Sim>,
 }
 
 #[pymethods]

@@ -9,6 +9,7 @@ mod arrays;
 mod batch;
 mod errors;
 mod json;
+mod render;
 mod sim;
 mod world;
 

@@ -143,6 +143,16 @@ class World:
         self, origin: Vector, direction: Vector, max_distance: float = ...
     ) -> Optional[RayHit]:
         """The nearest body the ray meets within ``max_distance`` m, or ``None``."""
+    def render(
+        self, width: int, height: int, camera: Optional[Mapping[str, Any]] = None
+    ) -> npt.NDArray[np.uint8]:
+        """The world drawn on the CPU: uint8 (height, width, 3), top row first. ``camera``: a
+        dict of ``position``, ``target`` (m), ``fov`` (degrees, default 45), ``up``; fields
+        left out are the default camera's, which frames the moving bodies."""
+    def render_camera(
+        self, width: int, height: int, camera: Optional[Mapping[str, Any]] = None
+    ) -> dict[str, Any]:
+        """The camera ``render`` draws with, every field filled in."""
 
 class Batch:
     """``count`` copies of one world, stepped in parallel on every core without the GIL."""
@@ -184,3 +194,12 @@ class Batch:
         """(count, bodies, 3), for the next step only."""
     def set_motor_targets(self, a: npt.ArrayLike) -> None:
         """(count, motors)."""
+    def render(
+        self,
+        index: Union[int, Iterable[int]],
+        width: int,
+        height: int,
+        camera: Optional[Mapping[str, Any]] = None,
+    ) -> npt.NDArray[np.uint8]:
+        """World ``index`` drawn as ``World.render``: (height, width, 3); for a list of indices,
+        those worlds in parallel: (len(index), height, width, 3)."""
