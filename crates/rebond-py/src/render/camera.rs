@@ -13,9 +13,9 @@ use rebond::{Aabb, Quat, Vec3, World};
 const DEFAULT_FOV_DEGREES: f32 = 45.0;
 /// Angle about the up axis of the default direction from the target to the camera, radians
 /// (30°): the camera is on the front (+Z for +Y up) and to the right.
-const DEFAULT_YAW: f32 = 0.523_598_8;
+const DEFAULT_YAW: f32 = std::f32::consts::FRAC_PI_6;
 /// Angle of that direction above the horizon, radians (25°).
-const DEFAULT_PITCH: f32 = 0.436_332_3;
+const DEFAULT_PITCH: f32 = 25.0 * std::f32::consts::PI / 180.0;
 /// Part of the picture's half size left free around the framed bodies.
 const FRAMING_MARGIN: f32 = 0.1;
 /// Nearest the default camera comes to its target, metres.
@@ -217,7 +217,7 @@ impl View {
     }
 
     /// Camera coordinates of a world point: along right, up and forward, metres.
-    pub fn to_camera(&self, point: Vec3) -> Vec3 {
+    pub fn camera_point(&self, point: Vec3) -> Vec3 {
         let offset = point - self.eye;
         Vec3::new(
             offset.dot(self.right),
@@ -239,7 +239,7 @@ impl View {
     /// camera point `(x, y, z)` is left of the right edge while `f x ≤ w/2 z`; its distance past
     /// that plane is `(f x - w/2 z) / √(f² + (w/2)²)`, and likewise for the other edges.
     pub fn sees_sphere(&self, centre: Vec3, radius: f32, near: f32) -> bool {
-        let point = self.to_camera(centre);
+        let point = self.camera_point(centre);
         let beyond = |across: f32, half: f32| {
             (self.focal * across.abs() - half * point.z) / self.focal.hypot(half) > radius
         };

@@ -21,8 +21,9 @@ const DIFFUSE: f32 = 0.65;
 /// The direction toward the sun for +Y up (turned with the world's up): above, in front, to the
 /// right, so that the default camera sees three faces of a box lit differently.
 const SUN: Vec3 = Vec3::new(0.3, 1.0, 0.55);
-/// The sky at the horizon and straight up.
+/// The sky at the horizon, pale.
 const SKY_HORIZON: Rgb = Rgb([205, 222, 236]);
+/// The sky straight up, bluer.
 const SKY_ZENITH: Rgb = Rgb([96, 148, 212]);
 /// Brightness of the ground's darker squares relative to the lighter ones.
 const CHECKER_SHADE: f32 = 0.78;
@@ -242,7 +243,7 @@ impl Frame {
             .collect();
         let cameras: Vec<Vec3> = world_points
             .iter()
-            .map(|&point| view.to_camera(point))
+            .map(|&point| view.camera_point(point))
             .collect();
         let lights: Vec<f32> = mesh
             .normals
