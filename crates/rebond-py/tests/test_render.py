@@ -143,6 +143,26 @@ def test_the_default_camera_frames_the_moving_bodies():
     assert moved["position"] == [0, 1, 30] and moved["target"] == camera["target"]
 
 
+def test_up_is_against_gravity_and_static_bodies_show_squares():
+    world = rebond.World(gravity=(0, 0, -9.81))
+    world.add_body({"type": "box", "half_extents": [4, 4, 0.5]}, type="static", position=[0, 0, -0.5])
+    world.add_body({"type": "sphere", "radius": 0.5}, position=[0, 0, 0.5])
+    camera = world.render_camera(80, 60)
+    assert camera["up"] == [0.0, 0.0, 1.0]
+    # The default camera is above the bodies, looking down at them.
+    assert camera["position"][2] > camera["target"][2] + 1
+    # Looking straight down at the floor's top from 2 m, the view spans about 1.7 m: the floor
+    # shows its one-metre squares, greys of two shades (78 % apart, less the slight fading
+    # toward their mean and the haze, which move a channel by a level or two).
+    top = world.render(60, 60, {"position": [2.3, 2.3, 2], "target": [2.3, 2.3, 0], "up": [0, 1, 0]})
+    pixels = top.reshape(-1, 3).astype(int)
+    assert np.all(pixels.max(axis=1) - pixels.min(axis=1) < 12)
+    dark, light = pixels[pixels[:, 0] < 140], pixels[pixels[:, 0] >= 140]
+    assert len(dark) > 500 and len(light) > 500
+    assert np.ptp(dark[:, 0]) <= 2 and np.ptp(light[:, 0]) <= 2
+    assert light[:, 0].min() - dark[:, 0].max() > 20
+
+
 def test_a_batch_draws_its_worlds_as_worlds_do():
     batch = rebond.Batch(PENDULUM, 3)
     batch.apply_forces(np.random.default_rng(0).normal(size=(3, batch.body_count, 3)) * 5)
