@@ -104,9 +104,13 @@ def pushes(actions: np.ndarray, bodies: int = 2) -> np.ndarray:
 class CartPoleEnv(gym.Env):
     """Gymnasium's CartPole task on a rebond world. Action 1 pushes right, 0 left."""
 
-    metadata = {"render_modes": []}
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 50}
 
-    def __init__(self) -> None:
+    def __init__(self, render_mode: Optional[str] = None) -> None:
+        if render_mode not in (None, "rgb_array"):
+            raise ValueError(f"render_mode: {render_mode!r} is not None or 'rgb_array'")
+        self.render_mode = render_mode
+        self.camera: Optional[dict] = None
         high = np.array([2 * X_LIMIT, np.inf, 2 * ANGLE_LIMIT, np.inf], dtype=np.float32)
         self.observation_space = spaces.Box(-high, high, dtype=np.float32)
         self.action_space = spaces.Discrete(2)
@@ -130,6 +134,15 @@ class CartPoleEnv(gym.Env):
         terminated = bool(abs(x) > X_LIMIT or abs(theta) > ANGLE_LIMIT)
         truncated = self.steps >= MAX_STEPS
         return observation, 1.0, terminated, truncated, {}
+
+    def render(self) -> Optional[np.ndarray]:
+        """With ``render_mode="rgb_array"``, the world drawn on the CPU, (240, 320, 3) ``uint8``,
+        from the camera ``World.render_camera`` chose at the first picture."""
+        if self.render_mode is None or self.world is None:
+            return None
+        if self.camera is None:
+            self.camera = self.world.render_camera(320, 240)
+        return self.world.render(320, 240, self.camera)
 
     def _observation(self) -> np.ndarray:
         assert self.world is not None

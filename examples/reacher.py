@@ -96,9 +96,13 @@ def random_target(rng: np.random.Generator, size: Optional[int] = None) -> np.nd
 class ReacherEnv(gym.Env):
     """Move the arm's tip onto a random target within reach."""
 
-    metadata = {"render_modes": []}
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 50}
 
-    def __init__(self) -> None:
+    def __init__(self, render_mode: Optional[str] = None) -> None:
+        if render_mode not in (None, "rgb_array"):
+            raise ValueError(f"render_mode: {render_mode!r} is not None or 'rgb_array'")
+        self.render_mode = render_mode
+        self.camera: Optional[dict] = None
         self.template = rebond.World.from_scene(reacher_scene())
         self.action_space = spaces.Box(-MAX_SPEED, MAX_SPEED, shape=(2,), dtype=np.float32)
         self.observation_space = spaces.Box(-np.inf, np.inf, shape=(10,), dtype=np.float32)
@@ -123,6 +127,15 @@ class ReacherEnv(gym.Env):
                                         - self.target))
         reward = -distance - 0.01 * float(np.sum(action**2))
         return self._observation(), reward, False, self.steps >= MAX_STEPS, {"distance": distance}
+
+    def render(self) -> Optional[np.ndarray]:
+        """With ``render_mode="rgb_array"``, the world drawn on the CPU, (240, 320, 3) ``uint8``,
+        from the camera ``World.render_camera`` chose at the first picture."""
+        if self.render_mode is None or self.world is None:
+            return None
+        if self.camera is None:
+            self.camera = self.world.render_camera(320, 240)
+        return self.world.render(320, 240, self.camera)
 
     def _observation(self) -> np.ndarray:
         assert self.world is not None

@@ -12,6 +12,7 @@ mod drive;
 mod errors;
 mod json;
 mod readouts;
+mod render;
 mod robust;
 mod scenes;
 mod sim;

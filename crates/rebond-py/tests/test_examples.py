@@ -9,7 +9,7 @@ import reacher
 
 
 def test_cartpole_passes_the_gymnasium_checks():
-    check_env(cartpole.CartPoleEnv(), skip_render_check=True)
+    check_env(cartpole.CartPoleEnv(render_mode="rgb_array"))
 
 
 def cartpole_derivative(state, force):
@@ -112,7 +112,7 @@ def test_the_cartpole_vector_env_resets_finished_episodes():
 
 
 def test_reacher_passes_the_gymnasium_checks():
-    check_env(reacher.ReacherEnv(), skip_render_check=True)
+    check_env(reacher.ReacherEnv(render_mode="rgb_array"))
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])

@@ -176,13 +176,15 @@ def test_render_gives_one_picture_per_environment_when_asked():
     assert cartpole.make_vector_env(2).render() is None
     envs = cartpole.make_vector_env(2, render_mode="rgb_array", render_size=(64, 48))
     envs.reset(seed=0)
-    if not hasattr(rebond.World, "render"):
-        with pytest.raises(NotImplementedError, match="no World.render"):
-            envs.render()
-        return
     frames = envs.render()
     assert len(frames) == 2
     assert all(frame.shape == (48, 64, 3) and frame.dtype == np.uint8 for frame in frames)
+    # Each picture is its world's, seen from the camera the first render chose, kept after.
+    camera = envs.batch.world(0).render_camera(64, 48)
+    for _ in range(5):
+        envs.step(np.array([1, 0]))
+    for index, frame in enumerate(envs.render()):
+        assert np.array_equal(frame, envs.batch.world(index).render(64, 48, camera))
 
 
 def test_gymnasium_vector_wrappers_run_on_it():

@@ -36,7 +36,8 @@
 //! `world/mod.rs` lists the step's stages in order, with where each lives), with [`query`]
 //! (rays, shape casts, overlaps), [`events`] (contacts, forces, sensors), [`scene`] (scene
 //! files) and [`state`] (saving and restoring whole worlds, exactly); on top of them,
-//! [`character`] moves game characters through the world by its shape casts.
+//! [`character`] moves game characters through the world by its shape casts. For drawing,
+//! [`shape::tessellation`] gives each shape's triangles and [`palette`] each body's colour.
 
 mod arena;
 mod body;
@@ -52,6 +53,7 @@ pub mod limits;
 mod mass;
 mod material;
 mod math;
+pub mod palette;
 pub mod prelude;
 pub mod query;
 #[cfg(feature = "scene")]

@@ -7,8 +7,7 @@
 //! The module splits by concept: [`simulation`] (the stepping world and the user's pokes),
 //! [`drag`] (the mouse spring), [`player`] (the scene's character under the keyboard),
 //! [`picking`] (ray casts, which the engine lacks), [`camera`], [`controls`] (the key table and
-//! help), [`viewer`] (input to actions), [`mesh`] (a triangle mesh per shape), [`ground`],
-//! [`palette`], [`debug_draw`] with [`joint_draw`], [`overlay`] (text panels), [`render`]
+//! help), [`viewer`] (input to actions), [`ground`], [`palette`], [`debug_draw`] with [`joint_draw`], [`overlay`] (text panels), [`render`]
 //! (three-d drawing), [`screenshot`] and [`window`] (winit's event loop).
 
 mod camera;
@@ -17,7 +16,6 @@ mod debug_draw;
 mod drag;
 mod ground;
 mod joint_draw;
-mod mesh;
 mod overlay;
 mod palette;
 mod picking;

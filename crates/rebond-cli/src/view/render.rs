@@ -2,6 +2,7 @@
 //! halfspaces as ground grids, the debug geometry on top, and the text panels.
 
 use glam::{Mat4 as GlamMat4, Quat, Vec2, Vec3};
+use rebond::shape::tessellation::{tessellate, Tessellation};
 use rebond::{BodyType, Pose, Shape};
 use three_d::{
     degrees, radians, AmbientLight, Camera, ClearState, ColorMaterial, Context, CpuMaterial,
@@ -14,7 +15,6 @@ use super::camera::{FAR_PLANE, FIELD_OF_VIEW_Y, NEAR_PLANE};
 use super::controls::help_lines;
 use super::debug_draw::{debug_geometry, DebugGeometry};
 use super::ground::{grid_texture, ground_model, ground_pose};
-use super::mesh::{shape_mesh, TriangleMesh};
 use super::overlay::{stats_lines, text_panel, Image};
 use super::palette::{shown_colour, Rgb, BACKGROUND};
 use super::viewer::Viewer;
@@ -197,7 +197,7 @@ impl Renderer {
         self.groups = shapes
             .into_iter()
             .filter_map(|(shape, is_static, members)| {
-                let mesh = cpu_mesh(&shape_mesh(&shape)?, is_static);
+                let mesh = cpu_mesh(&tessellate(&shape)?, is_static);
                 let size = shape.aabb(&Pose::IDENTITY).half_extents().max_element() * 2.0;
                 let material = if is_static { &gridded } else { &plain };
                 let model = Gm::new(
@@ -400,7 +400,7 @@ fn perspective_camera(viewer: &Viewer, viewport: Viewport) -> Camera {
 }
 
 /// three-d's mesh of a triangle mesh, with texture coordinates for the grid when `gridded`.
-fn cpu_mesh(mesh: &TriangleMesh, gridded: bool) -> CpuMesh {
+fn cpu_mesh(mesh: &Tessellation, gridded: bool) -> CpuMesh {
     let convert = |v: &Vec3| three_d::vec3(v.x, v.y, v.z);
     let uvs = gridded.then(|| {
         mesh.positions

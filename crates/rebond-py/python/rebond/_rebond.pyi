@@ -184,6 +184,16 @@ class World:
         self, origins: npt.ArrayLike, directions: npt.ArrayLike, max_distance: float = ...
     ) -> tuple[FloatArray, npt.NDArray[np.int64], FloatArray]:
         """Distances (rays,), body indices (rays,) (-1 for a miss) and normals (rays, 3)."""
+    def render(
+        self, width: int, height: int, camera: Optional[Mapping[str, Any]] = None
+    ) -> npt.NDArray[np.uint8]:
+        """The world drawn on the CPU: uint8 (height, width, 3), top row first. ``camera``: a
+        dict of ``position``, ``target`` (m), ``fov`` (degrees, default 45), ``up``; fields
+        left out are the default camera's, which frames the moving bodies."""
+    def render_camera(
+        self, width: int, height: int, camera: Optional[Mapping[str, Any]] = None
+    ) -> dict[str, Any]:
+        """The camera ``render`` draws with, every field filled in."""
 
 class Batch:
     """``count`` copies of one world, stepped in parallel on every core without the GIL."""
@@ -266,6 +276,15 @@ class Batch:
         self, origins: npt.ArrayLike, directions: npt.ArrayLike, max_distance: float = ...
     ) -> tuple[FloatArray, npt.NDArray[np.int64], FloatArray]:
         """Distances (count, rays), body indices (count, rays), normals (count, rays, 3)."""
+    def render(
+        self,
+        index: Union[int, Iterable[int]],
+        width: int,
+        height: int,
+        camera: Optional[Mapping[str, Any]] = None,
+    ) -> npt.NDArray[np.uint8]:
+        """World ``index`` drawn as ``World.render``: (height, width, 3); for a list of indices,
+        those worlds in parallel: (len(index), height, width, 3)."""
 
 def builtin_scenes() -> list[tuple[str, str]]:
     """The scenes built into rebond, (name, description), loadable by name from anywhere."""

@@ -15,7 +15,7 @@ import numpy as np
 from gymnasium import spaces
 from gymnasium.vector.utils import batch_space
 
-from ._rebond import Batch, World
+from ._rebond import Batch
 
 try:
     from gymnasium.vector import AutoresetMode
@@ -66,8 +66,9 @@ class VectorEnv(gymnasium.vector.VectorEnv):
     ``info["final_info"]`` (mask ``info["_final_info"]``).
 
     ``render_mode="rgb_array"`` makes ``render()`` return one ``(height, width, 3)`` ``uint8``
-    picture per environment of size ``render_size`` ``(width, height)``, drawn by
-    ``World.render`` where this build of rebond has it.
+    picture per environment of size ``render_size`` ``(width, height)`` (``Batch.render``), all
+    seen from the camera ``World.render_camera`` chooses for the first environment at the first
+    ``render()``, kept so that a video's view stays still.
     """
 
     metadata: dict[str, Any] = {"autoreset_mode": _SAME_STEP, "render_modes": ["rgb_array"]}
@@ -102,6 +103,7 @@ class VectorEnv(gymnasium.vector.VectorEnv):
         self.num_envs = self.batch.count
         self.render_mode = render_mode
         self.render_size = tuple(render_size)
+        self._camera: Optional[dict[str, Any]] = None
         self.max_episode_steps = max_episode_steps
         self.frame_skip = frame_skip
         self.episode_steps = np.zeros(self.num_envs, dtype=np.int64)
@@ -211,15 +213,11 @@ class VectorEnv(gymnasium.vector.VectorEnv):
         """One picture per environment for ``render_mode="rgb_array"``; ``None`` otherwise."""
         if self.render_mode is None:
             return None
-        render = getattr(World, "render", None)
-        if render is None:
-            raise NotImplementedError(
-                "render_mode='rgb_array': this build of rebond has no World.render"
-            )
         width, height = self.render_size
-        return tuple(
-            render(self.batch.world(index), width, height) for index in range(self.num_envs)
-        )
+        if self._camera is None:
+            self._camera = self.batch.world(0).render_camera(width, height)
+        frames = self.batch.render(list(range(self.num_envs)), width, height, self._camera)
+        return tuple(frames)
 
     def _restart(self, indices: np.ndarray) -> None:
         """Puts the worlds at ``indices`` back in the starting state, with reset noise."""

@@ -1,7 +1,8 @@
 //! Collision shapes in their local frame: size, mass properties, bounding box and support function.
 //!
 //! Every convex shape has a support function `support(d)`: the point of the shape farthest along
-//! `d`, which the narrow phase's GJK and EPA are built on.
+//! `d`, which the narrow phase's GJK and EPA are built on. [`tessellation`] gives each shape's
+//! triangles for drawing.
 
 mod bvh;
 mod capsule;
@@ -13,6 +14,7 @@ mod halfspace;
 mod heightfield;
 pub(crate) mod line;
 mod sphere;
+pub mod tessellation;
 mod triangle;
 mod trimesh;
 

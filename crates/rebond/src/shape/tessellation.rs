@@ -1,22 +1,28 @@
-//! Triangle meshes of the shapes, in the body frame, with per-vertex normals for lighting.
-//! Round shapes (sphere, capsule, cylinder) are lathed about the Y axis from a profile; boxes and
-//! hulls are flat-shaded, one set of vertices per face, and so are triangle meshes and
-//! heightfields, one set a triangle. A halfspace has no mesh: the renderer draws it as a ground
-//! grid.
+//! Triangles approximating a shape, for drawing: the viewer (`rebond view`) and the Python
+//! module's pictures (`World.render`) both draw these.
+//!
+//! [`tessellate`] gives a shape's triangles in its body frame, with a unit normal at every
+//! vertex for lighting. Round shapes (sphere, capsule, cylinder) are lathed about the Y axis from
+//! a profile, [`SEGMENTS_AROUND`] segments around and [`SEGMENTS_POLE_TO_POLE`] from pole to
+//! pole, so a sphere's triangles lie inside it by at most `r (1 - cos(π / 16))` (1.9 % of the
+//! radius); boxes and hulls are flat-shaded, one set of vertices per face, and so are triangle
+//! meshes and heightfields, one set a triangle, each drawn from both sides. Compounds gather
+//! their children's triangles at the children's poses. A halfspace, unbounded, has none: a
+//! drawing shows it as a ground plane.
 
 use std::f32::consts::{FRAC_PI_2, TAU};
 
-use rebond::shape::{Capsule, ConvexHull, Cuboid, Cylinder, Sphere, Triangle};
-use rebond::{Pose, Shape, Vec3};
+use super::{Capsule, ConvexHull, Cuboid, Cylinder, Shape, Sphere, Triangle};
+use crate::math::{Pose, Vec3};
 
 /// Segments around the Y axis of lathed shapes.
-const SEGMENTS_AROUND: usize = 32;
+pub const SEGMENTS_AROUND: usize = 32;
 /// Segments from pole to pole of a sphere (a capsule's caps take half each).
-const SEGMENTS_POLE_TO_POLE: usize = 16;
+pub const SEGMENTS_POLE_TO_POLE: usize = 16;
 
 /// Triangles with a normal at every vertex; triangles wind counter-clockwise seen from outside.
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct TriangleMesh {
+pub struct Tessellation {
     /// Vertex positions, metres.
     pub positions: Vec<Vec3>,
     /// Unit vertex normals, one per position.
@@ -25,9 +31,9 @@ pub struct TriangleMesh {
     pub indices: Vec<u32>,
 }
 
-impl TriangleMesh {
+impl Tessellation {
     /// Appends `other` moved by `pose`.
-    fn append(&mut self, other: &TriangleMesh, pose: &Pose) {
+    fn append(&mut self, other: &Tessellation, pose: &Pose) {
         let base = self.positions.len() as u32;
         self.positions.extend(
             other
@@ -53,8 +59,8 @@ impl TriangleMesh {
     }
 }
 
-/// The mesh of `shape` in its body frame, or `None` for a halfspace.
-pub fn shape_mesh(shape: &Shape) -> Option<TriangleMesh> {
+/// The triangles of `shape` in its body frame (metres), or `None` for a halfspace.
+pub fn tessellate(shape: &Shape) -> Option<Tessellation> {
     Some(match shape {
         Shape::Sphere(sphere) => sphere_mesh(sphere),
         Shape::Cuboid(cuboid) => cuboid_mesh(cuboid),
@@ -62,9 +68,9 @@ pub fn shape_mesh(shape: &Shape) -> Option<TriangleMesh> {
         Shape::Cylinder(cylinder) => cylinder_mesh(cylinder),
         Shape::ConvexHull(hull) => hull_mesh(hull),
         Shape::Compound(compound) => {
-            let mut mesh = TriangleMesh::default();
+            let mut mesh = Tessellation::default();
             for child in compound.children() {
-                if let Some(child_mesh) = shape_mesh(&child.shape) {
+                if let Some(child_mesh) = tessellate(&child.shape) {
                     mesh.append(&child_mesh, &child.pose);
                 }
             }
@@ -82,8 +88,8 @@ pub fn shape_mesh(shape: &Shape) -> Option<TriangleMesh> {
 
 /// Flat-shaded triangles, each drawn from both sides (a mesh collides on both; a heightfield is
 /// seen from above).
-fn flat_triangles(triangles: impl Iterator<Item = Triangle>) -> TriangleMesh {
-    let mut mesh = TriangleMesh::default();
+fn flat_triangles(triangles: impl Iterator<Item = Triangle>) -> Tessellation {
+    let mut mesh = Tessellation::default();
     for triangle in triangles {
         let Some(normal) = triangle.normal() else {
             continue;
@@ -110,8 +116,8 @@ struct ProfilePoint {
 }
 
 /// Turns a profile, listed from bottom to top, about the Y axis.
-fn lathe(profile: &[ProfilePoint]) -> TriangleMesh {
-    let mut mesh = TriangleMesh::default();
+fn lathe(profile: &[ProfilePoint]) -> Tessellation {
+    let mut mesh = Tessellation::default();
     for point in profile {
         for segment in 0..=SEGMENTS_AROUND {
             let angle = TAU * segment as f32 / SEGMENTS_AROUND as f32;
@@ -155,7 +161,7 @@ fn arc(radius: f32, center: f32, from: f32, to: f32, segments: usize) -> Vec<Pro
         .collect()
 }
 
-fn sphere_mesh(sphere: &Sphere) -> TriangleMesh {
+fn sphere_mesh(sphere: &Sphere) -> Tessellation {
     lathe(&arc(
         sphere.radius(),
         0.0,
@@ -165,7 +171,7 @@ fn sphere_mesh(sphere: &Sphere) -> TriangleMesh {
     ))
 }
 
-fn capsule_mesh(capsule: &Capsule) -> TriangleMesh {
+fn capsule_mesh(capsule: &Capsule) -> Tessellation {
     let half_segments = SEGMENTS_POLE_TO_POLE / 2;
     let (radius, half_height) = (capsule.radius(), capsule.half_height());
     let mut profile = arc(radius, -half_height, -FRAC_PI_2, 0.0, half_segments);
@@ -173,7 +179,7 @@ fn capsule_mesh(capsule: &Capsule) -> TriangleMesh {
     lathe(&profile)
 }
 
-fn cylinder_mesh(cylinder: &Cylinder) -> TriangleMesh {
+fn cylinder_mesh(cylinder: &Cylinder) -> Tessellation {
     let (radius, half_height) = (cylinder.radius(), cylinder.half_height());
     let point = |radius, height, normal_radial, normal_y| ProfilePoint {
         radius,
@@ -191,9 +197,9 @@ fn cylinder_mesh(cylinder: &Cylinder) -> TriangleMesh {
     ])
 }
 
-fn cuboid_mesh(cuboid: &Cuboid) -> TriangleMesh {
+fn cuboid_mesh(cuboid: &Cuboid) -> Tessellation {
     let half = cuboid.half_extents();
-    let mut mesh = TriangleMesh::default();
+    let mut mesh = Tessellation::default();
     for axis in 0..3 {
         for sign in [-1.0_f32, 1.0] {
             let normal = Vec3::AXES[axis] * sign;
@@ -207,9 +213,9 @@ fn cuboid_mesh(cuboid: &Cuboid) -> TriangleMesh {
     mesh
 }
 
-fn hull_mesh(hull: &ConvexHull) -> TriangleMesh {
+fn hull_mesh(hull: &ConvexHull) -> Tessellation {
     let vertices = hull.vertices();
-    let mut mesh = TriangleMesh::default();
+    let mut mesh = Tessellation::default();
     for face in hull.faces() {
         let corners: Vec<u32> = face
             .vertices
@@ -223,7 +229,7 @@ fn hull_mesh(hull: &ConvexHull) -> TriangleMesh {
 }
 
 /// Triangulates a convex polygon, counter-clockwise seen from outside, as a fan.
-fn push_fan(mesh: &mut TriangleMesh, corners: &[u32]) {
+fn push_fan(mesh: &mut Tessellation, corners: &[u32]) {
     for pair in corners.windows(2).skip(1) {
         mesh.indices.extend([corners[0], pair[0], pair[1]]);
     }
@@ -231,8 +237,8 @@ fn push_fan(mesh: &mut TriangleMesh, corners: &[u32]) {
 
 #[cfg(test)]
 mod tests {
-    use rebond::shape::CompoundChild;
-    use rebond::Quat;
+    use crate::math::Quat;
+    use crate::shape::CompoundChild;
 
     use super::*;
 
@@ -274,7 +280,7 @@ mod tests {
     #[test]
     fn meshes_are_well_formed_and_lie_on_their_shapes() {
         for shape in every_shape() {
-            let mesh = shape_mesh(&shape).expect("a bounded shape has a mesh");
+            let mesh = tessellate(&shape).expect("a bounded shape has a mesh");
             assert!(!mesh.indices.is_empty(), "{shape:?}");
             assert_eq!(mesh.indices.len() % 3, 0);
             assert_eq!(mesh.positions.len(), mesh.normals.len());
@@ -310,7 +316,7 @@ mod tests {
     #[test]
     fn triangles_face_outward() {
         for shape in every_shape() {
-            let mesh = shape_mesh(&shape).expect("a mesh");
+            let mesh = tessellate(&shape).expect("a mesh");
             for triangle in mesh.indices.chunks_exact(3) {
                 let [a, b, c] = [0, 1, 2].map(|corner| mesh.positions[triangle[corner] as usize]);
                 let face_normal = (b - a).cross(c - a);
@@ -327,9 +333,45 @@ mod tests {
     }
 
     #[test]
+    fn meshes_and_heightfields_are_drawn_from_both_sides() {
+        let trimesh = Shape::trimesh(
+            vec![Vec3::ZERO, Vec3::X, Vec3::Z, Vec3::new(1.0, 0.5, 1.0)],
+            &[[0, 2, 1], [1, 2, 3]],
+        )
+        .expect("a mesh");
+        let heightfield = Shape::heightfield(
+            &[vec![0.0, 0.5, 0.0], vec![0.25, 1.0, 0.0]],
+            Vec3::new(2.0, 1.0, 3.0),
+        )
+        .expect("a heightfield");
+        // 2 triangles of the mesh; 2 × 1 cells of 2 triangles each in the heightfield.
+        for (shape, triangles) in [(trimesh, 2), (heightfield, 4)] {
+            let mesh = tessellate(&shape).expect("a mesh");
+            assert_eq!(mesh.indices.len(), 3 * 2 * triangles, "{shape:?}");
+            let bounds = shape.aabb(&Pose::IDENTITY);
+            for pair in mesh.indices.chunks_exact(6) {
+                let front = &pair[..3];
+                let back = &pair[3..];
+                let corner = |index: u32| mesh.positions[index as usize];
+                assert_eq!(corner(front[0]), corner(back[0]));
+                assert_eq!(corner(front[1]), corner(back[2]));
+                assert_eq!(corner(front[2]), corner(back[1]));
+                assert_eq!(
+                    mesh.normals[front[0] as usize],
+                    -mesh.normals[back[0] as usize]
+                );
+            }
+            let slack = Vec3::splat(1e-4);
+            assert!(mesh.positions.iter().all(|&position| {
+                position.cmpge(bounds.min - slack).all() && position.cmple(bounds.max + slack).all()
+            }));
+        }
+    }
+
+    #[test]
     fn halfspaces_have_no_mesh() {
         assert_eq!(
-            shape_mesh(&Shape::halfspace(Vec3::Y).expect("a halfspace")),
+            tessellate(&Shape::halfspace(Vec3::Y).expect("a halfspace")),
             None
         );
     }
