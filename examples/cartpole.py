@@ -107,10 +107,9 @@ class CartPoleEnv(gym.Env):
     metadata = {"render_modes": ["rgb_array"], "render_fps": 50}
 
     def __init__(self, render_mode: Optional[str] = None) -> None:
-        if render_mode not in (None, "rgb_array"):
-            raise ValueError(f"render_mode: {render_mode!r} is not None or 'rgb_array'")
+        assert render_mode is None or render_mode in self.metadata["render_modes"]
         self.render_mode = render_mode
-        self.camera: Optional[dict] = None
+        self.pictures = rebond.gym.Pictures()
         high = np.array([2 * X_LIMIT, np.inf, 2 * ANGLE_LIMIT, np.inf], dtype=np.float32)
         self.observation_space = spaces.Box(-high, high, dtype=np.float32)
         self.action_space = spaces.Discrete(2)
@@ -136,13 +135,10 @@ class CartPoleEnv(gym.Env):
         return observation, 1.0, terminated, truncated, {}
 
     def render(self) -> Optional[np.ndarray]:
-        """With ``render_mode="rgb_array"``, the world drawn on the CPU, (240, 320, 3) ``uint8``,
-        from the camera ``World.render_camera`` chose at the first picture."""
+        """With ``render_mode="rgb_array"``, the world drawn on the CPU, (240, 320, 3) ``uint8``."""
         if self.render_mode is None or self.world is None:
             return None
-        if self.camera is None:
-            self.camera = self.world.render_camera(320, 240)
-        return self.world.render(320, 240, self.camera)
+        return self.pictures.of_world(self.world)
 
     def _observation(self) -> np.ndarray:
         assert self.world is not None

@@ -99,10 +99,9 @@ class ReacherEnv(gym.Env):
     metadata = {"render_modes": ["rgb_array"], "render_fps": 50}
 
     def __init__(self, render_mode: Optional[str] = None) -> None:
-        if render_mode not in (None, "rgb_array"):
-            raise ValueError(f"render_mode: {render_mode!r} is not None or 'rgb_array'")
+        assert render_mode is None or render_mode in self.metadata["render_modes"]
         self.render_mode = render_mode
-        self.camera: Optional[dict] = None
+        self.pictures = rebond.gym.Pictures()
         self.template = rebond.World.from_scene(reacher_scene())
         self.action_space = spaces.Box(-MAX_SPEED, MAX_SPEED, shape=(2,), dtype=np.float32)
         self.observation_space = spaces.Box(-np.inf, np.inf, shape=(10,), dtype=np.float32)
@@ -129,13 +128,10 @@ class ReacherEnv(gym.Env):
         return self._observation(), reward, False, self.steps >= MAX_STEPS, {"distance": distance}
 
     def render(self) -> Optional[np.ndarray]:
-        """With ``render_mode="rgb_array"``, the world drawn on the CPU, (240, 320, 3) ``uint8``,
-        from the camera ``World.render_camera`` chose at the first picture."""
+        """With ``render_mode="rgb_array"``, the world drawn on the CPU, (240, 320, 3) ``uint8``."""
         if self.render_mode is None or self.world is None:
             return None
-        if self.camera is None:
-            self.camera = self.world.render_camera(320, 240)
-        return self.world.render(320, 240, self.camera)
+        return self.pictures.of_world(self.world)
 
     def _observation(self) -> np.ndarray:
         assert self.world is not None

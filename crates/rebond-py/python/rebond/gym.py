@@ -8,14 +8,14 @@ docs/python.md.
 from __future__ import annotations
 
 import types
-from typing import Any, Callable, Optional, Sequence
+from typing import Any, Callable, Iterable, Optional, Sequence
 
 import gymnasium
 import numpy as np
 from gymnasium import spaces
 from gymnasium.vector.utils import batch_space
 
-from ._rebond import Batch
+from ._rebond import Batch, World
 
 try:
     from gymnasium.vector import AutoresetMode
@@ -24,7 +24,7 @@ try:
 except ImportError:  # Gymnasium 1.0 names the modes by their values only.
     _SAME_STEP = "SameStep"
 
-__all__ = ["VectorEnv"]
+__all__ = ["Pictures", "VectorEnv"]
 
 Observe = Callable[["VectorEnv"], np.ndarray]
 Act = Callable[["VectorEnv", np.ndarray], None]
@@ -32,6 +32,29 @@ Reward = Callable[["VectorEnv", np.ndarray, np.ndarray], np.ndarray]
 Terminated = Callable[["VectorEnv", np.ndarray], np.ndarray]
 ResetNoise = Callable[["VectorEnv", np.ndarray], None]
 Info = Callable[["VectorEnv", np.ndarray], dict]
+
+
+class Pictures:
+    """Pictures of worlds, ``(height, width, 3)`` ``uint8`` (``World.render``), all from one camera:
+    the one ``World.render_camera`` chooses for the first world drawn, kept after so that a
+    video's view stays still. For a Gymnasium environment's ``render_mode="rgb_array"``."""
+
+    def __init__(self, width: int = 320, height: int = 240) -> None:
+        self.width, self.height = width, height
+        self.camera: Optional[dict[str, Any]] = None
+
+    def of_world(self, world: World) -> np.ndarray:
+        """``world`` drawn from the kept camera."""
+        if self.camera is None:
+            self.camera = world.render_camera(self.width, self.height)
+        return world.render(self.width, self.height, self.camera)
+
+    def of_batch(self, batch: Batch, indices: Iterable[int]) -> np.ndarray:
+        """The worlds of ``batch`` at ``indices``, drawn in parallel: ``(len, height, width, 3)``."""
+        indices = list(indices)
+        if self.camera is None:
+            self.camera = batch.world(indices[0]).render_camera(self.width, self.height)
+        return batch.render(indices, self.width, self.height, self.camera)
 
 
 class VectorEnv(gymnasium.vector.VectorEnv):
@@ -103,7 +126,7 @@ class VectorEnv(gymnasium.vector.VectorEnv):
         self.num_envs = self.batch.count
         self.render_mode = render_mode
         self.render_size = tuple(render_size)
-        self._camera: Optional[dict[str, Any]] = None
+        self._pictures = Pictures(*self.render_size)
         self.max_episode_steps = max_episode_steps
         self.frame_skip = frame_skip
         self.episode_steps = np.zeros(self.num_envs, dtype=np.int64)
@@ -213,11 +236,7 @@ class VectorEnv(gymnasium.vector.VectorEnv):
         """One picture per environment for ``render_mode="rgb_array"``; ``None`` otherwise."""
         if self.render_mode is None:
             return None
-        width, height = self.render_size
-        if self._camera is None:
-            self._camera = self.batch.world(0).render_camera(width, height)
-        frames = self.batch.render(list(range(self.num_envs)), width, height, self._camera)
-        return tuple(frames)
+        return tuple(self._pictures.of_batch(self.batch, range(self.num_envs)))
 
     def _restart(self, indices: np.ndarray) -> None:
         """Puts the worlds at ``indices`` back in the starting state, with reset noise."""
