@@ -9,7 +9,9 @@ mod arrays;
 mod batch;
 mod errors;
 mod json;
+mod rollout;
 mod sim;
+mod state;
 mod world;
 
 use pyo3::prelude::*;

@@ -48,18 +48,9 @@ fn assert_near(got: Vec3, expected: Vec3, tolerance: f32, what: &str) {
     );
 }
 
-#[test]
-fn a_chain_set_to_angles_reads_them_back_with_its_anchors_together() {
-    let (mut world, rods, joints) = chain();
-    let angles = [0.7, -1.2, 2.5];
-    world
-        .set_joint_positions(&[
-            (joints[0], angles[0]),
-            (joints[1], angles[1]),
-            (joints[2], angles[2]),
-        ])
-        .unwrap();
-    for (&joint, &angle) in joints.iter().zip(&angles) {
+/// Each revolute joint reads its angle, with its anchors together.
+fn assert_placed(world: &World, angles: &[(JointHandle, f32)]) {
+    for &(joint, angle) in angles {
         let read = world.joint_position(joint).unwrap();
         assert!(
             (read - angle).abs() <= ANGLE_TOLERANCE,
@@ -73,6 +64,27 @@ fn a_chain_set_to_angles_reads_them_back_with_its_anchors_together() {
             "anchors",
         );
     }
+}
+
+#[test]
+fn a_chain_set_to_angles_reads_them_back_with_its_anchors_together() {
+    let (mut world, rods, joints) = chain();
+    let angles = [0.7, -1.2, 2.5];
+    world
+        .set_joint_positions(&[
+            (joints[0], angles[0]),
+            (joints[1], angles[1]),
+            (joints[2], angles[2]),
+        ])
+        .unwrap();
+    assert_placed(
+        &world,
+        &[
+            (joints[0], angles[0]),
+            (joints[1], angles[1]),
+            (joints[2], angles[2]),
+        ],
+    );
     // The closed form: rod 1 turned by θ₁ about Z at the origin, rod 2 by θ₂ about X at rod
     // 1's lower end, rod 3 by θ₃ about Z at rod 2's lower end.
     let q1 = Quat::from_rotation_z(angles[0]);
@@ -194,20 +206,7 @@ fn a_floating_root_keeps_its_pose_and_a_joint_may_place_its_body_a() {
         .set_joint_positions(&[(hip, -0.8), (knee, 0.5)])
         .unwrap();
     assert_eq!(world.body(torso).unwrap().pose(), pose);
-    for (joint, angle) in [(hip, -0.8), (knee, 0.5)] {
-        let read = world.joint_position(joint).unwrap();
-        assert!(
-            (read - angle).abs() <= ANGLE_TOLERANCE,
-            "read {read}, set {angle}"
-        );
-        let placement = world.joint_placement(joint).unwrap();
-        assert_near(
-            placement.anchor_b,
-            placement.anchor_a,
-            POSITION_TOLERANCE,
-            "anchors",
-        );
-    }
+    assert_placed(&world, &[(hip, -0.8), (knee, 0.5)]);
     // Rates set with the torso moving: its motion is kept, each joint reads its rate, and the
     // anchors of each joint move together.
     let motion = (Vec3::new(0.4, 0.0, -1.0), Vec3::new(0.2, -0.1, 0.3));
