@@ -426,6 +426,13 @@ impl Batch {
                 .map(|a| joint_input(&self.initial, a, &joint_shape, "joint_velocities", meaning))
                 .transpose()?,
         };
+        if states.is_empty() {
+            // Back to the start only: reusing each world's storage.
+            for index in chosen {
+                self.sims[index].clone_from(&self.initial);
+            }
+            return Ok(());
+        }
         let initial = &self.initial;
         let fresh: Vec<Result<Sim, String>> = py.allow_threads(|| {
             (0..n)
@@ -451,6 +458,20 @@ impl Batch {
 }
 
 impl States {
+    /// Whether no state is given.
+    fn is_empty(&self) -> bool {
+        [
+            &self.positions,
+            &self.rotations,
+            &self.linear_velocities,
+            &self.angular_velocities,
+            &self.joint_positions,
+            &self.joint_velocities,
+        ]
+        .iter()
+        .all(|state| state.is_none())
+    }
+
     /// Sets row `row` of every state given on `sim`, in the order `reset` documents.
     fn apply(&self, sim: &mut Sim, row: usize, bodies: usize, joints: usize) -> Result<(), String> {
         fn rows(values: &Option<Vec<f32>>, row: usize, width: usize) -> Option<&[f32]> {

@@ -146,13 +146,14 @@ class World:
     def set_positions(self, a: npt.ArrayLike) -> None:
         """Teleports every body's origin, m: (bodies, 3); the bodies wake."""
     def set_rotations(self, a: npt.ArrayLike) -> None:
-        """Turns every body about its origin to a quaternion x, y, z, w (normalised): (bodies, 4)."""
+        """Turns each body about its origin to a quaternion x, y, z, w, normalised: (bodies, 4)."""
     def joint_positions(self) -> FloatArray:
-        """Joint coordinates in ``joint_names()`` order, rad or m: (joints,); NaN for fixed, ball."""
+        """Joint coordinates in ``joint_names()`` order, rad or m: (joints,); NaN: fixed, ball."""
     def joint_velocities(self) -> FloatArray:
         """Their rates, rad/s or m/s: (joints,); NaN for fixed and ball joints."""
     def set_joint_positions(self, a: npt.ArrayLike) -> None:
-        """Places bodies along each joint tree so the joints read ``a``: (joints,), NaN at fixed, ball."""
+        """Places bodies along each joint tree so the joints read ``a``: (joints,), NaN at fixed
+        and ball joints."""
     def set_joint_velocities(self, a: npt.ArrayLike) -> None:
         """Sets velocities along each joint tree so the rates read ``a``: (joints,)."""
     def rollout(self, controls: npt.ArrayLike) -> dict[str, FloatArray]:

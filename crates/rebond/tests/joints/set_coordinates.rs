@@ -7,8 +7,9 @@ use std::f32::consts::TAU;
 
 /// The reading of a coordinate that was set: the angle is rebuilt from quaternion components
 /// (`2 atan2(d_xyz·a, d_w)`) of products of three or four unit quaternions, each rounded to
-/// about 1.2e-7 per component, so a few 1e-7 rad; 1e-5 leaves room for ten times that at the
-/// multi-turn values, where 6π itself is resolved to 5e-7.
+/// about 1.2e-7 per component, so a few 1e-7 rad (the worst measured over 1000 random states of
+/// a three-joint arm at angles up to ±20 rad: 9.5e-7 rad, rates 1.4e-6 rad/s); 1e-5 leaves ten
+/// times that, and 6π itself is resolved to 5e-7.
 const ANGLE_TOLERANCE: f32 = 1e-5;
 
 /// Positions a few metres from the origin rounded in `f32` (6e-8 m per metre, a few roundings
