@@ -1,14 +1,14 @@
 //! Setting joint coordinates: the bodies are placed along each joint tree so that the joints
 //! read the positions or rates given (`docs/joints.md`, "Setting joint coordinates").
 //!
-//! The trees are walked breadth first from their roots: first the world and every static or
-//! kinematic body (never moved), then, for each group of dynamic bodies not reached, a body no
-//! joint places (that is `body_b` of no joint), else the group's first body in slot order. Each
-//! acting joint that reaches a body not yet placed places it from the body it comes from (in
-//! either direction: a joint may place its `body_a` from its `body_b`); a joint reaching a body
-//! already placed closes a loop and is not used.
-
-use std::collections::VecDeque;
+//! The trees are walked depth first from their roots, each body's joints in slot order (the
+//! order they were added), so that a chain as declared is followed to its end before a later
+//! joint that closes a loop: first the world and every static or kinematic body (never moved),
+//! then, for each group of dynamic bodies not reached, a body no joint places (that is `body_b`
+//! of no joint), else the group's first body in slot order. Each acting joint that reaches a
+//! body not yet placed places it from the body it comes from (in either direction: a joint may
+//! place its `body_a` from its `body_b`); a joint reaching a body already placed closes a loop
+//! and is not used.
 
 use super::{stale_joint, World};
 use crate::body::{BodyHandle, BodyType, RigidBody};
@@ -234,27 +234,32 @@ impl World {
         }
         let mut placed = vec![false; slots + 1];
         let mut links = Vec::new();
-        let mut queue = VecDeque::new();
+        // The walk's path: each node with the index of its next joint to follow.
+        let mut path: Vec<(usize, usize)> = Vec::new();
         let mut walk = |root: usize, placed: &mut Vec<bool>| {
             placed[root] = true;
-            queue.push_back(root);
-            while let Some(node) = queue.pop_front() {
-                for &handle in &touching[node] {
-                    let Some(joint) = self.joints.get(handle) else {
-                        continue;
-                    };
-                    let (body_a, body_b) = joint.bodies();
-                    let slot_a = body_a.map_or(world, |body| body.slot());
-                    let (other, reversed) = if node == body_b.slot() {
-                        (slot_a, true)
-                    } else {
-                        (body_b.slot(), false)
-                    };
-                    if !placed[other] {
-                        placed[other] = true;
-                        links.push((handle, reversed));
-                        queue.push_back(other);
-                    }
+            path.push((root, 0));
+            while let Some((node, next)) = path.last_mut() {
+                let Some(&handle) = touching[*node].get(*next) else {
+                    path.pop();
+                    continue;
+                };
+                *next += 1;
+                let node = *node;
+                let Some(joint) = self.joints.get(handle) else {
+                    continue;
+                };
+                let (body_a, body_b) = joint.bodies();
+                let slot_a = body_a.map_or(world, |body| body.slot());
+                let (other, reversed) = if node == body_b.slot() {
+                    (slot_a, true)
+                } else {
+                    (body_b.slot(), false)
+                };
+                if !placed[other] {
+                    placed[other] = true;
+                    links.push((handle, reversed));
+                    path.push((other, 0));
                 }
             }
         };

@@ -377,3 +377,36 @@ fn bad_entries_are_refused_by_place_and_leave_the_world_unchanged() {
         assert_eq!(world.body(rod).unwrap().angular_velocity(), Vec3::ZERO);
     }
 }
+
+#[test]
+fn a_joint_closing_a_loop_places_nothing() {
+    // The chain's rod 3 also tied to the world by a distance joint from (2, −3, 0) to its lower
+    // end: the walk reaches rod 3 through the chain first, so the distance joint closes a loop.
+    // Its value is ignored, and it reads the distance the chain's placement gives.
+    let (mut world, rods, joints) = chain();
+    let tie = world
+        .add_joint(JointDesc::distance(
+            None,
+            rods[2],
+            Vec3::new(2.0, -3.0, 0.0),
+            Vec3::new(0.0, -3.0, 0.0),
+        ))
+        .unwrap();
+    let mut ignored = world.clone();
+    world.set_joint_positions(&[(joints[0], 0.6)]).unwrap();
+    ignored
+        .set_joint_positions(&[(joints[0], 0.6), (tie, 9.0)])
+        .unwrap();
+    assert_eq!(
+        world.body(rods[2]).unwrap().pose(),
+        ignored.body(rods[2]).unwrap().pose()
+    );
+    // Rod 3's lower end, 3 m from the pivot, turned 0.6 rad about Z: its distance to (2, −3, 0).
+    let end = Quat::from_rotation_z(0.6) * Vec3::new(0.0, -3.0, 0.0);
+    let expected = (end - Vec3::new(2.0, -3.0, 0.0)).length();
+    let read = world.joint_position(tie).unwrap();
+    assert!(
+        (read - expected).abs() <= POSITION_TOLERANCE,
+        "the tie reads {read} m, the chain puts it at {expected}"
+    );
+}
