@@ -13,6 +13,18 @@ pub fn input(
     name: &str,
     meaning: &str,
 ) -> PyResult<Vec<f32>> {
+    input_where(value, shape, name, meaning, |_| true)
+}
+
+/// [`input`], with only the numbers at the flat indices where `must_be_finite` holds checked
+/// finite (joint coordinates are NaN where a joint has none).
+pub fn input_where(
+    value: &Bound<'_, PyAny>,
+    shape: &[usize],
+    name: &str,
+    meaning: &str,
+    must_be_finite: impl Fn(usize) -> bool,
+) -> PyResult<Vec<f32>> {
     let py = value.py();
     let numpy = py.import("numpy")?;
     let kwargs = pyo3::types::PyDict::new(py);
@@ -33,7 +45,8 @@ pub fn input(
         )));
     }
     let values = array.readonly().as_slice()?.to_vec();
-    if let Some(index) = values.iter().position(|value| !value.is_finite()) {
+    let not_finite = |(index, value): &(usize, &f32)| !value.is_finite() && must_be_finite(*index);
+    if let Some((index, _)) = values.iter().enumerate().find(not_finite) {
         return Err(PyValueError::new_err(format!(
             "{name}: element {} must be finite, got {}",
             index_text(index, shape),

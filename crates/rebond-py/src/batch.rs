@@ -104,44 +104,6 @@ impl Batch {
         Ok(())
     }
 
-    /// Puts the worlds at `indices` (all when `None`) back in their starting state.
-    #[pyo3(signature = (indices = None))]
-    fn reset(&mut self, indices: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
-        let Some(indices) = indices else {
-            for sim in &mut self.sims {
-                sim.clone_from(&self.initial);
-            }
-            return Ok(());
-        };
-        let indices: Vec<i64> = match indices.extract::<i64>() {
-            Ok(single) => vec![single],
-            Err(_) => indices
-                .try_iter()?
-                .map(|item| item.and_then(|item| item.extract::<i64>()))
-                .collect::<PyResult<_>>()
-                .map_err(|error| {
-                    PyValueError::new_err(format!("indices: expected whole numbers: {error}"))
-                })?,
-        };
-        let count = self.sims.len();
-        let mut checked = Vec::with_capacity(indices.len());
-        for (place, &index) in indices.iter().enumerate() {
-            match usize::try_from(index).ok().filter(|&index| index < count) {
-                Some(index) => checked.push(index),
-                None => {
-                    return Err(PyIndexError::new_err(format!(
-                        "indices[{place}]: {index} is not a world of this batch (0 to {})",
-                        count - 1
-                    )))
-                }
-            }
-        }
-        for index in checked {
-            self.sims[index].clone_from(&self.initial);
-        }
-        Ok(())
-    }
-
     /// A copy of world `index` as a `World`.
     fn world(&self, index: i64) -> PyResult<World> {
         usize::try_from(index)

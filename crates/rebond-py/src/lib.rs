@@ -14,8 +14,10 @@ mod json;
 mod readouts;
 mod render;
 mod robust;
+mod rollout;
 mod scenes;
 mod sim;
+mod state;
 mod world;
 
 use pyo3::prelude::*;

@@ -190,6 +190,14 @@ impl Sim {
         self.scene.timestep().seconds
     }
 
+    /// Steps `count` times as one `step(count)` call in one round (a rollout's `step(1)`).
+    pub fn step(&mut self, count: u64) -> Result<(), String> {
+        self.begin_call();
+        let result = self.step_round(count);
+        self.end_call();
+        result
+    }
+
     /// Starts a `step(n)` call, which may run in several rounds ([`Self::step_round`]): the
     /// events of the call before are dropped.
     pub fn begin_call(&mut self) {

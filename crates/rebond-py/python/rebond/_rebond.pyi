@@ -194,6 +194,21 @@ class World:
         self, width: int, height: int, camera: Optional[Mapping[str, Any]] = None
     ) -> dict[str, Any]:
         """The camera ``render`` draws with, every field filled in."""
+    def set_positions(self, a: npt.ArrayLike) -> None:
+        """Teleports every body's origin, m: (bodies, 3); the bodies wake."""
+    def set_rotations(self, a: npt.ArrayLike) -> None:
+        """Turns each body about its origin to a quaternion x, y, z, w, normalised: (bodies, 4)."""
+    def joint_positions(self) -> FloatArray:
+        """Joint coordinates in ``joint_names()`` order, rad or m: (joints,); NaN: fixed, ball."""
+    def joint_velocities(self) -> FloatArray:
+        """Their rates, rad/s or m/s: (joints,); NaN for fixed and ball joints."""
+    def set_joint_positions(self, a: npt.ArrayLike) -> None:
+        """Places bodies along each joint tree so the joints read ``a``: (joints,), NaN at fixed
+        and ball joints."""
+    def set_joint_velocities(self, a: npt.ArrayLike) -> None:
+        """Sets velocities along each joint tree so the rates read ``a``: (joints,)."""
+    def rollout(self, controls: npt.ArrayLike) -> dict[str, FloatArray]:
+        """For each t of controls (T, motors): set_motor_targets then step(1); states (T, ...)."""
 
 class Batch:
     """``count`` copies of one world, stepped in parallel on every core without the GIL."""
@@ -215,8 +230,19 @@ class Batch:
     def motor_names(self) -> list[str]: ...
     def step(self, n: int = 1) -> None:
         """Advances every world by ``n`` steps, in parallel, without the GIL."""
-    def reset(self, indices: Optional[Union[int, Iterable[int]]] = None) -> None:
-        """Puts the worlds at ``indices`` (all when ``None``) back in their starting state."""
+    def reset(
+        self,
+        indices: Optional[Union[int, Iterable[int]]] = None,
+        *,
+        positions: Optional[npt.ArrayLike] = None,
+        rotations: Optional[npt.ArrayLike] = None,
+        linear_velocities: Optional[npt.ArrayLike] = None,
+        angular_velocities: Optional[npt.ArrayLike] = None,
+        joint_positions: Optional[npt.ArrayLike] = None,
+        joint_velocities: Optional[npt.ArrayLike] = None,
+    ) -> None:
+        """Puts the worlds at ``indices`` (all when ``None``) back in their starting state, then
+        sets the states given, each ``(len(indices), ...)``."""
     def world(self, index: int) -> World:
         """A copy of one world of the batch."""
     def positions(self) -> FloatArray:
@@ -288,3 +314,18 @@ class Batch:
 
 def builtin_scenes() -> list[tuple[str, str]]:
     """The scenes built into rebond, (name, description), loadable by name from anywhere."""
+    def set_positions(self, a: npt.ArrayLike) -> None:
+        """(count, bodies, 3), m: teleports."""
+    def set_rotations(self, a: npt.ArrayLike) -> None:
+        """(count, bodies, 4), x, y, z, w, normalised."""
+    def joint_positions(self) -> FloatArray:
+        """(count, joints); NaN for fixed and ball joints."""
+    def joint_velocities(self) -> FloatArray:
+        """(count, joints); NaN for fixed and ball joints."""
+    def set_joint_positions(self, a: npt.ArrayLike) -> None:
+        """(count, joints), NaN at fixed and ball joints."""
+    def set_joint_velocities(self, a: npt.ArrayLike) -> None:
+        """(count, joints), NaN at fixed and ball joints."""
+    def rollout(self, controls: npt.ArrayLike) -> dict[str, FloatArray]:
+        """For each t of controls (T, count, motors): set_motor_targets then step(1), in
+        parallel without the GIL; states (T, count, ...)."""

@@ -25,6 +25,7 @@ mod contact_update;
 mod continuous;
 #[cfg(feature = "serde")]
 mod decoded;
+mod joint_coordinates;
 mod joints;
 
 use crate::arena::{new_world, Arena};

@@ -10,6 +10,7 @@ mod friction;
 mod large_groups;
 mod pendulums;
 mod reactions;
+mod set_coordinates;
 
 pub use common::{world, DT, G};
 use rebond::{BodyDesc, BodyHandle, Quat, Shape, Vec3, World};
