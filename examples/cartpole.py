@@ -167,17 +167,17 @@ def fallen(env: rebond.gym.VectorEnv, observations: np.ndarray) -> np.ndarray:
     return (np.abs(observations[:, 0]) > X_LIMIT) | (np.abs(observations[:, 2]) > ANGLE_LIMIT)
 
 
-def random_start_speeds(env: rebond.gym.VectorEnv, indices: np.ndarray) -> None:
-    """Starts the cart-poles at ``indices`` upright and centred with a random cart speed and
-    pole rate within +-0.05, from the environment's seeded generator."""
-    linear = env.batch.linear_velocities()
-    angular = env.batch.angular_velocities()
-    x_dot, theta_dot = env.np_random.uniform(-0.05, 0.05, size=(2, len(indices)))
-    linear[indices, 0, 0] = x_dot
-    linear[indices, 1, 0] = x_dot + theta_dot * POLE_HALF_LENGTH
-    angular[indices, 1, 2] = -theta_dot
-    env.batch.set_linear_velocities(linear)
-    env.batch.set_angular_velocities(angular)
+def random_starts(env: rebond.gym.VectorEnv, indices: np.ndarray) -> None:
+    """Starts the cart-poles at ``indices`` as Gymnasium's CartPole does: cart position and
+    speed, pole angle and rate each uniform within +-0.05, from the environment's seeded
+    generator, set as the joints' coordinates (the rail's slide, the hinge's angle, which turns
+    about +z: a pole leaning towards +x is a negative angle)."""
+    x, x_dot, theta, theta_dot = env.np_random.uniform(-0.05, 0.05, size=(4, len(indices)))
+    env.batch.reset(
+        indices,
+        joint_positions=np.stack([x, -theta], axis=1),
+        joint_velocities=np.stack([x_dot, -theta_dot], axis=1),
+    )
 
 
 def make_vector_env(num_envs: int, **options: Any) -> rebond.gym.VectorEnv:
@@ -192,7 +192,7 @@ def make_vector_env(num_envs: int, **options: Any) -> rebond.gym.VectorEnv:
         "act": push_the_carts,
         "reward": one_a_step,
         "terminated": fallen,
-        "reset_noise": random_start_speeds,
+        "reset_noise": random_starts,
         "max_episode_steps": MAX_STEPS,
     }
     task.update(options)

@@ -311,9 +311,6 @@ class Batch:
     ) -> npt.NDArray[np.uint8]:
         """World ``index`` drawn as ``World.render``: (height, width, 3); for a list of indices,
         those worlds in parallel: (len(index), height, width, 3)."""
-
-def builtin_scenes() -> list[tuple[str, str]]:
-    """The scenes built into rebond, (name, description), loadable by name from anywhere."""
     def set_positions(self, a: npt.ArrayLike) -> None:
         """(count, bodies, 3), m: teleports."""
     def set_rotations(self, a: npt.ArrayLike) -> None:
@@ -329,3 +326,6 @@ def builtin_scenes() -> list[tuple[str, str]]:
     def rollout(self, controls: npt.ArrayLike) -> dict[str, FloatArray]:
         """For each t of controls (T, count, motors): set_motor_targets then step(1), in
         parallel without the GIL; states (T, count, ...)."""
+
+def builtin_scenes() -> list[tuple[str, str]]:
+    """The scenes built into rebond, (name, description), loadable by name from anywhere."""
