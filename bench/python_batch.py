@@ -14,6 +14,10 @@ Rows:
                          four getters, observations, rewards and autoresets of finished
                          episodes with their final observations: a full vectorised env step
   rebond Batch.step      the parallel step alone
+  rebond Batch.rollout   Batch.rollout with the random pushes given up front as a torque motor
+                         on the rail (a force along it), every state of every step recorded
+                         (positions, rotations, velocities, joint coordinates), no reset:
+                         the counterpart of mujoco.rollout
   mujoco python loop     one MjData per env, ctrl set and mj_step called from Python, qpos and
                          qvel read: what a Gymnasium vector env over MuJoCo does
   mujoco rollout         mujoco.rollout (C++ threads, one MjData per core) with the random
@@ -32,7 +36,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples"))
 
-from cartpole import make_vector_env  # noqa: E402
+from cartpole import cartpole_scene, make_vector_env  # noqa: E402
 
 MJCF = """
 <mujoco model="cartpole">
@@ -87,10 +91,23 @@ def rebond_rows(envs: int, steps: int) -> list[tuple[str, float]]:
     def raw_step(count: int) -> None:
         vector_env.batch.step(count)
 
+    import rebond
+
+    scene = cartpole_scene()
+    for joint in scene["joints"]:
+        if joint["name"] == "rail":
+            joint["motor"] = {"torque": 0.0}
+    pushed = rebond.Batch(scene, envs)
+    controls = np.where(actions == 1, 10.0, -10.0).astype(np.float32)[:, :, None]
+
+    def rollout(count: int) -> None:
+        pushed.rollout(controls[:count])
+
     env_loop(20)
     return [
         ("rebond Batch env loop", best_rate(env_loop, steps, envs)),
         ("rebond Batch.step", best_rate(raw_step, steps, envs)),
+        ("rebond Batch.rollout", best_rate(rollout, steps, envs)),
     ]
 
 
