@@ -366,7 +366,7 @@ fn the_side_contact_agrees_with_gjk_and_epa() {
                     &mut polytope,
                     shape,
                     &pose,
-                    &Shape::Cylinder(cylinder.clone()),
+                    &Shape::Cylinder(cylinder),
                     &cylinder_pose,
                     SPECULATIVE_DISTANCE,
                     &mut simplex,
