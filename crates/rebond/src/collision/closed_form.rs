@@ -254,7 +254,7 @@ pub enum CylinderSide {
 /// so where the closest points `p_A`, `p_B` of A's segment and that axis fall inside the axis,
 /// the side is where they meet, exactly: `n = (p_B − p_A)/|p_B − p_A|`,
 /// `separation = |p_B − p_A| − r_A − r`. A capsule lying along the side touches along the
-/// stretch both share: two points, as capsules side by side ([`parallel_capsules`]), at most as
+/// stretch both share: two points, as capsules side by side (`parallel_capsules`), at most as
 /// far as the sharp cylinder's ends, as the cylinder's other contacts are. The
 /// closest points of GJK on a round side are only as good as its tolerance, and its normal
 /// leans by about the square root of it (1 % on a car's wheel rolling onto a bump).
