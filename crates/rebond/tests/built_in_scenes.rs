@@ -127,7 +127,7 @@ fn the_bridge_holds_its_crates_and_never_gains_energy() {
 }
 
 #[test]
-#[ignore = "fails: the car turns over its bumps and ends 3.9 m off its line (issue 33, item 6)"]
+#[ignore = "fails: the car turns over its bumps and ends 10 m off its line (issue 33, item 6)"]
 fn the_car_drives_straight_over_symmetric_bumps() {
     // The car drives along x at 3.5 m/s over six bumps that span both its tracks, the scene
     // mirror-symmetric about z = 0, and on along flat ground for 10 s after the last one (16 s in
