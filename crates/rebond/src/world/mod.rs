@@ -1,5 +1,5 @@
 //! The world: owns bodies and settings, and advances them in time. Its joint calls are in
-//! `joints.rs`.
+//! `joints.rs`, and the placing of bodies from joint coordinates in `joint_coordinates.rs`.
 //!
 //! [`World::step`] is the list of the step's stages, in order, each with where it lives:
 //!
