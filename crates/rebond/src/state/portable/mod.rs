@@ -12,6 +12,8 @@
 //! islands (from the bodies' sleep groups), and the last step's events and joint forces to
 //! report come back as the next step makes them.
 
+mod joints;
+
 use std::collections::HashMap;
 
 use serde::{Deserialize, Serialize};
@@ -21,12 +23,13 @@ use crate::body::RigidBody;
 use crate::body::{BodyDesc, BodyHandle, BodyType, KinematicPath, LockedAxes, PathPoint};
 use crate::error::check_position;
 use crate::filter::InteractionGroups;
-use crate::joint::{Joint, JointDesc, JointFrames, JointSet, JointType, Motor, Spring};
+use crate::joint::JointSet;
 use crate::mass::MassProperties;
 use crate::material::CombineRule;
 use crate::math::{Mat3, Pose, Quat, Vec3};
 use crate::shape::{CompoundChild, Shape, TriMesh, TriangleMaterial};
 use crate::{World, WorldSettings};
+use joints::JointV1;
 
 /// A portable snapshot, by version. Reading takes any variant this build knows; a snapshot of a
 /// later version than [`SNAPSHOT_VERSIONS`] is one this build cannot read.
@@ -340,70 +343,6 @@ struct PathV1 {
     /// Each keyframe's time (s) and pose.
     points: Vec<(f32, PoseV1)>,
     looping: bool,
-}
-
-#[derive(Serialize, Deserialize)]
-enum JointTypeV1 {
-    Fixed,
-    Ball,
-    Revolute,
-    Prismatic,
-    Distance,
-}
-
-#[derive(Serialize, Deserialize)]
-enum MotorV1 {
-    Velocity {
-        target_velocity: f32,
-        max_force: f32,
-    },
-    Position {
-        target_position: f32,
-        stiffness: f32,
-        damping: f32,
-        max_force: f32,
-    },
-    Torque {
-        torque: f32,
-    },
-}
-
-/// A joint: its description as given (world anchors of the moment it was added), the frames it
-/// holds fixed in each body (what it acts on), and its state.
-#[derive(Serialize, Deserialize)]
-struct JointV1 {
-    joint_type: JointTypeV1,
-    /// Body slots; the handles take the slots' generations.
-    body_a: Option<u32>,
-    body_b: u32,
-    anchor: [f32; 3],
-    anchor_b: Option<[f32; 3]>,
-    axis: Option<[f32; 3]>,
-    limits: Option<[f32; 2]>,
-    swing_limit: Option<f32>,
-    twist_limits: Option<[f32; 2]>,
-    motor: Option<MotorV1>,
-    length: Option<f32>,
-    /// Stiffness (N/m) and damping (N·s/m).
-    spring: Option<[f32; 2]>,
-    friction: f32,
-    collide_connected: bool,
-    break_force: f32,
-    break_torque: f32,
-    /// Anchors from each body's centre of mass and axes, in its axes; `q_A⁻¹ q_B` of zero angle;
-    /// the distance joint's rest length, m.
-    local_anchor_a: [f32; 3],
-    local_anchor_b: [f32; 3],
-    local_axis_a: [f32; 3],
-    local_axis_b: [f32; 3],
-    reference_rotation: [f32; 4],
-    rest_length: f32,
-    /// The last step's mean force (N) and torque (N·m) on `body_b`.
-    force: [f32; 3],
-    torque: [f32; 3],
-    broken: bool,
-    /// Revolute joints: the angle counted across whole turns, rad.
-    angle: f32,
 }
 
 impl SnapshotV3 {
@@ -909,135 +848,5 @@ impl BodyV1 {
         };
         body.path_time = self.path_time;
         Ok(body)
-    }
-}
-
-impl JointV1 {
-    fn of(joint: &Joint) -> Self {
-        let desc = &joint.desc;
-        let frames = &joint.frames;
-        Self {
-            joint_type: match desc.joint_type {
-                JointType::Fixed => JointTypeV1::Fixed,
-                JointType::Ball => JointTypeV1::Ball,
-                JointType::Revolute => JointTypeV1::Revolute,
-                JointType::Prismatic => JointTypeV1::Prismatic,
-                JointType::Distance => JointTypeV1::Distance,
-            },
-            body_a: desc.body_a.map(|body| body.slot() as u32),
-            body_b: desc.body_b.slot() as u32,
-            anchor: desc.anchor.to_array(),
-            anchor_b: desc.anchor_b.map(|anchor| anchor.to_array()),
-            axis: desc.axis.map(|axis| axis.to_array()),
-            limits: desc.limits,
-            swing_limit: desc.swing_limit,
-            twist_limits: desc.twist_limits,
-            motor: desc.motor.map(|motor| match motor {
-                Motor::Velocity {
-                    target_velocity,
-                    max_force,
-                } => MotorV1::Velocity {
-                    target_velocity,
-                    max_force,
-                },
-                Motor::Position {
-                    target_position,
-                    stiffness,
-                    damping,
-                    max_force,
-                } => MotorV1::Position {
-                    target_position,
-                    stiffness,
-                    damping,
-                    max_force,
-                },
-                Motor::Torque { torque } => MotorV1::Torque { torque },
-            }),
-            length: desc.length,
-            spring: desc.spring.map(|spring| [spring.stiffness, spring.damping]),
-            friction: desc.friction,
-            collide_connected: desc.collide_connected,
-            break_force: desc.break_force,
-            break_torque: desc.break_torque,
-            local_anchor_a: frames.local_anchor_a.to_array(),
-            local_anchor_b: frames.local_anchor_b.to_array(),
-            local_axis_a: frames.local_axis_a.to_array(),
-            local_axis_b: frames.local_axis_b.to_array(),
-            reference_rotation: frames.reference_rotation.to_array(),
-            rest_length: frames.length,
-            force: joint.force.to_array(),
-            torque: joint.torque.to_array(),
-            broken: joint.broken,
-            angle: joint.angle,
-        }
-    }
-
-    /// The joint of the record, its bodies' handles from `handle_at` (by slot). Its values are
-    /// checked with the world's ([`World::restored`]).
-    fn restore(
-        self,
-        handle_at: impl Fn(u32) -> Result<BodyHandle, String>,
-    ) -> Result<Joint, String> {
-        let desc = JointDesc {
-            joint_type: match self.joint_type {
-                JointTypeV1::Fixed => JointType::Fixed,
-                JointTypeV1::Ball => JointType::Ball,
-                JointTypeV1::Revolute => JointType::Revolute,
-                JointTypeV1::Prismatic => JointType::Prismatic,
-                JointTypeV1::Distance => JointType::Distance,
-            },
-            body_a: self.body_a.map(&handle_at).transpose()?,
-            body_b: handle_at(self.body_b)?,
-            anchor: Vec3::from_array(self.anchor),
-            anchor_b: self.anchor_b.map(Vec3::from_array),
-            axis: self.axis.map(Vec3::from_array),
-            limits: self.limits,
-            swing_limit: self.swing_limit,
-            twist_limits: self.twist_limits,
-            motor: self.motor.map(|motor| match motor {
-                MotorV1::Velocity {
-                    target_velocity,
-                    max_force,
-                } => Motor::Velocity {
-                    target_velocity,
-                    max_force,
-                },
-                MotorV1::Position {
-                    target_position,
-                    stiffness,
-                    damping,
-                    max_force,
-                } => Motor::Position {
-                    target_position,
-                    stiffness,
-                    damping,
-                    max_force,
-                },
-                MotorV1::Torque { torque } => Motor::Torque { torque },
-            }),
-            length: self.length,
-            spring: self
-                .spring
-                .map(|[stiffness, damping]| Spring { stiffness, damping }),
-            friction: self.friction,
-            collide_connected: self.collide_connected,
-            break_force: self.break_force,
-            break_torque: self.break_torque,
-        };
-        Ok(Joint {
-            desc,
-            frames: JointFrames {
-                local_anchor_a: Vec3::from_array(self.local_anchor_a),
-                local_anchor_b: Vec3::from_array(self.local_anchor_b),
-                local_axis_a: Vec3::from_array(self.local_axis_a),
-                local_axis_b: Vec3::from_array(self.local_axis_b),
-                reference_rotation: Quat::from_array(self.reference_rotation),
-                length: self.rest_length,
-            },
-            force: Vec3::from_array(self.force),
-            torque: Vec3::from_array(self.torque),
-            broken: self.broken,
-            angle: self.angle,
-        })
     }
 }
