@@ -34,9 +34,9 @@ impl StepEvents {
         self.sensors.clear();
     }
 
-    /// Keeps the events of the step `world` just took.
-    pub fn record(&mut self, world: &Engine, bodies: &[BodyHandle]) {
-        let index = |handle: BodyHandle| bodies.iter().position(|&body| body == handle);
+    /// Keeps the events of the step `world` just took; `index` gives a body's index in scene
+    /// order, `None` for a body Python does not number.
+    pub fn record(&mut self, world: &Engine, index: impl Fn(BodyHandle) -> Option<usize>) {
         for event in world.contact_events() {
             let kind = match event.kind {
                 ContactEventKind::Started => "started",

@@ -47,6 +47,9 @@ pub struct Sim {
     source: Option<String>,
     /// Body handles in scene order.
     bodies: Vec<BodyHandle>,
+    /// Each body's place in `bodies`, by its handle's slot (`u32::MAX` for no body), so that a
+    /// handle from an event or a ray hit finds its index without a search.
+    places: Vec<u32>,
     /// Joints with a motor, in scene order.
     motors: Vec<JointHandle>,
     /// Steps taken so far.
@@ -64,6 +67,7 @@ impl Sim {
             scene,
             source,
             bodies: Vec::new(),
+            places: Vec::new(),
             motors: Vec::new(),
             steps: 0,
             loads: Loads::default(),
@@ -92,6 +96,11 @@ impl Sim {
             .body_handles()
             .map(|(_, handle)| handle)
             .collect();
+        let slots = self.bodies.iter().map(|body| body.slot() + 1).max();
+        self.places = vec![u32::MAX; slots.unwrap_or(0)];
+        for (place, body) in self.bodies.iter().enumerate() {
+            self.places[body.slot()] = place as u32;
+        }
         let world = self.scene.world();
         self.motors = self
             .scene
@@ -182,7 +191,7 @@ impl Sim {
 
     /// The index in scene order of the body `handle`.
     pub fn body_index(&self, handle: BodyHandle) -> Option<usize> {
-        self.bodies.iter().position(|&body| body == handle)
+        place_of(&self.bodies, &self.places, handle)
     }
 
     /// Seconds per step.
@@ -223,7 +232,10 @@ impl Sim {
                 let message = format!("step {} failed: {error}", self.steps);
                 return Err(crate::errors::with_source(self.source(), message));
             }
-            self.events.record(self.scene.world(), &self.bodies);
+            let (bodies, places) = (&self.bodies, &self.places);
+            self.events.record(self.scene.world(), |handle| {
+                place_of(bodies, places, handle)
+            });
         }
         Ok(())
     }
@@ -286,4 +298,11 @@ impl Sim {
         }
         Ok(())
     }
+}
+
+/// The index in `bodies` of `handle`, from `places` (each body's index by slot): `None` for a
+/// handle of no body here, or a stale one that names a slot's earlier body.
+fn place_of(bodies: &[BodyHandle], places: &[u32], handle: BodyHandle) -> Option<usize> {
+    let place = *places.get(handle.slot())? as usize;
+    (bodies.get(place) == Some(&handle)).then_some(place)
 }
