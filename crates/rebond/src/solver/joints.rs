@@ -95,6 +95,8 @@ struct JointOptions {
     spring: Option<Spring>,
     /// Most friction torque (force for a prismatic joint), N·m or N.
     friction: f32,
+    /// Revolute and prismatic joints: the inertia added to the coordinate, kg·m² or kg.
+    armature: f32,
 }
 
 impl JointOptions {
@@ -108,7 +110,7 @@ impl JointOptions {
         match self.joint_type {
             JointType::Fixed => 6,
             JointType::Ball => 3,
-            JointType::Revolute | JointType::Prismatic => 5,
+            JointType::Revolute | JointType::Prismatic => 5 + usize::from(self.armature > 0.0),
             JointType::Distance => usize::from(self.has_rigid_length()),
             JointType::Generic => 0,
         }
@@ -137,6 +139,11 @@ struct JointConstraint {
     group: Option<usize>,
     /// Revolute joints: the angle counted across turns at the last refresh, rad.
     angle: f32,
+    /// Joints with an armature: the rotor's speed, the joint's rate as the substep starts (as
+    /// the last one ended), rad/s or m/s, and the impulse it has given the joint in this
+    /// substep, N·m·s or N·s.
+    rotor_speed: f32,
+    armature_impulse: f32,
     /// Impulses on B summed over the substeps, N·s and N·m·s.
     step_linear: Vec3,
     step_angular: Vec3,
@@ -328,6 +335,14 @@ impl JointConstraint {
                 geometry.position - self.frames.length,
             );
         }
+        if let (Some(axis), true) = (&geometry.axis_part, self.options.armature > 0.0) {
+            // The rotor: `J v = ω_rotor` with the compliance `1 / a`, so that the joint and
+            // rotor share the impulse as one body of inertia `I + a` along the coordinate.
+            push(Accumulator::Armature, axis.row(), 0.0);
+            if let Some(row) = rows.last_mut() {
+                row.compliance = 1.0 / self.options.armature;
+            }
+        }
     }
 
     /// Adds `impulse` to one of its holding rows' accumulated impulses.
@@ -336,14 +351,25 @@ impl JointConstraint {
             Accumulator::Linear(axis) => self.impulses.linear += impulse * axis,
             Accumulator::Angular(axis) => self.impulses.angular += impulse * axis,
             Accumulator::Axial => self.impulses.axial += impulse,
+            Accumulator::Armature => self.armature_impulse += impulse,
         }
+    }
+
+    /// The joint's rate along its coordinate at `v`, for the armature's rotor (0 without an
+    /// axis).
+    fn coordinate_rate(&self, v: &Velocities) -> f32 {
+        self.geometry.axis_part.map_or(0.0, |axis| axis.velocity(v))
     }
 
     /// The impulse on B these accumulated impulses make: linear at B's anchor, and the couple.
     fn impulse_on_b(&self) -> (Vec3, Vec3) {
         let impulses = &self.impulses;
         let axis = self.geometry.axis;
-        let along_axis = impulses.lower - impulses.upper + impulses.motor + impulses.friction;
+        let along_axis = impulses.lower - impulses.upper
+            + impulses.motor
+            + impulses.friction
+            + impulses.axial
+            + self.armature_impulse;
         match self.options.joint_type {
             JointType::Fixed | JointType::Generic => (impulses.linear, impulses.angular),
             JointType::Ball => (
@@ -370,6 +396,7 @@ impl JointConstraint {
         if !self.impulses.is_within(MAX_SOLVER_IMPULSE) {
             self.impulses = JointImpulses::default();
         }
+        self.armature_impulse = 0.0;
         let (geometry, impulses, bodies) = (&self.geometry, &self.impulses, &self.bodies);
         if let Some(point) = &geometry.point {
             point.apply(bodies, v, impulses.linear);
@@ -455,10 +482,14 @@ impl JointConstraint {
                 axis.solve_velocity_motor(bodies, v, 0.0, most, &mut impulses.friction);
             }
             if let (Some(spring), true) = (options.spring, biased) {
+                let rest = match options.joint_type {
+                    JointType::Distance => self.frames.length,
+                    _ => spring.reference,
+                };
                 axis.solve_spring(
                     bodies,
                     v,
-                    position - self.frames.length,
+                    position - rest,
                     (spring.stiffness, spring.damping, h),
                     f32::INFINITY,
                     &mut impulses.axial,
@@ -570,6 +601,12 @@ impl JointConstraints {
             if group.rows.is_empty() {
                 continue;
             }
+            for row in &mut group.rows {
+                if row.accumulator == Accumulator::Armature {
+                    let joint = &constraints[row.joint];
+                    row.offset = row.compliance * joint.armature_impulse - joint.rotor_speed;
+                }
+            }
             if !group.solve(states, softness) {
                 self.refused_solves += 1;
             }
@@ -646,6 +683,7 @@ impl ConstraintKind for JointConstraints {
                     motor: desc.motor,
                     spring: desc.spring,
                     friction: desc.friction,
+                    armature: desc.armature,
                 },
                 frames: joint.frames,
                 solver,
@@ -664,10 +702,27 @@ impl ConstraintKind for JointConstraints {
                 impulses,
                 group: None,
                 angle: joint.angle,
+                rotor_speed: 0.0,
+                armature_impulse: 0.0,
                 step_linear: Vec3::ZERO,
                 step_angular: Vec3::ZERO,
                 geometry: Geometry::default(),
             });
+        }
+        // The rotors start the step at their joints' rates: the bodies' velocities as the step
+        // starts (before the first substep's forces), which a saved state holds, so a resumed
+        // run goes on with the same bits.
+        for constraint in &mut self.constraints {
+            if constraint.options.armature > 0.0 {
+                constraint.refresh(&solver_bodies.motions);
+                let [a, b] = constraint.solver;
+                let states = &solver_bodies.states;
+                let v = Velocities {
+                    linear: [a, b].map(|index| states[index].linear_velocity.into()),
+                    angular: [a, b].map(|index| states[index].angular_velocity.into()),
+                };
+                constraint.rotor_speed = constraint.coordinate_rate(&v);
+            }
         }
         self.group(solver_bodies);
         self.rows_current = false;
@@ -720,6 +775,12 @@ impl ConstraintKind for JointConstraints {
                 constraint.step_linear += linear;
                 constraint.step_angular += angular;
             }
+            // The rotor ends the substep at the joint's rate: the group's solve, last, met it.
+            self.for_each_joint(states, |constraint, v| {
+                if constraint.options.armature > 0.0 {
+                    constraint.rotor_speed = constraint.coordinate_rate(v);
+                }
+            });
         }
     }
 

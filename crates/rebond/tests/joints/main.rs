@@ -1,12 +1,14 @@
 //! Joints against closed forms: pendulum periods, springs, motors, limits, reaction forces,
 //! breaking, and chains under heavy loads.
 
+mod armature;
 mod chains;
 #[path = "../common/mod.rs"]
 mod common;
 mod coordinates;
 mod drives;
 mod friction;
+mod joint_springs;
 mod large_groups;
 mod pendulums;
 mod reactions;
