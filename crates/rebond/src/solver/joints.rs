@@ -20,8 +20,8 @@ use super::softness::Softness;
 use super::stages::{ConstraintKind, StepContext, BIASED_ITERATIONS};
 use super::{BodyMotion, BodyState, SolverBodies};
 use crate::joint::{
-    relative_rotation, twist_angle, unwrap_angle, JointFrames, JointImpulses, JointSet, JointType,
-    Motor, Spring,
+    relative_rotation, twist_angle, unwrap_angle, AxisFreedom, GenericFrame, JointFrames,
+    JointImpulses, JointSet, JointType, Motor, Spring,
 };
 use crate::limits::MAX_SOLVER_IMPULSE;
 use crate::math::{rotation_vector, Quat, Vec3};
@@ -97,6 +97,9 @@ struct JointOptions {
     friction: f32,
     /// Revolute and prismatic joints: the inertia added to the coordinate, kg·m² or kg.
     armature: f32,
+    /// Generic joints: each axis's freedom and motor.
+    axes: [AxisFreedom; 6],
+    motors: [Option<Motor>; 6],
 }
 
 impl JointOptions {
@@ -112,7 +115,7 @@ impl JointOptions {
             JointType::Ball => 3,
             JointType::Revolute | JointType::Prismatic => 5 + usize::from(self.armature > 0.0),
             JointType::Distance => usize::from(self.has_rigid_length()),
-            JointType::Generic => 0,
+            JointType::Generic => self.axes.iter().filter(|axis| !axis.moves()).count(),
         }
     }
 }
@@ -176,6 +179,25 @@ struct Geometry {
     swing: Option<AxisPart>,
     /// Ball joints with friction: the relative rotation's effective mass.
     friction: Option<RotationPart>,
+    /// Generic joints: a part per axis ([`GenericAxis::ALL`]'s order), along the frame's axes
+    /// fixed in A, and the coordinates.
+    generic: Option<GenericGeometry>,
+}
+
+/// A generic joint at the poses of the current substep.
+#[derive(Debug, Clone, Copy)]
+struct GenericGeometry {
+    parts: [AxisPart; 6],
+    /// The frame's axes in the world (unit), and the six coordinates (m, rad).
+    axes: [Vec3; 3],
+    positions: [f32; 6],
+}
+
+impl GenericGeometry {
+    /// The unit world direction (slide) or axis (rotation) of axis `k`.
+    fn direction(&self, k: usize) -> Vec3 {
+        self.axes[k % 3]
+    }
 }
 
 impl JointConstraint {
@@ -271,7 +293,24 @@ impl JointConstraint {
                         Some(AxisPart::linear(bodies, (arm_a, arm_b), geometry.axis));
                 }
             }
-            JointType::Generic => {}
+            JointType::Generic => {
+                let frame =
+                    GenericFrame::new(frames, &options.axes, (rotation_a, rotation_b), separation);
+                let arms = (arm_a + separation, arm_b);
+                let parts = [0, 1, 2, 3, 4, 5].map(|k| {
+                    let axis = frame.axes[k % 3];
+                    if k < 3 {
+                        AxisPart::linear(bodies, arms, axis)
+                    } else {
+                        AxisPart::angular(bodies, axis)
+                    }
+                });
+                geometry.generic = Some(GenericGeometry {
+                    parts,
+                    axes: frame.axes,
+                    positions: frame.positions,
+                });
+            }
         }
         self.geometry = geometry;
     }
@@ -335,6 +374,20 @@ impl JointConstraint {
                 geometry.position - self.frames.length,
             );
         }
+        if let Some(generic) = &geometry.generic {
+            for (k, freedom) in self.options.axes.iter().enumerate() {
+                if freedom.moves() {
+                    continue;
+                }
+                let direction = generic.direction(k);
+                let accumulator = if k < 3 {
+                    Accumulator::Linear(direction)
+                } else {
+                    Accumulator::Angular(direction)
+                };
+                push(accumulator, generic.parts[k].row(), generic.positions[k]);
+            }
+        }
         if let (Some(axis), true) = (&geometry.axis_part, self.options.armature > 0.0) {
             // The rotor: `J v = ω_rotor` with the compliance `1 / a`, so that the joint and
             // rotor share the impulse as one body of inertia `I + a` along the coordinate.
@@ -371,7 +424,22 @@ impl JointConstraint {
             + impulses.axial
             + self.armature_impulse;
         match self.options.joint_type {
-            JointType::Fixed | JointType::Generic => (impulses.linear, impulses.angular),
+            JointType::Fixed => (impulses.linear, impulses.angular),
+            JointType::Generic => {
+                let (mut linear, mut angular) = (impulses.linear, impulses.angular);
+                if let Some(generic) = &self.geometry.generic {
+                    for k in 0..6 {
+                        let along = impulses.axis_lower[k] - impulses.axis_upper[k]
+                            + impulses.axis_motor[k];
+                        if k < 3 {
+                            linear += generic.direction(k) * along;
+                        } else {
+                            angular += generic.direction(k) * along;
+                        }
+                    }
+                }
+                (linear, angular)
+            }
             JointType::Ball => (
                 impulses.linear,
                 axis * (impulses.twist_lower - impulses.twist_upper)
@@ -424,6 +492,20 @@ impl JointConstraint {
         }
         if geometry.friction.is_some() {
             RotationPart::apply(bodies, v, impulses.friction_couple);
+        }
+        if let Some(generic) = &geometry.generic {
+            // A locked axis's share of the linear or angular impulse kept as a world vector
+            // (the frame has turned since), and a moving axis's limits and motor.
+            for (k, freedom) in self.options.axes.iter().enumerate() {
+                let scalar = if freedom.moves() {
+                    impulses.axis_lower[k] - impulses.axis_upper[k] + impulses.axis_motor[k]
+                } else if k < 3 {
+                    impulses.linear.dot(generic.direction(k))
+                } else {
+                    impulses.angular.dot(generic.direction(k))
+                };
+                generic.parts[k].apply(bodies, v, scalar);
+            }
         }
         if let Some(swing) = &geometry.swing {
             swing.apply(bodies, v, -impulses.swing);
@@ -507,6 +589,41 @@ impl JointConstraint {
                 let pass = (softness, inverse_h);
                 axis.solve_limit(bodies, v, (position - min, 1.0), pass, lower);
                 axis.solve_limit(bodies, v, (max - position, -1.0), pass, upper);
+            }
+        }
+        if let Some(generic) = &geometry.generic {
+            for k in 0..6 {
+                let (part, position) = (&generic.parts[k], generic.positions[k]);
+                let motor = &mut impulses.axis_motor[k];
+                match options.motors[k] {
+                    Some(Motor::Velocity {
+                        target_velocity,
+                        max_force,
+                    }) => {
+                        part.solve_velocity_motor(bodies, v, target_velocity, max_force * h, motor)
+                    }
+                    Some(Motor::Position {
+                        target_position,
+                        stiffness,
+                        damping,
+                        max_force,
+                    }) if biased => part.solve_spring(
+                        bodies,
+                        v,
+                        position - target_position,
+                        (stiffness, damping, h),
+                        max_force * h,
+                        motor,
+                    ),
+                    Some(Motor::Position { .. } | Motor::Torque { .. }) | None => {}
+                }
+                if let AxisFreedom::Limited([min, max]) = options.axes[k] {
+                    let pass = (softness, inverse_h);
+                    let lower = &mut impulses.axis_lower[k];
+                    part.solve_limit(bodies, v, (position - min, 1.0), pass, lower);
+                    let upper = &mut impulses.axis_upper[k];
+                    part.solve_limit(bodies, v, (max - position, -1.0), pass, upper);
+                }
             }
         }
         if let Some(friction) = &geometry.friction {
@@ -673,6 +790,13 @@ impl ConstraintKind for JointConstraints {
                 None => impulses.motor = 0.0,
                 Some(Motor::Velocity { .. } | Motor::Position { .. }) => {}
             }
+            for (impulse, motor) in impulses.axis_motor.iter_mut().zip(&desc.motors) {
+                match motor {
+                    Some(Motor::Torque { torque }) => *impulse = torque * context.h,
+                    None => *impulse = 0.0,
+                    Some(Motor::Velocity { .. } | Motor::Position { .. }) => {}
+                }
+            }
             self.constraints.push(JointConstraint {
                 slot,
                 options: JointOptions {
@@ -684,6 +808,8 @@ impl ConstraintKind for JointConstraints {
                     spring: desc.spring,
                     friction: desc.friction,
                     armature: desc.armature,
+                    axes: desc.axes,
+                    motors: desc.motors,
                 },
                 frames: joint.frames,
                 solver,

@@ -138,8 +138,8 @@ impl World {
         let separation = placement.anchor_b - placement.anchor_a;
         let frame = GenericFrame::new(
             &joint.frames,
-            rotation(body_a),
-            rotation(Some(body_b)),
+            &joint.desc.axes,
+            (rotation(body_a), rotation(Some(body_b))),
             separation,
         );
         let spin = |body: Option<&RigidBody>| body.map_or(Vec3::ZERO, RigidBody::angular_velocity);

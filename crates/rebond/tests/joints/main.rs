@@ -8,6 +8,7 @@ mod common;
 mod coordinates;
 mod drives;
 mod friction;
+mod generic;
 mod joint_springs;
 mod large_groups;
 mod pendulums;
