@@ -284,3 +284,43 @@ fn a_scene_file_gives_springs_armatures_and_generic_joints() {
     assert_eq!(error.field, "motors.rx");
     assert!(world.joint_position(handle).is_err());
 }
+
+#[test]
+fn a_generic_joint_survives_the_portable_snapshot() {
+    // Another build reads the portable snapshot: the joint comes back generic, with its frame,
+    // axes and motors as given, and reads the same coordinates (the frame fixed in body A
+    // travels with the snapshot). A saved state in this build resumes with the same bits.
+    let frame = Quat::from_rotation_y(0.3);
+    let (mut world, body, joint) = boxed(|desc| {
+        desc.frame(frame)
+            .free(GenericAxis::X)
+            .limit(GenericAxis::RotZ, -0.4, 0.6)
+            .axis_motor(GenericAxis::RotZ, Motor::torque(0.8))
+    });
+    for step in 0..40 {
+        push(&mut world, body, step as f32 * DT);
+        world.step(DT).unwrap();
+    }
+    let bytes = world.save_state();
+    let portable = World::load_state_as_other_build(&bytes).unwrap();
+    assert_eq!(
+        portable.joint(joint).unwrap().desc(),
+        world.joint(joint).unwrap().desc()
+    );
+    assert_eq!(
+        portable.generic_joint_coordinates(joint).unwrap(),
+        world.generic_joint_coordinates(joint).unwrap()
+    );
+    let mut resumed = World::load_state(&bytes).unwrap();
+    for step in 40..80 {
+        push(&mut world, body, step as f32 * DT);
+        push(&mut resumed, body, step as f32 * DT);
+        world.step(DT).unwrap();
+        resumed.step(DT).unwrap();
+    }
+    let bits = |world: &World| {
+        let q = world.generic_joint_coordinates(joint).unwrap();
+        q.positions.map(f32::to_bits)
+    };
+    assert_eq!(bits(&world), bits(&resumed));
+}

@@ -8,6 +8,7 @@ mod common;
 mod coordinates;
 mod drives;
 mod friction;
+mod friction_threshold;
 mod generic;
 mod joint_springs;
 mod large_groups;
