@@ -4,7 +4,7 @@
 use crate::body::{BodyDesc, BodyHandle, BodyType, KinematicPath, LockedAxes, PathPoint};
 use crate::character::{CharacterController, CharacterSettings};
 use crate::filter::InteractionGroups;
-use crate::joint::{AxisFreedom, GenericAxis, JointDesc, Motor};
+use crate::joint::{AxisFreedom, JointDesc, Motor};
 use crate::limits::{MAX_TIMESTEP, MIN_TIMESTEP};
 use crate::math::{Pose, Quat, Vec3};
 use crate::shape::{CompoundChild, Shape};
@@ -522,14 +522,15 @@ pub(super) fn joint_desc(
         desc.frame = Some(rotation(&field("frame"), value)?);
     }
     if let Some(axes) = &entry.axes {
-        for (name, value) in axes.given() {
-            desc.axes[axis_index(name)] = axis_freedom(value, &field(&format!("axes.{name}")))?;
+        for (axis, value) in axes.given() {
+            let place = field(&format!("axes.{}", axis.name()));
+            desc.axes[axis.index()] = axis_freedom(value, &place)?;
         }
     }
     if let Some(motors) = &entry.motors {
-        for (name, value) in motors.given() {
-            let place = field(&format!("motors.{name}"));
-            desc.motors[axis_index(name)] = Some(motor(value, &place)?);
+        for (axis, value) in motors.given() {
+            let place = field(&format!("motors.{}", axis.name()));
+            desc.motors[axis.index()] = Some(motor(value, &place)?);
         }
     }
     if let Some(value) = entry.friction {
@@ -545,11 +546,6 @@ pub(super) fn joint_desc(
         desc.break_torque = scalar(&field("break_torque"), value)?;
     }
     Ok(desc)
-}
-
-/// The index of a generic joint's axis of a name [`AxesEntry`] gives.
-fn axis_index(name: &str) -> usize {
-    GenericAxis::from_name(name).map_or(0, GenericAxis::index)
 }
 
 /// What a generic joint's axis entry says; errors are placed at `place` (`joints[i].axes.x`).
