@@ -289,6 +289,36 @@ impl CouplingSet {
         })
     }
 
+    /// The couplings of a portable snapshot in the world with identity `world`: each slot's
+    /// generation and coupling, in slot order, and the free list ([`Arena::from_slots`]), their
+    /// impulses cold.
+    #[cfg(feature = "serde")]
+    pub fn restored(
+        world: u32,
+        slots: Vec<(u32, Option<Coupling>)>,
+        free_slots: Vec<u32>,
+    ) -> std::result::Result<Self, String> {
+        let slots = (slots.into_iter())
+            .map(|(generation, coupling)| {
+                let cold = |coupling| (coupling, CouplingImpulses::default());
+                (generation, coupling.map(cold))
+            })
+            .collect();
+        Ok(Self {
+            couplings: Arena::from_slots(world, slots, free_slots)?,
+            acting: Vec::new(),
+        })
+    }
+
+    /// Every coupling in slot order, empty slots included, with its slot's generation, and the
+    /// free list: what a portable snapshot keeps.
+    #[cfg(feature = "serde")]
+    pub fn slots(&self) -> (impl Iterator<Item = (u32, Option<&Coupling>)>, &[u32]) {
+        let slots = (self.couplings.slots())
+            .map(|(generation, item)| (generation, item.map(|(coupling, _)| coupling)));
+        (slots, self.couplings.free_slots())
+    }
+
     /// Checks decoded couplings: the arena whole, each description valid and naming live
     /// revolute or prismatic joints, its rest length and impulses finite. Describes the first
     /// broken invariant.

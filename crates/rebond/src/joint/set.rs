@@ -262,6 +262,14 @@ impl JointSet {
         })
     }
 
+    /// The handle of the live joint in slot `slot`.
+    #[cfg(feature = "serde")]
+    pub fn handle_at(&self, slot: usize) -> Option<JointHandle> {
+        self.joints
+            .at_slot(slot)
+            .map(|(index, _)| JointHandle(index))
+    }
+
     pub fn get(&self, handle: JointHandle) -> Option<&Joint> {
         self.joints.get(handle.0).map(|(joint, _)| joint)
     }

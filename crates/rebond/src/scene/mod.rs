@@ -520,7 +520,10 @@ impl Scene {
                 .map(|joint| named(&joint.name, joint.handle.0))
                 .collect(),
         };
-        let snapshot = crate::state::SnapshotV3::of(&self.world, Some(scene));
+        let coupling_names = (self.couplings.iter())
+            .map(|coupling| named(&coupling.name, coupling.handle.0))
+            .collect();
+        let snapshot = crate::state::SnapshotV4::of(&self.world, Some(scene), coupling_names);
         crate::state::encode(SCENE_MAGIC, &(step, self), snapshot)
     }
 
@@ -558,7 +561,8 @@ impl Scene {
             Decoded::Portable(snapshot) => {
                 let missing = || StateError::Inconsistent("the scene's names are missing".into());
                 let mut snapshot = *snapshot;
-                let names = snapshot.scene.take().ok_or_else(missing)?;
+                let names = snapshot.base.scene.take().ok_or_else(missing)?;
+                let coupling_names = std::mem::take(&mut snapshot.coupling_names);
                 let world = snapshot.restore_world().map_err(StateError::Inconsistent)?;
                 let identity = world.identity();
                 let handle = |named: &crate::state::NamedV1| {
@@ -583,8 +587,12 @@ impl Scene {
                     timestep: timestep(Some(names.timestep)).map_err(|error| {
                         StateError::Inconsistent(format!("the timestep: {error}"))
                     })?,
-                    // A portable snapshot holds no couplings (`crate::state`).
-                    couplings: Vec::new(),
+                    couplings: (coupling_names.iter())
+                        .map(|named| SceneCoupling {
+                            name: named.name.clone(),
+                            handle: CouplingHandle(handle(named)),
+                        })
+                        .collect(),
                     character: None,
                 };
                 (names.step, scene)

@@ -12,6 +12,7 @@
 //! islands (from the bodies' sleep groups), and the last step's events and joint forces to
 //! report come back as the next step makes them.
 
+mod couplings;
 mod joints;
 
 use std::collections::HashMap;
@@ -29,6 +30,7 @@ use crate::material::CombineRule;
 use crate::math::{Mat3, Pose, Quat, Vec3};
 use crate::shape::{CompoundChild, Shape, TriMesh, TriangleMaterial};
 use crate::{World, WorldSettings};
+pub(crate) use couplings::SnapshotV4;
 use joints::JointV1;
 
 /// A portable snapshot, by version. Reading takes any variant this build knows; a snapshot of a
@@ -41,11 +43,13 @@ pub(crate) enum Snapshot {
     V2(SnapshotV2),
     /// Version 3: version 2's records and the triangle meshes' materials.
     V3(SnapshotV3),
+    /// Version 4: version 3's records and the couplings (`couplings.rs`).
+    V4(SnapshotV4),
 }
 
 /// How many versions of [`Snapshot`] this build reads: its variants, numbered from 0 in its
 /// encoding.
-pub(crate) const SNAPSHOT_VERSIONS: u32 = 3;
+pub(crate) const SNAPSHOT_VERSIONS: u32 = 4;
 
 /// Version 2 of a snapshot: version 1's, and the contact rules of the bodies that have some.
 #[derive(Serialize, Deserialize)]
@@ -187,7 +191,7 @@ pub(crate) struct WorldV1 {
 }
 
 #[derive(Serialize, Deserialize)]
-struct SlotV1<T> {
+pub(crate) struct SlotV1<T> {
     generation: u32,
     item: Option<T>,
 }
@@ -393,8 +397,8 @@ impl SnapshotV3 {
 impl Snapshot {
     /// The latest version of the snapshot, whatever version it was written in: a version 1
     /// snapshot has no contact rules, and neither it nor a version 2 one mesh materials.
-    pub fn into_latest(self) -> SnapshotV3 {
-        match self {
+    pub fn into_latest(self) -> SnapshotV4 {
+        let base = match self {
             Self::V1(snapshot) => SnapshotV3 {
                 world: snapshot.world,
                 scene: snapshot.scene,
@@ -408,7 +412,9 @@ impl Snapshot {
                 mesh_materials: Vec::new(),
             },
             Self::V3(snapshot) => snapshot,
-        }
+            Self::V4(snapshot) => return snapshot,
+        };
+        SnapshotV4::without_couplings(base)
     }
 }
 
