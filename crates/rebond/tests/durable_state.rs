@@ -587,22 +587,23 @@ fn a_snapshot_cut_damaged_or_of_a_later_version_is_refused() {
     );
 }
 
-/// Version-1 and version-2 snapshots (earlier builds': no contact rules, no mesh materials)
-/// still read. Version 2 is version 1's records followed by the bodies' contact rules, and
-/// version 3 version 2's followed by the meshes' materials, so a version-3 snapshot with neither,
-/// its version byte set back and the empty lists (its last bytes) cut, is the earlier version's
-/// snapshot of the same world.
+/// Version-1, 2 and 3 snapshots (earlier builds': no contact rules, no mesh materials, no
+/// couplings) still read. Version 2 is version 1's records followed by the bodies' contact
+/// rules, version 3 version 2's followed by the meshes' materials, and version 4 version 3's
+/// followed by the couplings (two lists) and their names, so a version-4 snapshot with none of
+/// them, its version byte set back and the empty lists (its last bytes) cut, is the earlier
+/// version's snapshot of the same world.
 #[test]
-fn version_1_and_2_snapshots_still_read() {
+fn version_1_2_and_3_snapshots_still_read() {
     let (bytes, start) = small_state();
     let saved = World::load_state_as_other_build(&bytes).unwrap();
     assert_eq!(
-        bytes[bytes.len() - 2..],
-        [0, 0],
-        "empty lists of rules and materials"
+        bytes[bytes.len() - 5..],
+        [0; 5],
+        "empty lists of rules, materials, couplings and their names"
     );
-    for version in [0, 1] {
-        let mut earlier = bytes[..bytes.len() - 2 + usize::from(version)].to_vec();
+    for version in [0, 1, 2] {
+        let mut earlier = bytes[..bytes.len() - 5 + usize::from(version)].to_vec();
         earlier[start] = version;
         let payload = (earlier.len() - 32) as u64;
         earlier[20..28].copy_from_slice(&payload.to_le_bytes());
@@ -650,8 +651,15 @@ fn a_scene_rebuilt_from_its_snapshot_keeps_its_names_step_and_timestep() {
        "position": [0, -0.5, 0]},
       {"name": "crate", "shape": {"type": "box", "half_extents": [0.3, 0.3, 0.3]},
        "position": [0, 1, 0]},
-      {"name": "bob", "shape": {"type": "sphere", "radius": 0.1}, "position": [-1, 1, 0]}],
-      "joints": [{"name": "rope", "type": "distance", "body_b": "bob", "anchor": [-1, 2, 0]}]}"#;
+      {"name": "bob", "shape": {"type": "sphere", "radius": 0.1}, "position": [-1, 1, 0]},
+      {"name": "wheel", "shape": {"type": "sphere", "radius": 0.2}, "position": [2, 1, 0]},
+      {"name": "cog", "shape": {"type": "sphere", "radius": 0.1}, "position": [3, 1, 0]}],
+      "joints": [{"name": "rope", "type": "distance", "body_b": "bob", "anchor": [-1, 2, 0]},
+      {"name": "axle", "type": "revolute", "body_b": "wheel", "anchor": [2, 1, 0], "axis": [0, 0, 1],
+       "motor": {"torque": 0.1}},
+      {"name": "pin", "type": "revolute", "body_b": "cog", "anchor": [3, 1, 0], "axis": [0, 0, 1]}],
+      "couplings": [{"name": "gear", "joints": [{"joint": "pin", "coefficient": 1},
+       {"joint": "axle", "coefficient": 3}], "limits": [-0.5, 0], "stiffness": 1, "length": -0.2}]}"#;
     let mut scene = Scene::from_json(json.as_bytes()).unwrap();
     let dt = scene.timestep().engine_seconds;
     for _ in 0..30 {
@@ -674,6 +682,13 @@ fn a_scene_rebuilt_from_its_snapshot_keeps_its_names_step_and_timestep() {
         .world()
         .joint(restored.joint_handle("rope").unwrap())
         .is_ok());
+    // The coupling comes back under its name, as it was made.
+    let gear = scene.coupling_handle("gear").unwrap();
+    assert_eq!(restored.coupling_handle("gear"), Some(gear));
+    assert_eq!(
+        restored.world().coupling(gear).unwrap(),
+        scene.world().coupling(gear).unwrap()
+    );
     // A world's state is not a scene's.
     assert_eq!(
         Scene::load_state_as_other_build(&scene.world().save_state()).unwrap_err(),

@@ -99,6 +99,17 @@ impl SidePose {
         center_of_mass: Vec3::ZERO,
         rotation: Quat::IDENTITY,
     };
+
+    /// The side `handle` (`None` for the world) as it stands now in `bodies`.
+    pub fn of(handle: Option<BodyHandle>, bodies: &Arena<RigidBody>) -> Self {
+        handle
+            .and_then(|handle| bodies.get(handle.0))
+            .map_or(Self::WORLD, |body| Self {
+                slot: handle.map(|handle| handle.slot()),
+                center_of_mass: body.center_of_mass(),
+                rotation: body.rotation(),
+            })
+    }
 }
 
 /// Solver data of one joint, beside the joint.
@@ -267,6 +278,14 @@ impl JointSet {
         })
     }
 
+    /// The handle of the live joint in slot `slot`.
+    #[cfg(feature = "serde")]
+    pub fn handle_at(&self, slot: usize) -> Option<JointHandle> {
+        self.joints
+            .at_slot(slot)
+            .map(|(index, _)| JointHandle(index))
+    }
+
     pub fn get(&self, handle: JointHandle) -> Option<&Joint> {
         self.joints.get(handle.0).map(|(joint, _)| joint)
     }
@@ -320,16 +339,10 @@ impl JointSet {
             if joint.broken {
                 continue;
             }
-            let side = |handle: Option<BodyHandle>| {
-                handle
-                    .and_then(|handle| bodies.get(handle.0))
-                    .map_or(SidePose::WORLD, |body| SidePose {
-                        slot: handle.map(|handle| handle.slot()),
-                        center_of_mass: body.center_of_mass(),
-                        rotation: body.rotation(),
-                    })
-            };
-            data.poses = [side(joint.desc.body_a), side(Some(joint.desc.body_b))];
+            data.poses = [
+                SidePose::of(joint.desc.body_a, bodies),
+                SidePose::of(Some(joint.desc.body_b), bodies),
+            ];
         }
     }
 

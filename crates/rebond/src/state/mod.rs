@@ -20,8 +20,9 @@
 //!   sleep (sleeping bodies stay asleep in their groups); every joint with its description, its
 //!   frames in each body, broken flag, last force and revolute turn count (its spring's
 //!   reference, armature and generic axes since snapshot version 4); ignored pairs; every
-//!   handle (slots, generations and the world's identity), stale ones staying stale. Not kept:
-//!   contacts and warm-start impulses (contacts start cold: the next step makes them again, so
+//!   handle (slots, generations and the world's identity), stale ones staying stale; every
+//!   coupling with its description and rest length (since snapshot version 4). Not kept:
+//!   contacts and warm-start impulses (contacts, joints and couplings start cold: the next step makes them again, so
 //!   the steps after a load differ slightly from the exact continuation's, and contact and
 //!   sensor start events are reported again), the broad phase's tree and solver buffers (rebuilt).
 //! - Every later build reads every earlier snapshot version: a build that changes the records
@@ -245,7 +246,7 @@ impl World {
     /// [`World::load_state`] in this build, it steps exactly as this world would; in any other
     /// build, later ones included, it is rebuilt from its portable snapshot, contacts cold.
     pub fn save_state(&self) -> Vec<u8> {
-        encode(WORLD_MAGIC, self, SnapshotV4::of(self, None))
+        encode(WORLD_MAGIC, self, SnapshotV4::of(self, None, Vec::new()))
     }
 
     /// A world saved by [`World::save_state`]; bytes that are not a state of this format

@@ -6,6 +6,7 @@
 use super::{World, WorldSettings};
 use crate::arena::{restore_world, Arena};
 use crate::body::{BodyHandle, BodyType, RigidBody};
+use crate::coupling::CouplingSet;
 use crate::error::{check_direction, check_length};
 use crate::filter::IgnoredPairs;
 use crate::island::Islands;
@@ -55,6 +56,7 @@ impl World {
         let is_live = |handle: BodyHandle| self.bodies.get(handle.0).is_some();
         self.contacts.check_decoded(is_live)?;
         self.joints.check_decoded(is_live)?;
+        self.couplings.check_decoded(&self.joints)?;
         if self.bounds_of_slot.len() < slots
             || self.touched_static_slots.iter().any(|&slot| slot >= slots)
         {
@@ -139,6 +141,19 @@ impl World {
         let has_rules = body.has_contact_rules();
         self.count_contact_rules(had_rules, has_rules);
         Ok(())
+    }
+
+    /// The couplings of a portable snapshot, in the world its other records restored: checked
+    /// against its joints as a decoded world's are; describes the first broken invariant.
+    pub(crate) fn restore_couplings(&mut self, couplings: CouplingSet) -> Result<(), String> {
+        couplings.check_decoded(&self.joints)?;
+        self.couplings = couplings;
+        Ok(())
+    }
+
+    /// The couplings a portable snapshot reads.
+    pub(crate) fn portable_couplings(&self) -> &CouplingSet {
+        &self.couplings
     }
 
     /// The parts a portable snapshot reads: bodies, joints and ignored pairs.

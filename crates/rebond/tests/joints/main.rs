@@ -6,6 +6,7 @@ mod chains;
 #[path = "../common/mod.rs"]
 mod common;
 mod coordinates;
+mod couplings;
 mod drives;
 mod friction;
 mod friction_threshold;

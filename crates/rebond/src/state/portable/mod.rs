@@ -12,6 +12,7 @@
 //! islands (from the bodies' sleep groups), and the last step's events and joint forces to
 //! report come back as the next step makes them.
 
+mod couplings;
 mod joints;
 
 use std::collections::HashMap;
@@ -29,6 +30,7 @@ use crate::material::CombineRule;
 use crate::math::{Mat3, Pose, Quat, Vec3};
 use crate::shape::{CompoundChild, Shape, TriMesh, TriangleMaterial};
 use crate::{World, WorldSettings};
+use couplings::CouplingV4;
 use joints::{JointExtrasV4, JointV1};
 
 /// A portable snapshot, by version. Reading takes any variant this build knows; a snapshot of a
@@ -41,8 +43,8 @@ pub(crate) enum Snapshot {
     V2(SnapshotV2),
     /// Version 3: version 2's records and the triangle meshes' materials.
     V3(SnapshotV3),
-    /// Version 4: version 3's records and the joints' springs' references, armatures and
-    /// generic joints.
+    /// Version 4: version 3's records, the joints' springs' references, armatures and generic
+    /// joints, and the couplings (`couplings.rs`).
     V4(SnapshotV4),
 }
 
@@ -83,6 +85,11 @@ pub(crate) struct SnapshotV4 {
     mesh_materials: Vec<MeshMaterialsV3>,
     /// By ascending joint slot.
     joint_extras: Vec<JointExtrasV4>,
+    /// Every coupling slot, and the free slots.
+    couplings: Vec<SlotV1<CouplingV4>>,
+    free_couplings: Vec<u32>,
+    /// Each scene coupling's name and handle, in scene order (empty for a world's state).
+    pub coupling_names: Vec<NamedV1>,
 }
 
 /// The materials of the triangle mesh [`WorldV1::shapes`]`[shape]`
@@ -204,7 +211,7 @@ pub(crate) struct WorldV1 {
 }
 
 #[derive(Serialize, Deserialize)]
-struct SlotV1<T> {
+pub(crate) struct SlotV1<T> {
     generation: u32,
     item: Option<T>,
 }
@@ -363,8 +370,8 @@ struct PathV1 {
 }
 
 impl SnapshotV4 {
-    /// The snapshot of `world`, and of a scene's `scene` part.
-    pub fn of(world: &World, scene: Option<SceneV1>) -> Self {
+    /// The snapshot of `world`, of a scene's `scene` part and its couplings' `coupling_names`.
+    pub fn of(world: &World, scene: Option<SceneV1>, coupling_names: Vec<NamedV1>) -> Self {
         let (bodies, _, _) = world.portable_parts();
         let contact_rules = (bodies.slots().enumerate())
             .filter_map(|(slot, (_, body))| {
@@ -386,12 +393,16 @@ impl SnapshotV4 {
             .zip(joint_slots)
             .filter_map(|(slot, (_, joint))| JointExtrasV4::of(slot, joint?))
             .collect();
+        let (couplings, free_couplings) = couplings::records(world);
         Self {
             world: world_record,
             scene,
             contact_rules,
             mesh_materials,
             joint_extras,
+            couplings,
+            free_couplings,
+            coupling_names,
         }
     }
 
@@ -411,6 +422,7 @@ impl SnapshotV4 {
                 )
                 .map_err(|error| format!("body {slot}: {error}"))?;
         }
+        couplings::restore(&mut world, self.couplings, self.free_couplings)?;
         Ok(world)
     }
 }
@@ -418,31 +430,33 @@ impl SnapshotV4 {
 impl Snapshot {
     /// The latest version of the snapshot, whatever version it was written in: a version 1
     /// snapshot has no contact rules, neither it nor a version 2 one mesh materials, and none
-    /// before version 4 joint extras.
+    /// before version 4 joint extras or couplings.
     pub fn into_latest(self) -> SnapshotV4 {
-        match self {
-            Self::V1(snapshot) => SnapshotV4 {
-                world: snapshot.world,
-                scene: snapshot.scene,
-                contact_rules: Vec::new(),
-                mesh_materials: Vec::new(),
-                joint_extras: Vec::new(),
-            },
-            Self::V2(snapshot) => SnapshotV4 {
-                world: snapshot.world,
-                scene: snapshot.scene,
-                contact_rules: snapshot.contact_rules,
-                mesh_materials: Vec::new(),
-                joint_extras: Vec::new(),
-            },
-            Self::V3(snapshot) => SnapshotV4 {
-                world: snapshot.world,
-                scene: snapshot.scene,
-                contact_rules: snapshot.contact_rules,
-                mesh_materials: snapshot.mesh_materials,
-                joint_extras: Vec::new(),
-            },
-            Self::V4(snapshot) => snapshot,
+        let (world, scene, contact_rules, mesh_materials) = match self {
+            Self::V1(snapshot) => (snapshot.world, snapshot.scene, Vec::new(), Vec::new()),
+            Self::V2(snapshot) => (
+                snapshot.world,
+                snapshot.scene,
+                snapshot.contact_rules,
+                Vec::new(),
+            ),
+            Self::V3(snapshot) => (
+                snapshot.world,
+                snapshot.scene,
+                snapshot.contact_rules,
+                snapshot.mesh_materials,
+            ),
+            Self::V4(snapshot) => return snapshot,
+        };
+        SnapshotV4 {
+            world,
+            scene,
+            contact_rules,
+            mesh_materials,
+            joint_extras: Vec::new(),
+            couplings: Vec::new(),
+            free_couplings: Vec::new(),
+            coupling_names: Vec::new(),
         }
     }
 }
