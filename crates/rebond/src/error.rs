@@ -54,6 +54,8 @@ pub enum ErrorKind {
     NotForJointType(&'static str),
     /// A joint joining a body to itself.
     JointToItself,
+    /// A motor on a generic joint's axis that is locked.
+    LockedAxis,
     /// `[min, max]` limits with `min > max`.
     InvertedLimits { min: f32, max: f32 },
     /// A vector's length, or a scalar's magnitude, past the engine's limit (see
@@ -161,6 +163,7 @@ impl fmt::Display for ErrorKind {
             Self::Missing => write!(f, "required"),
             Self::NotForJointType(name) => write!(f, "does not apply to a {name} joint"),
             Self::JointToItself => write!(f, "a joint cannot join a body to itself"),
+            Self::LockedAxis => write!(f, "a motor needs a free or limited axis, not a locked one"),
             Self::InvertedLimits { min, max } => {
                 write!(f, "min must not exceed max, got [{min}, {max}]")
             }

@@ -4,7 +4,7 @@
 use crate::body::{BodyDesc, BodyHandle, BodyType, KinematicPath, LockedAxes, PathPoint};
 use crate::character::{CharacterController, CharacterSettings};
 use crate::filter::InteractionGroups;
-use crate::joint::{JointDesc, JointHandle, JointType, Motor};
+use crate::joint::{AxisFreedom, GenericAxis, JointDesc, JointHandle, JointType, Motor};
 use crate::limits::{MAX_TIMESTEP, MIN_TIMESTEP};
 use crate::mass::MassProperties;
 use crate::math::{Mat3, Pose, Quat, Vec3};
@@ -13,8 +13,9 @@ use crate::world::WorldSettings;
 
 use super::actuators::{Actuator, ActuatorKind};
 use super::format::{
-    ActuatorEntry, ActuatorKindEntry, BodyEntry, CharacterEntry, ChildEntry, GroupsEntry,
-    JointEntry, MassPropertiesEntry, MotorEntry, PathEntry, SceneFile, ShapeEntry, ShapeKind,
+    ActuatorEntry, ActuatorKindEntry, AxisEntry, BodyEntry, CharacterEntry, ChildEntry,
+    GroupsEntry, JointEntry, MassPropertiesEntry, MotorEntry, PathEntry, SceneFile, ShapeEntry,
+    ShapeKind,
 };
 use super::meshes::{heightfield, trimesh, MeshFiles};
 use super::{
@@ -629,14 +630,32 @@ pub(super) fn joint_desc(
         desc.length = Some(scalar(&field("length"), value)?);
     }
     if let Some(spring) = &entry.spring {
-        let damping = match spring.damping {
-            Some(value) => scalar(&field("spring.damping"), value)?,
-            None => 0.0,
+        let optional = |name: &str, value: Option<f64>| match value {
+            Some(value) => scalar(&field(name), value),
+            None => Ok(0.0),
         };
-        desc = desc.spring(
+        desc = desc.spring_to(
             scalar(&field("spring.stiffness"), spring.stiffness)?,
-            damping,
+            optional("spring.damping", spring.damping)?,
+            optional("spring.reference", spring.reference)?,
         );
+    }
+    if let Some(value) = entry.armature {
+        desc.armature = scalar(&field("armature"), value)?;
+    }
+    if let Some(value) = entry.frame {
+        desc.frame = Some(rotation(&field("frame"), value)?);
+    }
+    if let Some(axes) = &entry.axes {
+        for (name, value) in axes.given() {
+            desc.axes[axis_index(name)] = axis_freedom(value, &field(&format!("axes.{name}")))?;
+        }
+    }
+    if let Some(motors) = &entry.motors {
+        for (name, value) in motors.given() {
+            let place = field(&format!("motors.{name}"));
+            desc.motors[axis_index(name)] = Some(motor(value, &place)?);
+        }
     }
     if let Some(value) = entry.friction {
         desc.friction = scalar(&field("friction"), value)?;
@@ -651,6 +670,26 @@ pub(super) fn joint_desc(
         desc.break_torque = scalar(&field("break_torque"), value)?;
     }
     Ok(desc)
+}
+
+/// The index of a generic joint's axis of a name [`AxesEntry`] gives.
+fn axis_index(name: &str) -> usize {
+    GenericAxis::from_name(name).map_or(0, GenericAxis::index)
+}
+
+/// What a generic joint's axis entry says; errors are placed at `place` (`joints[i].axes.x`).
+fn axis_freedom(entry: &AxisEntry, place: &str) -> Result<AxisFreedom, SceneError> {
+    match entry {
+        AxisEntry::Mode(mode) if mode == "locked" => Ok(AxisFreedom::Locked),
+        AxisEntry::Mode(mode) if mode == "free" => Ok(AxisFreedom::Free),
+        AxisEntry::Mode(mode) => Err(SceneError::new(
+            place,
+            format!(
+                "unknown axis mode \"{mode}\", expected `\"locked\"`, `\"free\"` or [min, max]"
+            ),
+        )),
+        AxisEntry::Limited(limits) => Ok(AxisFreedom::Limited(pair(place, *limits)?)),
+    }
 }
 
 /// The engine motor of a motor entry; errors are placed under `place` (`joints[i].motor`). The

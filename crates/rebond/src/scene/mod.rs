@@ -546,7 +546,7 @@ impl Scene {
                 .map(|joint| named(&joint.name, joint.handle.0))
                 .collect(),
         };
-        let snapshot = crate::state::SnapshotV3::of(&self.world, Some(scene));
+        let snapshot = crate::state::SnapshotV4::of(&self.world, Some(scene));
         crate::state::encode(SCENE_MAGIC, &(step, self), snapshot)
     }
 
