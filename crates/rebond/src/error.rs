@@ -48,6 +48,8 @@ pub enum ErrorKind {
     StaleHandle,
     /// A handle to a joint that was removed, or that never belonged to this world.
     StaleJointHandle,
+    /// A handle to a coupling that was removed, or that never belonged to this world.
+    StaleCouplingHandle,
     /// A required value is absent (a revolute or prismatic joint's axis).
     Missing,
     /// A field set on a joint type it does not belong to (the type's name).
@@ -160,6 +162,7 @@ impl fmt::Display for ErrorKind {
             ),
             Self::StaleHandle => write!(f, "body handle is stale or unknown"),
             Self::StaleJointHandle => write!(f, "joint handle is stale or unknown"),
+            Self::StaleCouplingHandle => write!(f, "coupling handle is stale or unknown"),
             Self::Missing => write!(f, "required"),
             Self::NotForJointType(name) => write!(f, "does not apply to a {name} joint"),
             Self::JointToItself => write!(f, "a joint cannot join a body to itself"),

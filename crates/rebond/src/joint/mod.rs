@@ -37,7 +37,7 @@
 
 mod set;
 
-pub(crate) use set::{JointFrames, JointImpulses, JointSet};
+pub(crate) use set::{JointFrames, JointImpulses, JointSet, SidePose};
 
 use crate::arena::ArenaIndex;
 use crate::body::BodyHandle;

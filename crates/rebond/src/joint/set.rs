@@ -93,6 +93,17 @@ impl SidePose {
         center_of_mass: Vec3::ZERO,
         rotation: Quat::IDENTITY,
     };
+
+    /// The side `handle` (`None` for the world) as it stands now in `bodies`.
+    pub fn of(handle: Option<BodyHandle>, bodies: &Arena<RigidBody>) -> Self {
+        handle
+            .and_then(|handle| bodies.get(handle.0))
+            .map_or(Self::WORLD, |body| Self {
+                slot: handle.map(|handle| handle.slot()),
+                center_of_mass: body.center_of_mass(),
+                rotation: body.rotation(),
+            })
+    }
 }
 
 /// Solver data of one joint, beside the joint.
@@ -311,16 +322,10 @@ impl JointSet {
             if joint.broken {
                 continue;
             }
-            let side = |handle: Option<BodyHandle>| {
-                handle
-                    .and_then(|handle| bodies.get(handle.0))
-                    .map_or(SidePose::WORLD, |body| SidePose {
-                        slot: handle.map(|handle| handle.slot()),
-                        center_of_mass: body.center_of_mass(),
-                        rotation: body.rotation(),
-                    })
-            };
-            data.poses = [side(joint.desc.body_a), side(Some(joint.desc.body_b))];
+            data.poses = [
+                SidePose::of(joint.desc.body_a, bodies),
+                SidePose::of(Some(joint.desc.body_b), bodies),
+            ];
         }
     }
 

@@ -3,6 +3,7 @@
 
 use crate::body::{BodyDesc, BodyHandle, BodyType, KinematicPath, LockedAxes, PathPoint};
 use crate::character::{CharacterController, CharacterSettings};
+use crate::coupling::CouplingDesc;
 use crate::filter::InteractionGroups;
 use crate::joint::{AxisFreedom, GenericAxis, JointDesc, JointHandle, JointType, Motor};
 use crate::limits::{MAX_TIMESTEP, MIN_TIMESTEP};
@@ -14,8 +15,8 @@ use crate::world::WorldSettings;
 use super::actuators::{Actuator, ActuatorKind};
 use super::format::{
     ActuatorEntry, ActuatorKindEntry, AxisEntry, BodyEntry, CharacterEntry, ChildEntry,
-    GroupsEntry, JointEntry, MassPropertiesEntry, MotorEntry, PathEntry, SceneFile, ShapeEntry,
-    ShapeKind,
+    CouplingEntry, GroupsEntry, JointEntry, MassPropertiesEntry, MotorEntry, PathEntry, SceneFile,
+    ShapeEntry, ShapeKind,
 };
 use super::meshes::{heightfield, trimesh, MeshFiles};
 use super::{
@@ -582,6 +583,43 @@ fn compound_child(
     child.sensor = entry.sensor;
     child.collision_groups = entry.collision_groups.as_deref().map(interaction_groups);
     Ok(child)
+}
+
+/// The engine description of one coupling; errors are placed under `place` (`couplings[i]`).
+/// `find_joint` gives the handle of the joint of a name. Values are narrowed and the joints
+/// looked up here; the rest (ranges, joint types, `min ≤ max`) is checked by the world when the
+/// coupling is added.
+pub(super) fn coupling_desc(
+    entry: &CouplingEntry,
+    place: &str,
+    find_joint: impl Fn(&str) -> Option<JointHandle>,
+) -> Result<CouplingDesc, SceneError> {
+    let mut joints = Vec::with_capacity(entry.joints.len());
+    for (index, term) in entry.joints.iter().enumerate() {
+        let term_place = format!("{place}.joints[{index}]");
+        let joint = find_joint(&term.joint).ok_or_else(|| {
+            SceneError::new(
+                format!("{term_place}.joint"),
+                format!("no joint is named \"{}\"", term.joint),
+            )
+        })?;
+        let coefficient = scalar(&format!("{term_place}.coefficient"), term.coefficient)?;
+        joints.push((joint, coefficient));
+    }
+    let mut desc = CouplingDesc::new(joints);
+    if let Some(limits) = entry.limits {
+        desc.limits = Some(pair(&format!("{place}.limits"), limits)?);
+    }
+    if let Some(stiffness) = entry.stiffness {
+        desc.stiffness = scalar(&format!("{place}.stiffness"), stiffness)?;
+    }
+    if let Some(damping) = entry.damping {
+        desc.damping = scalar(&format!("{place}.damping"), damping)?;
+    }
+    if let Some(length) = entry.length {
+        desc.length = Some(scalar(&format!("{place}.length"), length)?);
+    }
+    Ok(desc)
 }
 
 /// The engine description of one joint; errors are placed under `place` (`joints[i]`).

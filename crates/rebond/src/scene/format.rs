@@ -75,6 +75,9 @@ pub(super) struct SceneFile {
     pub(super) restitution_combine: Option<CombineEntry>,
     pub(super) bodies: Vec<JsonObject<BodyEntry>>,
     pub(super) joints: Option<Vec<JsonObject<JointEntry>>>,
+    /// Extension of the contract: couplings of joint coordinates, `L = Σ cᵢ qᵢ` (MuJoCo's fixed
+    /// tendons, URDF's mimic).
+    pub(super) couplings: Option<Vec<JsonObject<CouplingEntry>>>,
     /// Extension of the contract: the body a player drives as a character, and how.
     pub(super) character: Option<JsonObject<CharacterEntry>>,
     /// Extension of the contract: MuJoCo's actuators, one control value each, on joints.
@@ -113,6 +116,27 @@ pub(super) struct MassPropertiesEntry {
     pub(super) mass: f64,
     pub(super) center_of_mass: Option<[f64; 3]>,
     pub(super) inertia: [f64; 6],
+}
+
+/// One coupling, as written (extension of the contract): the joints by name with their
+/// coefficients; every other field optional.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct CouplingEntry {
+    pub(super) name: Option<String>,
+    pub(super) joints: Vec<JsonObject<CoupledJointEntry>>,
+    pub(super) limits: Option<[f64; 2]>,
+    pub(super) stiffness: Option<f64>,
+    pub(super) damping: Option<f64>,
+    pub(super) length: Option<f64>,
+}
+
+/// One joint of a coupling, as written: its name and coefficient.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct CoupledJointEntry {
+    pub(super) joint: String,
+    pub(super) coefficient: f64,
 }
 
 /// The scene's character, as written.
@@ -517,6 +541,7 @@ mod tests {
     use super::{ActuatorEntry, ActuatorKindEntry, MassPropertiesEntry};
     use super::{AxesEntry, JointEntry, JointKind, MotorEntry, PathEntry, PathPointEntry};
     use super::{BodyEntry, BodyKind, ChildEntry, GroupsEntry, SceneFile, ShapeEntry, ShapeKind};
+    use super::{CoupledJointEntry, CouplingEntry};
 
     const REFERENCE: &str = include_str!("../../../../docs/scene-format.md");
 
@@ -585,6 +610,8 @@ mod tests {
             names_of::<ActuatorEntry>(),
             names_of::<ActuatorKindEntry>(),
             names_of::<MassPropertiesEntry>(),
+            names_of::<CouplingEntry>(),
+            names_of::<CoupledJointEntry>(),
         ]
         .concat();
         assert!(names.len() > 30, "recorded only {names:?}");

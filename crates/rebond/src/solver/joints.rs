@@ -48,7 +48,7 @@ pub(crate) struct JointSettings {
 }
 
 impl JointSettings {
-    fn softness(&self, h: f32, inverse_h: f32) -> Softness {
+    pub(super) fn softness(&self, h: f32, inverse_h: f32) -> Softness {
         Softness::new(
             self.hertz.min(JOINT_HERTZ_PER_SUBSTEP_RATE * inverse_h),
             self.damping_ratio,

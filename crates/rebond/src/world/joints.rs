@@ -39,8 +39,11 @@ impl World {
 
     /// Removes the joint and returns it; its handle becomes stale. Wakes both bodies, which
     /// collide with each other again at the next step if the joint kept them apart (as they do
-    /// once it breaks).
+    /// once it breaks). The couplings of the joint go with it (`crate::coupling`).
     pub fn remove_joint(&mut self, handle: JointHandle) -> Result<Joint> {
+        for coupling in self.couplings.couplings_of(handle) {
+            self.remove_coupling(coupling)?;
+        }
         let joint = self.joints.remove(handle).ok_or_else(stale_joint)?;
         let (body_a, body_b) = joint.bodies();
         self.joint_bodies_changed(body_a, body_b, !joint.desc.collide_connected);
