@@ -435,3 +435,81 @@ fn bad_files_are_refused_with_their_path() {
         assert!(error.starts_with(start), "expected {start}…, got {error}");
     }
 }
+
+/// The 12 triangles of the cube from −0.5 to 0.5, as corner triples.
+fn cube_triangles() -> Vec<[[f32; 3]; 3]> {
+    let corner =
+        |k: usize| [k & 1, (k >> 1) & 1, (k >> 2) & 1].map(|bit| if bit == 1 { 0.5 } else { -0.5 });
+    let faces = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    faces
+        .iter()
+        .flat_map(|f| [[f[0], f[1], f[2]], [f[0], f[2], f[3]]])
+        .map(|t| t.map(corner))
+        .collect()
+}
+
+#[test]
+fn meshes_are_hulls_on_moving_bodies_and_trimeshes_on_static_ones() {
+    let folder = std::env::temp_dir().join(format!("rebond_mjcf_meshes_{}", std::process::id()));
+    std::fs::create_dir_all(folder.join("meshes")).unwrap();
+    let triangles = cube_triangles();
+    let mut ascii = String::from("solid cube\n");
+    let mut binary = vec![0_u8; 80];
+    binary.extend_from_slice(&(triangles.len() as u32).to_le_bytes());
+    let mut obj = String::new();
+    for (index, triangle) in triangles.iter().enumerate() {
+        ascii.push_str("facet normal 0 0 0\nouter loop\n");
+        binary.extend_from_slice(&[0; 12]);
+        for corner in triangle {
+            ascii.push_str(&format!(
+                "vertex {} {} {}\n",
+                corner[0], corner[1], corner[2]
+            ));
+            obj.push_str(&format!("v {} {} {}\n", corner[0], corner[1], corner[2]));
+            for value in corner {
+                binary.extend_from_slice(&value.to_le_bytes());
+            }
+        }
+        ascii.push_str("endloop\nendfacet\n");
+        binary.extend_from_slice(&[0; 2]);
+        let first = 3 * index + 1;
+        obj.push_str(&format!("f {} {} {}\n", first, first + 1, first + 2));
+    }
+    ascii.push_str("endsolid cube\n");
+    std::fs::write(folder.join("meshes/ascii.stl"), ascii).unwrap();
+    std::fs::write(folder.join("meshes/binary.stl"), binary).unwrap();
+    std::fs::write(folder.join("meshes/cube.obj"), obj).unwrap();
+    let xml = r#"<mujoco><compiler meshdir="meshes"/>
+        <asset><mesh file="ascii.stl" scale="2 2 2"/><mesh name="b" file="binary.stl"/>
+          <mesh file="cube.obj" scale="1 1 3"/></asset>
+        <worldbody>
+          <geom name="ground" type="mesh" mesh="ascii" pos="0 0 -1"/>
+          <body name="one" pos="0 0 2"><freejoint/><geom type="mesh" mesh="b"/></body>
+          <body name="two" pos="3 0 2"><freejoint/><geom type="mesh" mesh="cube"/></body>
+        </worldbody></mujoco>"#;
+    let scene = Scene::from_mjcf(xml.as_bytes(), &folder).unwrap();
+    let mass = |name: &str| {
+        let handle = scene.body_handle(name).unwrap();
+        scene.world().body(handle).unwrap().mass()
+    };
+    // A unit cube's hull at 1000 kg/m³, and the OBJ cube stretched ×3: exact hull volumes.
+    assert!((mass("one") - 1000.0).abs() < 1e-2, "{}", mass("one"));
+    assert!((mass("two") - 3000.0).abs() < 3e-2, "{}", mass("two"));
+    let ground = scene.body_handle("ground").unwrap();
+    let ground = scene.world().body(ground).unwrap();
+    assert_eq!(ground.body_type(), rebond::BodyType::Static);
+    // The 2 m cube's top face, turned to Y-up, stands at 1 − 1 = 0.
+    assert!(
+        (ground.aabb().max.y - 0.0).abs() < 1e-6,
+        "{:?}",
+        ground.aabb()
+    );
+    std::fs::remove_dir_all(&folder).unwrap();
+}

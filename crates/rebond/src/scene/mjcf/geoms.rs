@@ -22,13 +22,15 @@ const DEFAULT_DENSITY: f64 = 1000.0;
 /// MuJoCo's default sliding friction.
 const DEFAULT_FRICTION: f64 = 1.0;
 
-/// A geom read: its compound child (or halfspace normal, for a plane) and mass properties.
+/// A geom read: its compound child and mass properties.
 pub(super) struct Geom {
-    /// The compound child entry, body frame; `None` for a plane.
-    pub(super) child: Option<Value>,
-    /// For a plane: its frame in the body's.
-    pub(super) plane: Option<Frame>,
-    /// Mass properties in the body frame, `None` for a plane.
+    /// The compound child entry, body frame (a plane's is a halfspace, for a static body).
+    pub(super) child: Value,
+    /// The frame of the child's shape in the body's.
+    pub(super) frame: Frame,
+    /// Whether it is a plane.
+    pub(super) plane: bool,
+    /// Mass properties in the body frame, `None` for a plane and a static body's mesh.
     pub(super) mass: Option<MassProperties>,
 }
 
@@ -64,8 +66,9 @@ fn quat_json(rotation: DQuat) -> Value {
 }
 
 impl Importer {
-    /// Reads the geom `node`.
-    pub(super) fn geom(&self, node: Node) -> Result<Geom, LoadError> {
+    /// Reads the geom `node`; `fixed` for a geom of a static body, whose mesh is a `trimesh`
+    /// rather than a convex hull.
+    pub(super) fn geom(&self, node: Node, fixed: bool) -> Result<Geom, LoadError> {
         let defaults = &self.defaults;
         let kind = defaults.get(node, "type").unwrap_or("sphere");
         let size = defaults.numbers(node, "size", None)?.unwrap_or_default();
@@ -119,11 +122,13 @@ impl Importer {
         };
         let (shape_json, shape, shape_frame): (Value, Shape, Frame) = match kind {
             "plane" => {
+                let shape = json!({ "type": "halfspace", "normal": [0, 0, 1] });
                 return Ok(Geom {
-                    child: None,
-                    plane: Some(frame),
+                    child: self.child(node, shape, &frame)?,
+                    frame,
+                    plane: true,
                     mass: None,
-                })
+                });
             }
             "sphere" => {
                 let radius = size_at(0)?;
@@ -172,6 +177,22 @@ impl Importer {
                     frame,
                 )
             }
+            "mesh" if fixed => {
+                let asset = self.mesh_asset(node)?;
+                let vertices: Vec<[f64; 3]> = asset
+                    .vertices
+                    .iter()
+                    .map(|vertex| (vertex.as_dvec3() * asset.scale).to_array())
+                    .collect();
+                let shape =
+                    json!({"type": "trimesh", "vertices": vertices, "indices": asset.indices});
+                return Ok(Geom {
+                    child: self.child(node, shape, &frame)?,
+                    frame,
+                    plane: false,
+                    mass: None,
+                });
+            }
             "mesh" => {
                 let (points, shape) = self.mesh_points(node)?;
                 (
@@ -209,14 +230,25 @@ impl Importer {
             };
         }
         let properties = properties.transformed(&pose32(&shape_frame));
-        let friction = match defaults.numbers(node, "friction", None)? {
+        Ok(Geom {
+            child: self.child(node, shape_json, &shape_frame)?,
+            frame: shape_frame,
+            plane: false,
+            mass: Some(properties),
+        })
+    }
+
+    /// The compound child of the geom `node`: `shape` at `frame` (body frame), with the geom's
+    /// friction, collision groups and name.
+    fn child(&self, node: Node, shape: Value, frame: &Frame) -> Result<Value, SceneError> {
+        let friction = match self.defaults.numbers(node, "friction", None)? {
             Some(values) if values.is_empty() || values.len() > 3 => {
                 let message = format!("expected 1 to 3 numbers, got {}", values.len());
-                return Err(attribute_error(node, "friction", message).into());
+                return Err(attribute_error(node, "friction", message));
             }
             Some(values) if values[0] < 0.0 => {
                 let message = format!("must not be negative, got {}", values[0]);
-                return Err(attribute_error(node, "friction", message).into());
+                return Err(attribute_error(node, "friction", message));
             }
             Some(values) => values[0],
             None => DEFAULT_FRICTION,
@@ -224,22 +256,17 @@ impl Importer {
         let contype = self.bits(node, "contype")?;
         let conaffinity = self.bits(node, "conaffinity")?;
         let mut child = json!({
-            "shape": shape_json,
-            "position": shape_frame.position.to_array(),
-            "rotation": quat_json(shape_frame.rotation),
+            "shape": shape,
+            "position": frame.position.to_array(),
+            "rotation": quat_json(frame.rotation),
             "friction": friction,
             "collision_groups": collision_groups(contype, conaffinity),
         });
         if let Some(name) = node.attribute("name") {
             child["name"] = json!(name);
         }
-        Ok(Geom {
-            child: Some(child),
-            plane: None,
-            mass: Some(properties),
-        })
+        Ok(child)
     }
-
     /// `contype` or `conaffinity`: MuJoCo's default 1, bits 0 to 15 only (see
     /// [`collision_groups`]).
     fn bits(&self, node: Node, name: &str) -> Result<u32, SceneError> {
@@ -252,15 +279,20 @@ impl Importer {
         }
     }
 
-    /// The points of a mesh geom's file, scaled, and their convex hull.
-    fn mesh_points(&self, node: Node) -> Result<(Vec<[f64; 3]>, Shape), LoadError> {
+    /// The mesh asset a mesh geom names.
+    fn mesh_asset(&self, node: Node) -> Result<&MeshAsset, SceneError> {
         let name = self
             .defaults
             .get(node, "mesh")
             .ok_or_else(|| attribute_error(node, "mesh", "required for a mesh geom"))?;
-        let asset = self.meshes.get(name).ok_or_else(|| {
+        self.meshes.get(name).ok_or_else(|| {
             attribute_error(node, "mesh", format!("no mesh asset is named \"{name}\""))
-        })?;
+        })
+    }
+
+    /// The points of a mesh geom's file, scaled, and their convex hull.
+    fn mesh_points(&self, node: Node) -> Result<(Vec<[f64; 3]>, Shape), LoadError> {
+        let asset = self.mesh_asset(node)?;
         let points: Vec<[f64; 3]> = asset
             .vertices
             .iter()
@@ -333,15 +365,16 @@ impl Importer {
     }
 }
 
-/// A mesh asset: its vertices as read and its scale.
+/// A mesh asset: its vertices and triangles as read, and its scale.
 pub(super) struct MeshAsset {
     pub(super) vertices: Vec<Vec3>,
+    pub(super) indices: Vec<[u32; 3]>,
     pub(super) scale: DVec3,
 }
 
 /// Reads the mesh file at `path` (STL, binary or ASCII, or Wavefront OBJ); errors are
 /// [`LoadError::Mesh`] at `place`.
-pub(super) fn read_mesh(path: &Path, place: &str) -> Result<Vec<Vec3>, LoadError> {
+pub(super) fn read_mesh(path: &Path, place: &str) -> Result<(Vec<Vec3>, Vec<[u32; 3]>), LoadError> {
     let failure = |message: String| LoadError::Mesh {
         place: place.to_owned(),
         path: path.to_owned(),
@@ -359,11 +392,17 @@ pub(super) fn read_mesh(path: &Path, place: &str) -> Result<Vec<Vec3>, LoadError
                 .and_then(|name| name.to_str())
                 .unwrap_or_default();
             let files = MeshFiles { folder, given: &[] };
-            Ok(files.read_obj(file, place)?.0)
+            files.read_obj(file, place)
         }
         Some("stl") => {
             let bytes = std::fs::read(path).map_err(|error| failure(error.to_string()))?;
-            stl_vertices(&bytes).ok_or_else(|| failure("not a valid STL file".to_owned()))
+            let vertices =
+                stl_vertices(&bytes).ok_or_else(|| failure("not a valid STL file".to_owned()))?;
+            // Each triangle has its own three corners, in order.
+            let count = u32::try_from(vertices.len() / 3)
+                .map_err(|_| failure("too many triangles".to_owned()))?;
+            let indices = (0..count).map(|k| [3 * k, 3 * k + 1, 3 * k + 2]).collect();
+            Ok((vertices, indices))
         }
         _ => Err(failure("rebond reads STL and OBJ mesh files".to_owned())),
     }

@@ -452,9 +452,16 @@ impl Importer {
             let scale = self.defaults.triple(child, "scale")?.unwrap_or([1.0; 3]);
             let directory = folder.join(self.compiler.mesh_dir.as_deref().unwrap_or(""));
             let place = format!("{}@file", path(child));
-            let vertices = read_mesh(&directory.join(file), &place)?;
+            let (vertices, indices) = read_mesh(&directory.join(file), &place)?;
             let scale = glam::DVec3::from_array(scale);
-            self.meshes.insert(name, MeshAsset { vertices, scale });
+            self.meshes.insert(
+                name,
+                MeshAsset {
+                    vertices,
+                    indices,
+                    scale,
+                },
+            );
         }
         Ok(())
     }
@@ -491,26 +498,21 @@ impl Importer {
         {
             check_attributes(child, &GEOM)?;
             self.defaults.check_class(child)?;
-            let geom = self.geom(child)?;
+            let geom = self.geom(child, true)?;
             let name = child
                 .attribute("name")
                 .map_or_else(|| format!("{owner}/geom{}", index + 1), str::to_owned);
-            let (local, shape) = match (&geom.plane, &geom.child) {
-                (Some(plane), _) => (*plane, json!({ "type": "halfspace", "normal": [0, 0, 1] })),
-                (None, Some(child)) => (
-                    Frame::IDENTITY,
-                    json!({ "type": "compound", "children": [child] }),
-                ),
-                (None, None) => continue,
-            };
-            let world = frame.then(&local);
+            // A static body takes the geom's shape itself (a halfspace or a trimesh may not be a
+            // compound's child), at the geom's frame.
+            let world = frame.then(&geom.frame);
             statics.push(json!({
                 "name": name,
                 "type": "static",
-                "shape": shape,
+                "shape": geom.child["shape"],
                 "position": (self.turn * world.position).to_array(),
                 "rotation": rotation_json(self.turn * world.rotation),
-                "friction": geom.child.as_ref().map_or(json!(1.0), |child| child["friction"].clone()),
+                "friction": geom.child["friction"],
+                "collision_groups": geom.child["collision_groups"],
             }));
         }
         Ok(())
@@ -576,14 +578,12 @@ impl Importer {
         for child in node.children().filter(|child| child.has_tag_name("geom")) {
             check_attributes(child, &GEOM)?;
             self.defaults.check_class(child)?;
-            let geom = self.geom(child)?;
-            if geom.plane.is_some() {
+            let geom = self.geom(child, false)?;
+            if geom.plane {
                 let message = "a plane is static: it belongs to the world or a body welded to it";
                 return Err(element_error(child, message).into());
             }
-            if let Some(child) = geom.child {
-                children.push(child);
-            }
+            children.push(geom.child);
             if let Some(mass) = geom.mass {
                 geom_mass = Some(geom_mass.map_or(mass, |total| total.combine(&mass)));
             }
