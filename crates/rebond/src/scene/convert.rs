@@ -5,16 +5,18 @@ use crate::body::{BodyDesc, BodyHandle, BodyType, KinematicPath, LockedAxes, Pat
 use crate::character::{CharacterController, CharacterSettings};
 use crate::coupling::CouplingDesc;
 use crate::filter::InteractionGroups;
-use crate::joint::{AxisFreedom, JointDesc, JointHandle, Motor};
+use crate::joint::{AxisFreedom, JointDesc, JointHandle, JointType, Motor};
 use crate::limits::{MAX_TIMESTEP, MIN_TIMESTEP};
-use crate::math::{Pose, Quat, Vec3};
+use crate::mass::MassProperties;
+use crate::math::{Mat3, Pose, Quat, Vec3};
 use crate::shape::{CompoundChild, Shape};
 use crate::world::WorldSettings;
 
+use super::actuators::{Actuator, ActuatorKind};
 use super::format::{
-    AxisEntry, BodyEntry, CharacterEntry, ChildEntry, CouplingEntry, GroupsEntry, JointEntry,
-    MotorEntry,
-    PathEntry, SceneFile, ShapeEntry, ShapeKind,
+    ActuatorEntry, ActuatorKindEntry, AxisEntry, BodyEntry, CharacterEntry, ChildEntry,
+    CouplingEntry, GroupsEntry, JointEntry, MassPropertiesEntry, MotorEntry, PathEntry, SceneFile,
+    ShapeEntry, ShapeKind,
 };
 use super::meshes::{heightfield, trimesh, MeshFiles};
 use super::{
@@ -254,6 +256,9 @@ pub(super) fn body_desc(
     if let Some(value) = entry.mass {
         desc.mass = Some(scalar(&field("mass"), value)?);
     }
+    if let Some(properties) = &entry.mass_properties {
+        desc.mass_properties = Some(mass_properties(properties, &field("mass_properties"))?);
+    }
     if let Some(value) = entry.friction {
         desc.friction = scalar(&field("friction"), value)?;
     }
@@ -303,6 +308,125 @@ pub(super) fn body_desc(
         desc.surface_velocity = vector(&field("surface_velocity"), value)?;
     }
     Ok(desc)
+}
+
+/// Explicit mass properties, narrowed; errors are placed under `place`
+/// (`bodies[i].mass_properties`). The checks (positive mass, positive definite inertia) are the
+/// world's, when the body is added.
+fn mass_properties(entry: &MassPropertiesEntry, place: &str) -> Result<MassProperties, SceneError> {
+    let field = |name: &str| join(place, name);
+    let center_of_mass = match entry.center_of_mass {
+        Some(value) => vector(&field("center_of_mass"), value)?,
+        None => Vec3::ZERO,
+    };
+    let mut inertia = [0.0; 6];
+    for (index, value) in entry.inertia.into_iter().enumerate() {
+        inertia[index] = scalar(&format!("{place}.inertia[{index}]"), value)?;
+    }
+    let [xx, yy, zz, xy, xz, yz] = inertia;
+    Ok(MassProperties {
+        mass: scalar(&field("mass"), entry.mass)?,
+        center_of_mass,
+        inertia: Mat3::from_cols(
+            Vec3::new(xx, xy, xz),
+            Vec3::new(xy, yy, yz),
+            Vec3::new(xz, yz, zz),
+        ),
+    })
+}
+
+/// The actuator of an `actuators` entry; errors are placed under `place` (`actuators[i]`).
+/// `find_joint` gives the handle and type of a joint by name.
+pub(super) fn actuator(
+    entry: &ActuatorEntry,
+    place: &str,
+    name: String,
+    find_joint: impl Fn(&str) -> Option<(JointHandle, JointType)>,
+) -> Result<Actuator, SceneError> {
+    let field = |name: &str| join(place, name);
+    let joint = match find_joint(&entry.joint) {
+        Some((handle, JointType::Revolute | JointType::Prismatic)) => handle,
+        Some((_, other)) => {
+            let message = format!(
+                "\"{}\" is a {} joint; an actuator drives a revolute or prismatic one",
+                entry.joint,
+                other.name()
+            );
+            return Err(SceneError::new(field("joint"), message));
+        }
+        None => {
+            let message = format!("no joint is named \"{}\"", entry.joint);
+            return Err(SceneError::new(field("joint"), message));
+        }
+    };
+    let gain = |name: &str, value: Option<f64>, default: f32| match value {
+        Some(value) => {
+            let gain = scalar(&field(name), value)?;
+            if gain >= 0.0 {
+                Ok(gain)
+            } else {
+                Err(SceneError::new(
+                    field(name),
+                    format!("must not be negative, got {gain}"),
+                ))
+            }
+        }
+        None => Ok(default),
+    };
+    let stray = |name: &str| {
+        let message = format!(
+            "unknown field `{name}` for a {} actuator",
+            entry_kind_name(entry.kind)
+        );
+        SceneError::new(field(name), message)
+    };
+    let kind = match entry.kind {
+        ActuatorKindEntry::Motor if entry.kp.is_some() => return Err(stray("kp")),
+        ActuatorKindEntry::Motor if entry.kv.is_some() => return Err(stray("kv")),
+        ActuatorKindEntry::Velocity if entry.kp.is_some() => return Err(stray("kp")),
+        ActuatorKindEntry::Motor => ActuatorKind::Motor,
+        ActuatorKindEntry::Position => ActuatorKind::Position {
+            kp: gain("kp", entry.kp, 1.0)?,
+            kv: gain("kv", entry.kv, 0.0)?,
+        },
+        ActuatorKindEntry::Velocity => ActuatorKind::Velocity {
+            kv: gain("kv", entry.kv, 1.0)?,
+        },
+    };
+    let gear = match entry.gear {
+        Some(value) => scalar(&field("gear"), value)?,
+        None => 1.0,
+    };
+    if gear == 0.0 {
+        return Err(SceneError::new(field("gear"), "must not be 0"));
+    }
+    let ctrl_range = match entry.ctrl_range {
+        Some(value) => {
+            let [lo, hi] = pair(&field("ctrl_range"), value)?;
+            if lo > hi {
+                let message = format!("min must not exceed max, got [{lo}, {hi}]");
+                return Err(SceneError::new(field("ctrl_range"), message));
+            }
+            Some([lo, hi])
+        }
+        None => None,
+    };
+    Ok(Actuator {
+        name,
+        joint,
+        kind,
+        gear,
+        ctrl_range,
+    })
+}
+
+/// The name of an actuator kind as written.
+fn entry_kind_name(kind: ActuatorKindEntry) -> &'static str {
+    match kind {
+        ActuatorKindEntry::Motor => "motor",
+        ActuatorKindEntry::Position => "position",
+        ActuatorKindEntry::Velocity => "velocity",
+    }
 }
 
 /// The engine path of a path entry; errors are placed under `place` (`bodies[i].path`). A point

@@ -80,6 +80,42 @@ pub(super) struct SceneFile {
     pub(super) couplings: Option<Vec<JsonObject<CouplingEntry>>>,
     /// Extension of the contract: the body a player drives as a character, and how.
     pub(super) character: Option<JsonObject<CharacterEntry>>,
+    /// Extension of the contract: MuJoCo's actuators, one control value each, on joints.
+    pub(super) actuators: Option<Vec<JsonObject<ActuatorEntry>>>,
+}
+
+/// The kinds of actuator, as written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum ActuatorKindEntry {
+    Motor,
+    Position,
+    Velocity,
+}
+
+/// One actuator, as written: `kp` belongs to position actuators, `kv` to position and velocity
+/// ones (checked in `convert.rs`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct ActuatorEntry {
+    pub(super) name: Option<String>,
+    pub(super) joint: String,
+    #[serde(rename = "type")]
+    pub(super) kind: ActuatorKindEntry,
+    pub(super) gear: Option<f64>,
+    pub(super) ctrl_range: Option<[f64; 2]>,
+    pub(super) kp: Option<f64>,
+    pub(super) kv: Option<f64>,
+}
+
+/// Explicit mass properties, as written: body frame, inertia about the centre of mass as
+/// `[ixx, iyy, izz, ixy, ixz, iyz]`; the centre of mass defaults to the body origin.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct MassPropertiesEntry {
+    pub(super) mass: f64,
+    pub(super) center_of_mass: Option<[f64; 3]>,
+    pub(super) inertia: [f64; 6],
 }
 
 /// One coupling, as written (extension of the contract): the joints by name with their
@@ -170,6 +206,8 @@ pub(super) struct BodyEntry {
     pub(super) angular_velocity: Option<[f64; 3]>,
     pub(super) density: Option<f64>,
     pub(super) mass: Option<f64>,
+    /// Extension of the contract: explicit mass, centre of mass and inertia.
+    pub(super) mass_properties: Option<JsonObject<MassPropertiesEntry>>,
     pub(super) friction: Option<f64>,
     pub(super) restitution: Option<f64>,
     /// Extension of the contract: the body's rolling resistance coefficient.
@@ -495,6 +533,7 @@ mod tests {
     use serde::{forward_to_deserialize_any, Deserialize, Deserializer};
 
     use super::SpringEntry;
+    use super::{ActuatorEntry, ActuatorKindEntry, MassPropertiesEntry};
     use super::{AxesEntry, JointEntry, JointKind, MotorEntry, PathEntry, PathPointEntry};
     use super::{BodyEntry, BodyKind, ChildEntry, GroupsEntry, SceneFile, ShapeEntry, ShapeKind};
     use super::{CoupledJointEntry, CouplingEntry};
@@ -563,6 +602,9 @@ mod tests {
             names_of::<AxesEntry<f64>>(),
             names_of::<PathEntry>(),
             names_of::<PathPointEntry>(),
+            names_of::<ActuatorEntry>(),
+            names_of::<ActuatorKindEntry>(),
+            names_of::<MassPropertiesEntry>(),
             names_of::<CouplingEntry>(),
             names_of::<CoupledJointEntry>(),
         ]
