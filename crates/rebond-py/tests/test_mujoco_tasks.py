@@ -1,0 +1,124 @@
+"""Gymnasium's MuJoCo tasks on rebond (rebond/<Task>-v0): Gymnasium's checker, v5's spaces,
+finite steps, the vector env against the single env, qpos/qvel read back as set, and the start
+against MuJoCo's qpos0."""
+
+import gymnasium
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+import rebond.gym  # noqa: F401  (registers the tasks)
+from conftest import mjcf_unreadable
+from rebond.mujoco_tasks import TASKS, MujocoTaskVectorEnv
+
+UNREADABLE = mjcf_unreadable()
+needs_mjcf = pytest.mark.skipif(UNREADABLE is not None, reason=str(UNREADABLE))
+
+# v5's observation and action sizes (Gymnasium's documentation of each task).
+SIZES = {
+    "HalfCheetah": (17, 6),
+    "Hopper": (11, 3),
+    "Walker2d": (17, 6),
+    "Ant": (105, 8),
+    "Humanoid": (348, 17),
+    "InvertedPendulum": (4, 1),
+    "InvertedDoublePendulum": (9, 1),
+    "Reacher": (10, 2),
+}
+FRAME_DT = {
+    "HalfCheetah": 0.05, "Hopper": 0.008, "Walker2d": 0.008, "Ant": 0.05, "Humanoid": 0.015,
+    "InvertedPendulum": 0.04, "InvertedDoublePendulum": 0.05, "Reacher": 0.02,
+}
+
+
+def test_every_task_is_registered():
+    assert sorted(TASKS) == sorted(SIZES)
+    for task in TASKS:
+        assert f"rebond/{task}-v0" in gymnasium.registry
+
+
+@needs_mjcf
+@pytest.mark.parametrize("task", sorted(TASKS))
+def test_gymnasium_checker_passes_with_v5_spaces_and_dt(task):
+    env = gymnasium.make(f"rebond/{task}-v0")
+    observations, actions = SIZES[task]
+    assert env.observation_space.shape == (observations,)
+    assert env.observation_space.dtype == np.float64
+    assert env.action_space.shape == (actions,) and env.action_space.dtype == np.float32
+    assert env.unwrapped.dt == pytest.approx(FRAME_DT[task])
+    assert env.spec.max_episode_steps == (50 if task == "Reacher" else 1000)
+    check_env(env.unwrapped, skip_render_check=True)
+    env.close()
+
+
+@needs_mjcf
+@pytest.mark.parametrize("task", sorted(TASKS))
+def test_a_vector_env_steps_finite_under_random_actions(task):
+    envs = gymnasium.make_vec(f"rebond/{task}-v0", num_envs=4,
+                              vectorization_mode="vector_entry_point")
+    assert isinstance(envs, rebond.gym.VectorEnv)
+    observations, _ = envs.reset(seed=1)
+    envs.action_space.seed(1)
+    ends = 0
+    for _ in range(60):
+        observations, rewards, terminated, truncated, _ = envs.step(envs.action_space.sample())
+        assert np.all(np.isfinite(observations)), task
+        assert np.all(np.isfinite(rewards)), task
+        ends += int(np.sum(terminated | truncated))
+    assert observations.shape == (4, SIZES[task][0])
+    envs.close()
+
+
+@needs_mjcf
+@pytest.mark.parametrize("task", ["Hopper", "Ant", "InvertedPendulum", "InvertedDoublePendulum"])
+def test_the_vector_env_steps_each_world_as_the_single_env(task):
+    """Without reset noise every world starts in the file's pose: the same actions give the
+    same bits in a world of the vector env and in the single env, until an episode ends."""
+    single = gymnasium.make(f"rebond/{task}-v0", reset_noise_scale=0.0)
+    envs = gymnasium.make_vec(f"rebond/{task}-v0", num_envs=3,
+                              vectorization_mode="vector_entry_point", reset_noise_scale=0.0)
+    first, _ = single.reset(seed=0)
+    many, _ = envs.reset(seed=5)
+    np.testing.assert_array_equal(many[2], first)
+    rng = np.random.default_rng(2)
+    low, high = single.action_space.low, single.action_space.high
+    compared = 0
+    for _ in range(40):
+        action = rng.uniform(low, high).astype(np.float32)
+        observation, reward, terminated, truncated, _ = single.step(action)
+        observations, rewards, ended, cut, _ = envs.step(np.tile(action, (3, 1)))
+        if terminated or truncated:
+            break
+        for index in range(3):
+            np.testing.assert_array_equal(observations[index], observation)
+            assert rewards[index] == reward
+        compared += 1
+    assert compared >= 5, f"{task}: only {compared} steps before the episode ended"
+
+
+@needs_mjcf
+@pytest.mark.parametrize("task", ["HalfCheetah", "Ant", "Humanoid", "Reacher"])
+def test_qpos_and_qvel_read_back_as_set(task):
+    """The state a reset sets (init_qpos and init_qvel plus noise) is the state observed:
+    float32 positions and rotations round to about 1e-6 of the values."""
+    envs = MujocoTaskVectorEnv(task, 3)
+    model = envs.model
+    rng = np.random.default_rng(3)
+    qpos = model.init_qpos + rng.uniform(-0.1, 0.1, size=(3, model.nq))
+    qvel = model.init_qvel + rng.uniform(-0.1, 0.1, size=(3, model.nv))
+    if model.root is not None:
+        qpos[:, 3:7] /= np.linalg.norm(qpos[:, 3:7], axis=1, keepdims=True)
+    model.set_state(envs.batch, np.arange(3), qpos, qvel)
+    np.testing.assert_allclose(model.qpos(envs.batch), qpos, atol=2e-5)
+    np.testing.assert_allclose(model.qvel(envs.batch), qvel, atol=2e-4)
+
+
+@needs_mjcf
+@pytest.mark.parametrize("task", sorted(TASKS))
+def test_the_start_is_mujocos_qpos0(task):
+    mujoco = pytest.importorskip("mujoco", reason="MuJoCo's qpos0 needs the mujoco package")
+    envs = MujocoTaskVectorEnv(task, 1)
+    reference = mujoco.MjModel.from_xml_path(envs.path)
+    assert envs.model.nq == reference.nq and envs.model.nv == reference.nv
+    np.testing.assert_allclose(envs.model.init_qpos, reference.qpos0, atol=1e-6)
+    assert envs.batch.timestep == pytest.approx(reference.opt.timestep)
