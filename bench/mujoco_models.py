@@ -1,0 +1,278 @@
+"""Gymnasium's MuJoCo models in rebond and in MuJoCo, side by side in the same run. Not a test;
+see BENCHMARKS.md.
+
+    pip install ./crates/rebond-py mujoco "gymnasium>=1.0,<2"
+    python bench/mujoco_models.py [--seconds 5]
+
+Each model of ``rebond/<Task>-v0`` (Gymnasium's own MJCF file) starts in the file's pose with
+every control at zero and runs for ``--seconds`` of simulated time at the file's timestep in
+both engines. Columns:
+
+  height        the watched body's origin height (MuJoCo's z, rebond's y) at the end, m
+  speed         the speed of that body's origin at the end, m/s
+  limit excess  the worst excess of any limited hinge or slide beyond its range over the run
+                (rad or m; MuJoCo's limits are soft, so it shows some too)
+  steps/s       simulated steps per second of wall time, one world
+
+The watched body is the torso (the pole for InvertedPendulum, the second pole for
+InvertedDoublePendulum, the fingertip for Reacher). A last table gives InvertedPendulum's pole
+period for a 0.05 rad swing with gravity turned upwards (so the upright pole swings) and the cart
+held (its mass made a million times larger in both engines), against the period of the
+undamped rigid pendulum from MuJoCo's compiled mass and inertia, ``2π √(I / (m g d))``.
+
+It prints markdown tables and writes them as a CSV in bench/results/.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import datetime
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+
+from python_batch import cpu_name  # noqa: E402
+
+WATCHED = {
+    "HalfCheetah": "torso",
+    "Hopper": "torso",
+    "Walker2d": "torso",
+    "Ant": "torso",
+    "Humanoid": "torso",
+    "InvertedPendulum": "pole",
+    "InvertedDoublePendulum": "pole2",
+    "Reacher": "fingertip",
+}
+# rebond's Y-up frame back to the files' Z-up frame: (x, y, z) -> (x, -z, y).
+TO_MJCF = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
+
+
+def origin_velocity(world, body: int) -> np.ndarray:
+    """The velocity of a rebond body's origin, file axes: ``v + ω × (p − c)``."""
+    position = world.positions()[body].astype(np.float64)
+    center = world.centers_of_mass()[body].astype(np.float64)
+    linear = world.linear_velocities()[body].astype(np.float64)
+    angular = world.angular_velocities()[body].astype(np.float64)
+    return TO_MJCF @ (linear + np.cross(angular, position - center))
+
+
+def limited_joints(model) -> list[tuple[str, float, float, int]]:
+    """(name, lo, hi, qpos address) of MuJoCo's limited hinges and slides."""
+    import mujoco
+
+    joints = []
+    for index in range(model.njnt):
+        kind = model.jnt_type[index]
+        if model.jnt_limited[index] and kind in (mujoco.mjtJoint.mjJNT_HINGE,
+                                                 mujoco.mjtJoint.mjJNT_SLIDE):
+            name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, index)
+            low, high = model.jnt_range[index]
+            joints.append((name, float(low), float(high), int(model.jnt_qposadr[index])))
+    return joints
+
+
+def excess(values: np.ndarray, low: float, high: float) -> float:
+    return float(max(0.0, np.max(values - high), np.max(low - values)))
+
+
+def run_model(task: str, seconds: float) -> dict[str, float]:
+    """Both engines on one model for ``seconds`` with zero controls."""
+    import mujoco
+
+    import rebond
+    from rebond.mujoco_tasks import TASKS, assets_folder
+
+    path = os.path.join(assets_folder(), TASKS[task]["xml"])
+    model = mujoco.MjModel.from_xml_path(path)
+    data = mujoco.MjData(model)
+    world = rebond.World.from_scene(path)
+    body = WATCHED[task]
+    joints = limited_joints(model)
+    names = world.joint_names()
+    columns = [names.index(name) for name, _, _, _ in joints]
+    # rebond's joint coordinates read MuJoCo's qpos0 (the joint's ref) in the file's pose.
+    offsets = np.array([model.qpos0[address] for *_, address in joints])
+    offsets = offsets - world.joint_positions()[columns].astype(np.float64)
+
+    steps = int(round(seconds / model.opt.timestep))
+    mujoco_q = np.empty((steps, len(joints)))
+    start = time.perf_counter()
+    for step in range(steps):
+        mujoco.mj_step(model, data)
+        mujoco_q[step] = [data.qpos[address] for *_, address in joints]
+    mujoco_rate = steps / (time.perf_counter() - start)
+    velocity = np.zeros(6)
+    body_id = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, body)
+    mujoco.mj_objectVelocity(model, data, mujoco.mjtObj.mjOBJ_BODY, body_id, velocity, 0)
+
+    rebond_steps = int(round(seconds / world.timestep))
+    rebond_q = np.empty((rebond_steps, len(joints)))
+    world.set_controls(np.zeros(len(world.actuator_names())))
+    start = time.perf_counter()
+    for step in range(rebond_steps):
+        world.step(1)
+        rebond_q[step] = world.joint_positions()[columns] + offsets
+    rebond_rate = rebond_steps / (time.perf_counter() - start)
+    index = world.body_names().index(body)
+    position = TO_MJCF @ world.positions()[index].astype(np.float64)
+
+    def worst(values: np.ndarray) -> float:
+        if not joints:
+            return 0.0
+        return max(excess(values[:, k], low, high) for k, (_, low, high, _) in enumerate(joints))
+
+    return {
+        "timestep": model.opt.timestep,
+        "rebond_timestep": world.timestep,
+        "rebond_height": float(position[2]),
+        "mujoco_height": float(data.xpos[body_id][2]),
+        "rebond_speed": float(np.linalg.norm(origin_velocity(world, index))),
+        "mujoco_speed": float(np.linalg.norm(velocity[3:])),
+        "rebond_excess": worst(rebond_q),
+        "mujoco_excess": worst(mujoco_q),
+        "rebond_steps_per_s": rebond_rate,
+        "mujoco_steps_per_s": mujoco_rate,
+        "finite": bool(np.all(np.isfinite(rebond_q))),
+    }
+
+
+def zero_crossing_period(angles: np.ndarray, dt: float) -> float:
+    """The mean period from the upward zero crossings of ``angles`` (linear interpolation)."""
+    crossings = []
+    for step in range(1, len(angles)):
+        if angles[step - 1] < 0 <= angles[step]:
+            fraction = -angles[step - 1] / (angles[step] - angles[step - 1])
+            crossings.append((step - 1 + fraction) * dt)
+    if len(crossings) < 2:
+        return float("nan")
+    return float(np.mean(np.diff(crossings)))
+
+
+def pendulum_periods(seconds: float, amplitude: float = 0.05) -> dict[str, float]:
+    """InvertedPendulum's pole period with gravity upwards and the cart held, in both engines,
+    and the rigid pendulum's from MuJoCo's compiled model."""
+    import mujoco
+
+    import rebond
+    from rebond.mujoco_tasks import TASKS, assets_folder
+
+    path = os.path.join(assets_folder(), TASKS["InvertedPendulum"]["xml"])
+    model = mujoco.MjModel.from_xml_path(path)
+    cart = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "cart")
+    pole = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "pole")
+    hinge = model.jnt_qposadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "hinge")]
+    model.body_mass[cart] *= 1e6
+    model.body_inertia[cart] *= 1e6
+    model.opt.gravity[:] = -model.opt.gravity
+    data = mujoco.MjData(model)
+    data.qpos[hinge] = amplitude
+    steps = int(round(seconds / model.opt.timestep))
+    angles = np.empty(steps)
+    for step in range(steps):
+        mujoco.mj_step(model, data)
+        angles[step] = data.qpos[hinge]
+    mujoco_period = zero_crossing_period(angles, model.opt.timestep)
+
+    world = rebond.World.from_scene(path)
+    names = world.body_names()
+    masses = world.masses()
+    masses[names.index("cart")] *= 1e6
+    world.set_masses(masses)
+    world.set_gravity(-world.gravity())
+    column = world.joint_names().index("hinge")
+    positions = world.joint_positions()
+    positions[column] = amplitude
+    world.set_joint_positions(positions)
+    steps = int(round(seconds / world.timestep))
+    angles = np.empty(steps)
+    for step in range(steps):
+        world.step(1)
+        angles[step] = world.joint_positions()[column]
+    rebond_period = zero_crossing_period(angles, world.timestep)
+
+    mass = model.body_mass[pole]
+    arm = np.linalg.norm(model.body_ipos[pole])
+    turn = np.zeros(9)
+    mujoco.mju_quat2Mat(turn, model.body_iquat[pole])
+    turn = turn.reshape(3, 3)
+    axis = model.jnt_axis[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "hinge")]
+    principal = turn.T @ axis
+    inertia = float(principal @ np.diag(model.body_inertia[pole]) @ principal)
+    inertia += mass * (arm**2 - float(axis @ model.body_ipos[pole]) ** 2)
+    gravity = float(np.linalg.norm(model.opt.gravity))
+    dof = model.jnt_dofadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "hinge")]
+    analytic = 2 * np.pi * np.sqrt((inertia + model.dof_armature[dof]) / (mass * gravity * arm))
+    return {"rebond": rebond_period, "mujoco": mujoco_period, "analytic": float(analytic)}
+
+
+def commit() -> str:
+    try:
+        return subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"], cwd=HERE, capture_output=True, text=True
+        ).stdout.strip()
+    except OSError:
+        return ""
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description="Gymnasium's MuJoCo models: rebond and MuJoCo")
+    parser.add_argument("--seconds", type=float, default=5.0)
+    args = parser.parse_args()
+    import mujoco
+
+    import rebond
+    from rebond.mujoco_tasks import TASKS
+
+    cpu = cpu_name()
+    print(f"CPU: {cpu}; rebond {rebond.__version__}, mujoco {mujoco.__version__}")
+    print(f"Zero controls for {args.seconds:g} s from the file's pose.\n")
+    print("| model | dt (s) | height rebond | height MuJoCo | speed rebond | speed MuJoCo "
+          "| limit excess rebond | limit excess MuJoCo | steps/s rebond | steps/s MuJoCo |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    rows = []
+    for task in TASKS:
+        result = run_model(task, args.seconds)
+        rows.append((task, result))
+        print(
+            f"| {task} | {result['timestep']:g} | {result['rebond_height']:.3f} "
+            f"| {result['mujoco_height']:.3f} | {result['rebond_speed']:.3f} "
+            f"| {result['mujoco_speed']:.3f} | {result['rebond_excess']:.4f} "
+            f"| {result['mujoco_excess']:.4f} | {result['rebond_steps_per_s']:,.0f} "
+            f"| {result['mujoco_steps_per_s']:,.0f} |"
+        )
+    periods = pendulum_periods(max(args.seconds, 10.0))
+    print("\n| InvertedPendulum pole period (gravity up, cart held) | rebond | MuJoCo | rigid "
+          "pendulum |")
+    print("|---|---|---|---|")
+    print(f"| 0.05 rad swing (s) | {periods['rebond']:.4f} | {periods['mujoco']:.4f} "
+          f"| {periods['analytic']:.4f} |")
+
+    today = datetime.date.today().isoformat()
+    slug = "-".join(cpu.lower().replace("(r)", "").replace("(tm)", "").split()[:3])
+    folder = os.path.join(HERE, "results")
+    path = os.path.join(folder, f"{today}-mujoco-models-{slug}.csv")
+    head = ["date", "commit", "cpu", "mujoco_version", "seconds", "model", "timestep",
+            "rebond_height", "mujoco_height", "rebond_speed", "mujoco_speed", "rebond_excess",
+            "mujoco_excess", "rebond_steps_per_s", "mujoco_steps_per_s"]
+    with open(path, "w", newline="", encoding="utf-8") as file:
+        writer = csv.writer(file)
+        writer.writerow(head)
+        for task, result in rows:
+            writer.writerow([today, commit(), cpu, mujoco.__version__, args.seconds, task]
+                            + [f"{result[key]:.6g}" for key in head[6:]])
+        writer.writerow([today, commit(), cpu, mujoco.__version__, args.seconds,
+                         "InvertedPendulum period (rebond, MuJoCo, rigid pendulum)", "",
+                         f"{periods['rebond']:.6g}", f"{periods['mujoco']:.6g}",
+                         f"{periods['analytic']:.6g}", "", "", "", "", ""])
+    print(f"\nWritten {os.path.relpath(path)}")
+
+
+if __name__ == "__main__":
+    main()
