@@ -8,8 +8,8 @@ Each model of ``rebond/<Task>-v0`` (Gymnasium's own MJCF file) starts in the fil
 every control at zero and runs for ``--seconds`` of simulated time at the file's timestep in
 both engines. Columns:
 
-  height        the watched body's origin height (MuJoCo's z, rebond's y) at the end, m
-  speed         the speed of that body's origin at the end, m/s
+  height        the watched body's centre of mass height (MuJoCo's z, rebond's y) at the end, m
+  speed         the speed of that centre of mass at the end, m/s
   limit excess  the worst excess of any limited hinge or slide beyond its range over the run
                 (rad or m; MuJoCo's limits are soft, so it shows some too)
   steps/s       simulated steps per second of wall time, one world
@@ -18,7 +18,8 @@ The watched body is the torso (the pole for InvertedPendulum, the second pole fo
 InvertedDoublePendulum, the fingertip for Reacher). A last table gives InvertedPendulum's pole
 period for a 0.05 rad swing with gravity turned upwards (so the upright pole swings) and the cart
 held (its mass made a million times larger in both engines), against the period of the
-undamped rigid pendulum from MuJoCo's compiled mass and inertia, ``2π √(I / (m g d))``.
+rigid pendulum from MuJoCo's compiled mass, inertia, armature and joint damping ``c``:
+``2π / √(m g d / I − (c / 2I)²)``.
 
 It prints markdown tables and writes them as a CSV in bench/results/.
 """
@@ -52,15 +53,6 @@ WATCHED = {
 }
 # rebond's Y-up frame back to the files' Z-up frame: (x, y, z) -> (x, -z, y).
 TO_MJCF = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
-
-
-def origin_velocity(world, body: int) -> np.ndarray:
-    """The velocity of a rebond body's origin, file axes: ``v + ω × (p − c)``."""
-    position = world.positions()[body].astype(np.float64)
-    center = world.centers_of_mass()[body].astype(np.float64)
-    linear = world.linear_velocities()[body].astype(np.float64)
-    angular = world.angular_velocities()[body].astype(np.float64)
-    return TO_MJCF @ (linear + np.cross(angular, position - center))
 
 
 def limited_joints(model) -> list[tuple[str, float, float, int]]:
@@ -121,7 +113,8 @@ def run_model(task: str, seconds: float) -> dict[str, float]:
         rebond_q[step] = world.joint_positions()[columns] + offsets
     rebond_rate = rebond_steps / (time.perf_counter() - start)
     index = world.body_names().index(body)
-    position = TO_MJCF @ world.positions()[index].astype(np.float64)
+    center = TO_MJCF @ world.centers_of_mass()[index].astype(np.float64)
+    speed = np.linalg.norm(world.linear_velocities()[index].astype(np.float64))
 
     def worst(values: np.ndarray) -> float:
         if not joints:
@@ -131,9 +124,9 @@ def run_model(task: str, seconds: float) -> dict[str, float]:
     return {
         "timestep": model.opt.timestep,
         "rebond_timestep": world.timestep,
-        "rebond_height": float(position[2]),
-        "mujoco_height": float(data.xpos[body_id][2]),
-        "rebond_speed": float(np.linalg.norm(origin_velocity(world, index))),
+        "rebond_height": float(center[2]),
+        "mujoco_height": float(data.xipos[body_id][2]),
+        "rebond_speed": float(speed),
         "mujoco_speed": float(np.linalg.norm(velocity[3:])),
         "rebond_excess": worst(rebond_q),
         "mujoco_excess": worst(mujoco_q),
@@ -143,13 +136,16 @@ def run_model(task: str, seconds: float) -> dict[str, float]:
     }
 
 
-def zero_crossing_period(angles: np.ndarray, dt: float) -> float:
-    """The mean period from the upward zero crossings of ``angles`` (linear interpolation)."""
+def swing_period(angles: np.ndarray, dt: float) -> float:
+    """The mean period of a swing that settles: the spacing of its upward crossings of the
+    angle it settles at (its last value; the pole's centre of mass is 0.5 mm off the hinge
+    line, so that is not 0), over the first half of the run, interpolated linearly."""
+    level = angles[-1]
     crossings = []
-    for step in range(1, len(angles)):
-        if angles[step - 1] < 0 <= angles[step]:
-            fraction = -angles[step - 1] / (angles[step] - angles[step - 1])
-            crossings.append((step - 1 + fraction) * dt)
+    for step in range(1, len(angles) // 2):
+        before, after = angles[step - 1] - level, angles[step] - level
+        if before < 0 <= after:
+            crossings.append((step - 1 + before / (before - after)) * dt)
     if len(crossings) < 2:
         return float("nan")
     return float(np.mean(np.diff(crossings)))
@@ -178,7 +174,7 @@ def pendulum_periods(seconds: float, amplitude: float = 0.05) -> dict[str, float
     for step in range(steps):
         mujoco.mj_step(model, data)
         angles[step] = data.qpos[hinge]
-    mujoco_period = zero_crossing_period(angles, model.opt.timestep)
+    mujoco_period = swing_period(angles, model.opt.timestep)
 
     world = rebond.World.from_scene(path)
     names = world.body_names()
@@ -195,7 +191,7 @@ def pendulum_periods(seconds: float, amplitude: float = 0.05) -> dict[str, float
     for step in range(steps):
         world.step(1)
         angles[step] = world.joint_positions()[column]
-    rebond_period = zero_crossing_period(angles, world.timestep)
+    rebond_period = swing_period(angles, world.timestep)
 
     mass = model.body_mass[pole]
     arm = np.linalg.norm(model.body_ipos[pole])
@@ -208,7 +204,9 @@ def pendulum_periods(seconds: float, amplitude: float = 0.05) -> dict[str, float
     inertia += mass * (arm**2 - float(axis @ model.body_ipos[pole]) ** 2)
     gravity = float(np.linalg.norm(model.opt.gravity))
     dof = model.jnt_dofadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "hinge")]
-    analytic = 2 * np.pi * np.sqrt((inertia + model.dof_armature[dof]) / (mass * gravity * arm))
+    inertia += model.dof_armature[dof]
+    decay = model.dof_damping[dof] / (2 * inertia)
+    analytic = 2 * np.pi / np.sqrt(mass * gravity * arm / inertia - decay**2)
     return {"rebond": rebond_period, "mujoco": mujoco_period, "analytic": float(analytic)}
 
 
