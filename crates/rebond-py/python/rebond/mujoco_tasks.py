@@ -327,14 +327,18 @@ class MujocoTaskVectorEnv(VectorEnv):
         self.task = task
         self.path = os.path.join(assets_folder(), spec["xml"])
         self.noise = spec["noise"] if reset_noise_scale is None else reset_noise_scale
-        self.model = _Model(self.path, Batch(self.path, 1))
+        first = Batch(self.path, 1)
+        self.model = _Model(self.path, first)
+        # v5's action space: a box of each actuator's control range.
+        ranges = np.asarray(first.ctrl_ranges(), dtype=np.float32)
+        action_space = spaces.Box(low=ranges[:, 0], high=ranges[:, 1], dtype=np.float32)
         self.controls: Optional[np.ndarray] = None
         self._before: Optional[np.ndarray] = None
         self._info: dict[str, np.ndarray] = {}
         super().__init__(
             self.path,
             num_envs,
-            action_space=self._action_space(),
+            action_space=action_space,
             observation_space=None,
             max_episode_steps=spec["steps"] if max_episode_steps == -1 else max_episode_steps,
             frame_skip=spec["frame_skip"],
@@ -342,18 +346,6 @@ class MujocoTaskVectorEnv(VectorEnv):
         )
         self.dt = self.batch.timestep * self.frame_skip
         self.metadata = dict(self.metadata, render_fps=int(np.round(1.0 / self.dt)))
-        sample = self.observe()
-        self.single_observation_space = spaces.Box(
-            -np.inf, np.inf, shape=sample.shape[1:], dtype=np.float64
-        )
-        self.observation_space = gymnasium.vector.utils.batch_space(
-            self.single_observation_space, self.num_envs
-        )
-
-    def _action_space(self) -> spaces.Box:
-        """v5's: a box of each actuator's control range, float32."""
-        ranges = np.asarray(Batch(self.path, 1).ctrl_ranges(), dtype=np.float32)
-        return spaces.Box(low=ranges[:, 0], high=ranges[:, 1], dtype=np.float32)
 
     # The task, as VectorEnv calls it.
 
