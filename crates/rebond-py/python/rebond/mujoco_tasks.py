@@ -99,20 +99,23 @@ class _Model:
         coordinates: list[tuple[str, float]] = []
         self.sites: dict[str, tuple[str, np.ndarray]] = {}
         self.mujoco_bodies: list[str] = []
-        for body in root.iter("body"):
-            name = body.get("name", "")
+        # The importer's names (docs/mjcf.md): an unnamed body is `body<k>` (its MuJoCo body id,
+        # from 1 in file order), an unnamed joint `<body>/joint<k>` (from 1 among its body's).
+        for number, body in enumerate(root.iter("body"), start=1):
+            name = body.get("name", f"body{number}")
             self.mujoco_bodies.append(name)
-            for element in body:
-                if element.tag == "freejoint" or (
-                    element.tag == "joint" and element.get("type") == "free"
-                ):
+            joints = [element for element in body if element.tag in ("joint", "freejoint")]
+            for place, element in enumerate(joints, start=1):
+                joint_name = element.get("name", f"{name}/joint{place}")
+                if element.tag == "freejoint" or element.get("type") == "free":
                     self.free_root = name
-                elif element.tag == "joint":
-                    reference = float(element.get("ref", "0"))
-                    if element.get("type", "hinge") == "hinge" and degrees:
-                        reference = np.radians(reference)
-                    coordinates.append((element.get("name", ""), reference))
-                elif element.tag == "site":
+                    continue
+                reference = float(element.get("ref", "0"))
+                if element.get("type", "hinge") == "hinge" and degrees:
+                    reference = np.radians(reference)
+                coordinates.append((joint_name, reference))
+            for element in body:
+                if element.tag == "site":
                     position = np.array(element.get("pos", "0 0 0").split(), dtype=float)
                     self.sites[element.get("name", "")] = (name, position)
         joint_names = batch.joint_names()
