@@ -48,12 +48,16 @@ pub enum ErrorKind {
     StaleHandle,
     /// A handle to a joint that was removed, or that never belonged to this world.
     StaleJointHandle,
+    /// A handle to a coupling that was removed, or that never belonged to this world.
+    StaleCouplingHandle,
     /// A required value is absent (a revolute or prismatic joint's axis).
     Missing,
     /// A field set on a joint type it does not belong to (the type's name).
     NotForJointType(&'static str),
     /// A joint joining a body to itself.
     JointToItself,
+    /// A motor on a generic joint's axis that is locked.
+    LockedAxis,
     /// `[min, max]` limits with `min > max`.
     InvertedLimits { min: f32, max: f32 },
     /// A vector's length, or a scalar's magnitude, past the engine's limit (see
@@ -158,9 +162,11 @@ impl fmt::Display for ErrorKind {
             ),
             Self::StaleHandle => write!(f, "body handle is stale or unknown"),
             Self::StaleJointHandle => write!(f, "joint handle is stale or unknown"),
+            Self::StaleCouplingHandle => write!(f, "coupling handle is stale or unknown"),
             Self::Missing => write!(f, "required"),
             Self::NotForJointType(name) => write!(f, "does not apply to a {name} joint"),
             Self::JointToItself => write!(f, "a joint cannot join a body to itself"),
+            Self::LockedAxis => write!(f, "a motor needs a free or limited axis, not a locked one"),
             Self::InvertedLimits { min, max } => {
                 write!(f, "min must not exceed max, got [{min}, {max}]")
             }

@@ -32,6 +32,7 @@ use crate::arena::Arena;
 use crate::body::BodyType;
 use crate::body::RigidBody;
 use crate::collision::contact_cache::ContactCache;
+use crate::coupling::CouplingSet;
 use crate::joint::JointSet;
 use crate::math::Vec3;
 use crate::sorted::merge_into;
@@ -450,6 +451,24 @@ pub(crate) trait IslandLinks {
 
     /// Links the bodies of each constraint this step ([`Islands::link`]).
     fn link(&self, bodies: &Arena<RigidBody>, islands: &mut Islands);
+}
+
+/// A coupling ties the bodies of all its joints: coupled bodies sleep and wake as one.
+impl IslandLinks for CouplingSet {
+    const GROUPED: bool = false;
+
+    fn link(&self, bodies: &Arena<RigidBody>, islands: &mut Islands) {
+        for (_, _, coupled, _) in self.acting() {
+            let mut slots = coupled
+                .iter()
+                .flat_map(|joint| joint.sides.iter().filter_map(|side| side.slot));
+            if let Some(first) = slots.next() {
+                for slot in slots {
+                    islands.link(bodies, first, slot, true);
+                }
+            }
+        }
+    }
 }
 
 /// Every joint that still acts between two bodies ties them: a jointed pile sleeps and wakes

@@ -43,6 +43,7 @@ mod arena;
 mod body;
 pub mod character;
 mod collision;
+pub mod coupling;
 mod error;
 pub mod events;
 mod filter;
@@ -68,12 +69,14 @@ mod world;
 pub use body::{BodyDesc, BodyHandle, BodyType, KinematicPath, LockedAxes, PathPoint, RigidBody};
 pub use collision::contact_cache::Contact;
 pub use collision::{ContactPoint, MAX_MANIFOLD_POINTS};
+pub use coupling::{Coupling, CouplingDesc, CouplingHandle, CouplingTerm};
 pub use error::{Error, ErrorKind, Result};
 pub use events::{ContactEvent, ContactEventKind, ContactForceEvent, SensorEvent, SensorEventKind};
 pub use filter::InteractionGroups;
 pub use hooks::{ContactHooks, ContactModification};
 pub use joint::{
-    Joint, JointBreakEvent, JointDesc, JointHandle, JointPlacement, JointType, Motor, Spring,
+    AxisFreedom, GenericAxis, GenericCoordinates, Joint, JointBreakEvent, JointDesc, JointHandle,
+    JointPlacement, JointType, Motor, Spring,
 };
 pub use mass::MassProperties;
 pub use material::CombineRule;

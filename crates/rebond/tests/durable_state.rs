@@ -570,10 +570,10 @@ fn a_snapshot_cut_damaged_or_of_a_later_version_is_refused() {
         StateError::Damaged
     );
     // A later build's snapshot version (the first byte of the snapshot) is another build's:
-    // this build writes version 3 (byte 2) and reads versions 1 to 3.
-    assert_eq!(bytes[start], 2);
+    // this build writes version 4 (byte 3) and reads versions 1 to 4.
+    assert_eq!(bytes[start], 3);
     let mut later = bytes.clone();
-    later[start] = 3;
+    later[start] = 4;
     assert_eq!(
         World::load_state_as_other_build(&with_checksum(later)).unwrap_err(),
         StateError::OtherBuild

@@ -11,7 +11,8 @@ use rebond::World;
 /// ramp (of two materials) with bodies rolling on them (one with rolling resistance) and a hull and a lying
 /// cylinder on them (whose triangle queries start from last step's simplices); a fixed, a ball (limits,
 /// friction), a revolute (limits, motor), a prismatic (limits, motor) and two distance joints
-/// (spring, rope).
+/// (spring, rope); two wheels geared by an equality coupling, a pendulum coupled to them by a
+/// limited spring coupling.
 const EVERY_KIND: &str = r#"{
   "bodies": [
     {"name": "floor", "type": "static", "shape": {"type": "box", "half_extents": [8, 0.5, 8]},
@@ -55,7 +56,13 @@ const EVERY_KIND: &str = r#"{
     {"name": "nugget", "shape": {"type": "convex_hull", "points": [[-0.2, 0, -0.2], [0.2, 0, -0.2],
      [0.2, 0, 0.2], [-0.2, 0, 0.2], [0, 0.3, 0]]}, "position": [-0.8, 1.2, 12.6]},
     {"name": "can", "shape": {"type": "cylinder", "radius": 0.2, "half_height": 0.15},
-     "position": [12.6, 1.6, -0.6], "rotation": [0.0, 0.0, 0.7071068, 0.7071068]}
+     "position": [12.6, 1.6, -0.6], "rotation": [0.0, 0.0, 0.7071068, 0.7071068]},
+    {"name": "gear_a", "shape": {"type": "cylinder", "radius": 0.3, "half_height": 0.05},
+     "position": [-6, 2, 6], "rotation": [0.7071068, 0.0, 0.0, 0.7071068]},
+    {"name": "gear_b", "shape": {"type": "cylinder", "radius": 0.3, "half_height": 0.05},
+     "position": [-6, 2, 7], "rotation": [0.7071068, 0.0, 0.0, 0.7071068]},
+    {"name": "gear_c", "shape": {"type": "box", "half_extents": [0.1, 0.3, 0.1]},
+     "position": [-6, 1.7, 8]}
   ],
   "joints": [
     {"type": "fixed", "body_a": "crate", "body_b": "glued", "anchor": [-1.5, 1.0, 1]},
@@ -68,7 +75,19 @@ const EVERY_KIND: &str = r#"{
     {"type": "distance", "body_b": "spring_weight", "anchor": [-2, 4, -4],
      "spring": {"stiffness": 40, "damping": 0.5}},
     {"type": "distance", "body_b": "rope_end", "anchor": [0, 4, -5], "anchor_b": [1, 3, -5],
-     "limits": [0, 1.6]}
+     "limits": [0, 1.6]},
+    {"name": "gear_a", "type": "revolute", "body_b": "gear_a", "anchor": [-6, 2, 6],
+     "axis": [0, 0, 1], "motor": {"torque": 0.5}},
+    {"name": "gear_b", "type": "revolute", "body_b": "gear_b", "anchor": [-6, 2, 7],
+     "axis": [0, 0, 1]},
+    {"name": "gear_c", "type": "revolute", "body_b": "gear_c", "anchor": [-6, 2, 8],
+     "axis": [0, 0, 1]}
+  ],
+  "couplings": [
+    {"name": "gear", "joints": [{"joint": "gear_b", "coefficient": 1},
+     {"joint": "gear_a", "coefficient": -2}], "limits": [0, 0]},
+    {"joints": [{"joint": "gear_c", "coefficient": 1}, {"joint": "gear_b", "coefficient": 0.5}],
+     "limits": [-1, 1], "stiffness": 2, "damping": 0.1}
   ]
 }"#;
 
@@ -88,6 +107,9 @@ fn fingerprint(world: &World) -> Vec<u32> {
     for (_, joint) in world.joints() {
         bits.extend(joint.force().to_array().map(f32::to_bits));
         bits.extend(joint.torque().to_array().map(f32::to_bits));
+    }
+    for (handle, _) in world.couplings() {
+        bits.push(world.coupling_length(handle).unwrap().to_bits());
     }
     bits.push(world.contact_count() as u32);
     bits

@@ -3,8 +3,9 @@
 
 use crate::body::{BodyDesc, BodyHandle, BodyType, KinematicPath, LockedAxes, PathPoint};
 use crate::character::{CharacterController, CharacterSettings};
+use crate::coupling::CouplingDesc;
 use crate::filter::InteractionGroups;
-use crate::joint::{JointDesc, JointHandle, JointType, Motor};
+use crate::joint::{AxisFreedom, GenericAxis, JointDesc, JointHandle, JointType, Motor};
 use crate::limits::{MAX_TIMESTEP, MIN_TIMESTEP};
 use crate::mass::MassProperties;
 use crate::math::{Mat3, Pose, Quat, Vec3};
@@ -13,8 +14,9 @@ use crate::world::WorldSettings;
 
 use super::actuators::{Actuator, ActuatorKind};
 use super::format::{
-    ActuatorEntry, ActuatorKindEntry, BodyEntry, CharacterEntry, ChildEntry, GroupsEntry,
-    JointEntry, MassPropertiesEntry, MotorEntry, PathEntry, SceneFile, ShapeEntry, ShapeKind,
+    ActuatorEntry, ActuatorKindEntry, AxisEntry, BodyEntry, CharacterEntry, ChildEntry,
+    CouplingEntry, GroupsEntry, JointEntry, MassPropertiesEntry, MotorEntry, PathEntry, SceneFile,
+    ShapeEntry, ShapeKind,
 };
 use super::meshes::{heightfield, trimesh, MeshFiles};
 use super::{
@@ -583,6 +585,43 @@ fn compound_child(
     Ok(child)
 }
 
+/// The engine description of one coupling; errors are placed under `place` (`couplings[i]`).
+/// `find_joint` gives the handle of the joint of a name. Values are narrowed and the joints
+/// looked up here; the rest (ranges, joint types, `min ≤ max`) is checked by the world when the
+/// coupling is added.
+pub(super) fn coupling_desc(
+    entry: &CouplingEntry,
+    place: &str,
+    find_joint: impl Fn(&str) -> Option<JointHandle>,
+) -> Result<CouplingDesc, SceneError> {
+    let mut joints = Vec::with_capacity(entry.joints.len());
+    for (index, term) in entry.joints.iter().enumerate() {
+        let term_place = format!("{place}.joints[{index}]");
+        let joint = find_joint(&term.joint).ok_or_else(|| {
+            SceneError::new(
+                format!("{term_place}.joint"),
+                format!("no joint is named \"{}\"", term.joint),
+            )
+        })?;
+        let coefficient = scalar(&format!("{term_place}.coefficient"), term.coefficient)?;
+        joints.push((joint, coefficient));
+    }
+    let mut desc = CouplingDesc::new(joints);
+    if let Some(limits) = entry.limits {
+        desc.limits = Some(pair(&format!("{place}.limits"), limits)?);
+    }
+    if let Some(stiffness) = entry.stiffness {
+        desc.stiffness = scalar(&format!("{place}.stiffness"), stiffness)?;
+    }
+    if let Some(damping) = entry.damping {
+        desc.damping = scalar(&format!("{place}.damping"), damping)?;
+    }
+    if let Some(length) = entry.length {
+        desc.length = Some(scalar(&format!("{place}.length"), length)?);
+    }
+    Ok(desc)
+}
+
 /// The engine description of one joint; errors are placed under `place` (`joints[i]`).
 /// `find_body` gives the handle and the position of the body of a name. Values are narrowed and
 /// the bodies looked up here; the rest (ranges, which fields the joint type takes, a body joined
@@ -629,14 +668,32 @@ pub(super) fn joint_desc(
         desc.length = Some(scalar(&field("length"), value)?);
     }
     if let Some(spring) = &entry.spring {
-        let damping = match spring.damping {
-            Some(value) => scalar(&field("spring.damping"), value)?,
-            None => 0.0,
+        let optional = |name: &str, value: Option<f64>| match value {
+            Some(value) => scalar(&field(name), value),
+            None => Ok(0.0),
         };
-        desc = desc.spring(
+        desc = desc.spring_to(
             scalar(&field("spring.stiffness"), spring.stiffness)?,
-            damping,
+            optional("spring.damping", spring.damping)?,
+            optional("spring.reference", spring.reference)?,
         );
+    }
+    if let Some(value) = entry.armature {
+        desc.armature = scalar(&field("armature"), value)?;
+    }
+    if let Some(value) = entry.frame {
+        desc.frame = Some(rotation(&field("frame"), value)?);
+    }
+    if let Some(axes) = &entry.axes {
+        for (name, value) in axes.given() {
+            desc.axes[axis_index(name)] = axis_freedom(value, &field(&format!("axes.{name}")))?;
+        }
+    }
+    if let Some(motors) = &entry.motors {
+        for (name, value) in motors.given() {
+            let place = field(&format!("motors.{name}"));
+            desc.motors[axis_index(name)] = Some(motor(value, &place)?);
+        }
     }
     if let Some(value) = entry.friction {
         desc.friction = scalar(&field("friction"), value)?;
@@ -651,6 +708,26 @@ pub(super) fn joint_desc(
         desc.break_torque = scalar(&field("break_torque"), value)?;
     }
     Ok(desc)
+}
+
+/// The index of a generic joint's axis of a name [`AxesEntry`] gives.
+fn axis_index(name: &str) -> usize {
+    GenericAxis::from_name(name).map_or(0, GenericAxis::index)
+}
+
+/// What a generic joint's axis entry says; errors are placed at `place` (`joints[i].axes.x`).
+fn axis_freedom(entry: &AxisEntry, place: &str) -> Result<AxisFreedom, SceneError> {
+    match entry {
+        AxisEntry::Mode(mode) if mode == "locked" => Ok(AxisFreedom::Locked),
+        AxisEntry::Mode(mode) if mode == "free" => Ok(AxisFreedom::Free),
+        AxisEntry::Mode(mode) => Err(SceneError::new(
+            place,
+            format!(
+                "unknown axis mode \"{mode}\", expected `\"locked\"`, `\"free\"` or [min, max]"
+            ),
+        )),
+        AxisEntry::Limited(limits) => Ok(AxisFreedom::Limited(pair(place, *limits)?)),
+    }
 }
 
 /// The engine motor of a motor entry; errors are placed under `place` (`joints[i].motor`). The

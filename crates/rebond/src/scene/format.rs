@@ -75,6 +75,9 @@ pub(super) struct SceneFile {
     pub(super) restitution_combine: Option<CombineEntry>,
     pub(super) bodies: Vec<JsonObject<BodyEntry>>,
     pub(super) joints: Option<Vec<JsonObject<JointEntry>>>,
+    /// Extension of the contract: couplings of joint coordinates, `L = Σ cᵢ qᵢ` (MuJoCo's fixed
+    /// tendons, URDF's mimic).
+    pub(super) couplings: Option<Vec<JsonObject<CouplingEntry>>>,
     /// Extension of the contract: the body a player drives as a character, and how.
     pub(super) character: Option<JsonObject<CharacterEntry>>,
     /// Extension of the contract: MuJoCo's actuators, one control value each, on joints.
@@ -113,6 +116,27 @@ pub(super) struct MassPropertiesEntry {
     pub(super) mass: f64,
     pub(super) center_of_mass: Option<[f64; 3]>,
     pub(super) inertia: [f64; 6],
+}
+
+/// One coupling, as written (extension of the contract): the joints by name with their
+/// coefficients; every other field optional.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct CouplingEntry {
+    pub(super) name: Option<String>,
+    pub(super) joints: Vec<JsonObject<CoupledJointEntry>>,
+    pub(super) limits: Option<[f64; 2]>,
+    pub(super) stiffness: Option<f64>,
+    pub(super) damping: Option<f64>,
+    pub(super) length: Option<f64>,
+}
+
+/// One joint of a coupling, as written: its name and coefficient.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct CoupledJointEntry {
+    pub(super) joint: String,
+    pub(super) coefficient: f64,
 }
 
 /// The scene's character, as written.
@@ -376,6 +400,8 @@ pub(super) enum JointKind {
     Revolute,
     Prismatic,
     Distance,
+    /// Extension of the contract: the generic joint.
+    Generic,
 }
 
 impl From<JointKind> for JointType {
@@ -386,6 +412,7 @@ impl From<JointKind> for JointType {
             JointKind::Revolute => JointType::Revolute,
             JointKind::Prismatic => JointType::Prismatic,
             JointKind::Distance => JointType::Distance,
+            JointKind::Generic => JointType::Generic,
         }
     }
 }
@@ -409,6 +436,14 @@ pub(super) struct JointEntry {
     pub(super) motor: Option<JsonObject<MotorEntry>>,
     pub(super) length: Option<f64>,
     pub(super) spring: Option<JsonObject<SpringEntry>>,
+    /// Extension of the contract: the inertia added to a revolute or prismatic coordinate.
+    pub(super) armature: Option<f64>,
+    /// Extension of the contract: a generic joint's frame, `[x, y, z, w]`.
+    pub(super) frame: Option<[f64; 4]>,
+    /// Extension of the contract: a generic joint's axes.
+    pub(super) axes: Option<JsonObject<AxesEntry<AxisEntry>>>,
+    /// Extension of the contract: a generic joint's motors, by axis.
+    pub(super) motors: Option<JsonObject<AxesEntry<JsonObject<MotorEntry>>>>,
     pub(super) friction: Option<f64>,
     pub(super) collide_connected: Option<bool>,
     pub(super) break_force: Option<f64>,
@@ -445,12 +480,50 @@ impl MotorEntry {
     }
 }
 
-/// A distance joint's spring, as written; `damping` defaults to 0.
+/// A joint's spring, as written; `damping` and `reference` default to 0.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct SpringEntry {
     pub(super) stiffness: f64,
     pub(super) damping: Option<f64>,
+    /// Extension of the contract: the revolute or prismatic coordinate the spring rests at.
+    pub(super) reference: Option<f64>,
+}
+
+/// One value per axis of a generic joint, as written: an unknown axis name is refused.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct AxesEntry<T> {
+    pub(super) x: Option<T>,
+    pub(super) y: Option<T>,
+    pub(super) z: Option<T>,
+    pub(super) rx: Option<T>,
+    pub(super) ry: Option<T>,
+    pub(super) rz: Option<T>,
+}
+
+impl<T> AxesEntry<T> {
+    /// The values given, with their axis names, in the order of `GenericAxis::ALL`.
+    pub(super) fn given(&self) -> impl Iterator<Item = (&'static str, &T)> {
+        [
+            ("x", &self.x),
+            ("y", &self.y),
+            ("z", &self.z),
+            ("rx", &self.rx),
+            ("ry", &self.ry),
+            ("rz", &self.rz),
+        ]
+        .into_iter()
+        .filter_map(|(name, value)| value.as_ref().map(|value| (name, value)))
+    }
+}
+
+/// What a generic joint's axis does, as written: `"locked"`, `"free"` or `[min, max]`.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub(super) enum AxisEntry {
+    Mode(String),
+    Limited([f64; 2]),
 }
 
 #[cfg(test)]
@@ -464,9 +537,11 @@ mod tests {
     use serde::de::{Error as _, Visitor};
     use serde::{forward_to_deserialize_any, Deserialize, Deserializer};
 
+    use super::SpringEntry;
     use super::{ActuatorEntry, ActuatorKindEntry, MassPropertiesEntry};
+    use super::{AxesEntry, JointEntry, JointKind, MotorEntry, PathEntry, PathPointEntry};
     use super::{BodyEntry, BodyKind, ChildEntry, GroupsEntry, SceneFile, ShapeEntry, ShapeKind};
-    use super::{JointEntry, JointKind, MotorEntry, PathEntry, PathPointEntry, SpringEntry};
+    use super::{CoupledJointEntry, CouplingEntry};
 
     const REFERENCE: &str = include_str!("../../../../docs/scene-format.md");
 
@@ -529,11 +604,14 @@ mod tests {
             names_of::<JointKind>(),
             names_of::<MotorEntry>(),
             names_of::<SpringEntry>(),
+            names_of::<AxesEntry<f64>>(),
             names_of::<PathEntry>(),
             names_of::<PathPointEntry>(),
             names_of::<ActuatorEntry>(),
             names_of::<ActuatorKindEntry>(),
             names_of::<MassPropertiesEntry>(),
+            names_of::<CouplingEntry>(),
+            names_of::<CoupledJointEntry>(),
         ]
         .concat();
         assert!(names.len() > 30, "recorded only {names:?}");

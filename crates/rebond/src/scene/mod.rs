@@ -41,13 +41,16 @@ use serde::de::DeserializeOwned;
 
 use crate::body::{BodyHandle, RigidBody};
 use crate::character::CharacterSettings;
+use crate::coupling::CouplingHandle;
 use crate::error::ErrorKind;
 use crate::joint::{Joint, JointHandle, JointType};
 use crate::world::World;
 pub use actuators::{Actuator, ActuatorKind};
 pub use builtin::{builtin, BuiltinScene, BUILTIN_SCENES};
-use convert::{actuator, body_desc, character, joint_desc, timestep, world_settings};
-use format::{BodyEntry, JointEntry, JsonObject, SceneFile};
+use convert::{
+    actuator, body_desc, character, coupling_desc, joint_desc, timestep, world_settings,
+};
+use format::{BodyEntry, CouplingEntry, JointEntry, JsonObject, SceneFile};
 use meshes::MeshFiles;
 
 /// Default seconds per step when a scene leaves `timestep` out.
@@ -216,6 +219,16 @@ struct SceneJoint {
     handle: JointHandle,
 }
 
+/// A coupling of a loaded scene.
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+struct SceneCoupling {
+    /// Its unique name among couplings (`coupling{i}` when the file gives none).
+    name: String,
+    /// Its handle in the scene's world.
+    handle: CouplingHandle,
+}
+
 /// The character a scene names (its `character` field): a kinematic body a player drives with a
 /// [`crate::character::CharacterController`], walking at `walk_speed` and jumping at
 /// `jump_speed`. The scene only names it; the program that reads the scene moves it.
@@ -245,6 +258,7 @@ pub struct Scene {
     world: World,
     bodies: Vec<SceneBody>,
     joints: Vec<SceneJoint>,
+    couplings: Vec<SceneCoupling>,
     /// Index in `bodies` by name (not saved: rebuilt from `bodies` when a state is loaded).
     #[cfg_attr(feature = "serde", serde(skip))]
     body_indices: HashMap<String, usize>,
@@ -329,6 +343,7 @@ impl Scene {
             world: World::new(settings).map_err(SceneError::from)?,
             bodies: Vec::with_capacity(file.bodies.len()),
             joints: Vec::new(),
+            couplings: Vec::new(),
             body_indices: HashMap::new(),
             joint_indices: HashMap::new(),
             timestep,
@@ -340,6 +355,9 @@ impl Scene {
         }
         for entry in file.joints.as_deref().unwrap_or_default() {
             scene.push_joint(entry)?;
+        }
+        for entry in file.couplings.iter().flatten() {
+            scene.push_coupling(entry)?;
         }
         for (index, entry) in file.actuators.iter().flatten().enumerate() {
             let place = format!("actuators[{index}]");
@@ -444,6 +462,30 @@ impl Scene {
         Ok(index)
     }
 
+    /// Checks and adds one coupling entry after the others; returns its index.
+    fn push_coupling(&mut self, entry: &CouplingEntry) -> Result<usize, SceneError> {
+        let index = self.couplings.len();
+        let place = format!("couplings[{index}]");
+        let name = (entry.name.clone()).unwrap_or_else(|| format!("coupling{index}"));
+        if let Some(first) = self.couplings.iter().position(|c| c.name == name) {
+            let message =
+                format!("duplicate name \"{name}\": couplings[{first}] and {place} both have it");
+            return Err(SceneError::new(format!("{place}.name"), message));
+        }
+        let desc = coupling_desc(entry, &place, |name| self.joint_handle(name))?;
+        let handle = (self.world)
+            .add_coupling(desc)
+            .map_err(|error| SceneError::from(error.within(&place)))?;
+        self.couplings.push(SceneCoupling { name, handle });
+        Ok(index)
+    }
+
+    /// The handle of the coupling of this name, if the scene has one.
+    pub fn coupling_handle(&self, name: &str) -> Option<CouplingHandle> {
+        let coupling = self.couplings.iter().find(|c| c.name == name)?;
+        Some(coupling.handle)
+    }
+
     /// The world holding every body of the scene.
     pub fn world(&self) -> &World {
         &self.world
@@ -546,7 +588,7 @@ impl Scene {
                 .map(|joint| named(&joint.name, joint.handle.0))
                 .collect(),
         };
-        let snapshot = crate::state::SnapshotV3::of(&self.world, Some(scene));
+        let snapshot = crate::state::SnapshotV4::of(&self.world, Some(scene));
         crate::state::encode(SCENE_MAGIC, &(step, self), snapshot)
     }
 
@@ -609,6 +651,8 @@ impl Scene {
                     timestep: timestep(Some(names.timestep)).map_err(|error| {
                         StateError::Inconsistent(format!("the timestep: {error}"))
                     })?,
+                    // A portable snapshot holds no couplings (`crate::state`).
+                    couplings: Vec::new(),
                     character: None,
                     actuators: Vec::new(),
                 };

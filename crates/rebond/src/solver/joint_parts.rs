@@ -283,20 +283,13 @@ impl AxisPart {
         (softness, inverse_h): (RowSoftness, f32),
         accumulated: &mut f32,
     ) {
-        let (bias, mass_scale, impulse_scale) = if gap > 0.0 {
-            (gap * inverse_h, 1.0, 0.0)
-        } else {
-            (
-                softness.bias(gap),
-                softness.mass_scale,
-                softness.impulse_scale,
-            )
-        };
-        let target = sign * self.velocity(v) + bias;
-        let impulse = -mass_scale * self.mass * target - impulse_scale * *accumulated;
-        let total = (*accumulated + impulse).max(0.0);
-        let applied = total - *accumulated;
-        *accumulated = total;
+        let applied = limit_impulse(
+            self.velocity(v),
+            self.mass,
+            (gap, sign),
+            (softness, inverse_h),
+            accumulated,
+        );
         self.apply(bodies, v, sign * applied);
     }
 
@@ -338,24 +331,70 @@ impl AxisPart {
         max_impulse: f32,
         accumulated: &mut f32,
     ) {
-        if self.k == 0.0 {
-            return;
-        }
-        let velocity = self.velocity(v);
-        let impulse = if h * h * stiffness * self.k <= SYMPLECTIC_SPRING_LIMIT {
-            -(h * stiffness * error + h * damping * velocity + *accumulated)
-                / (1.0 + h * damping * self.k)
-        } else {
-            let softness = damping + h * stiffness;
-            let bias_rate = stiffness / softness;
-            let gamma = 1.0 / (h * softness);
-            -(velocity + bias_rate * error + gamma * *accumulated) / (self.k + gamma)
-        };
-        let total = (*accumulated + impulse).clamp(-max_impulse, max_impulse);
-        let applied = total - *accumulated;
-        *accumulated = total;
+        let applied = spring_impulse(
+            (self.k, self.velocity(v)),
+            error,
+            (stiffness, damping, h),
+            max_impulse,
+            accumulated,
+        );
         self.apply(bodies, v, applied);
     }
+}
+
+/// The impulse one solve of a one-sided row applies along `sign · J`
+/// ([`AxisPart::solve_limit`]), from the row's velocity `Ċ` and effective mass `K⁻¹`; adds it to
+/// `accumulated`. Couplings' limits (`couplings.rs`) take it too.
+pub(super) fn limit_impulse(
+    velocity: f32,
+    mass: f32,
+    (gap, sign): (f32, f32),
+    (softness, inverse_h): (RowSoftness, f32),
+    accumulated: &mut f32,
+) -> f32 {
+    let (bias, mass_scale, impulse_scale) = if gap > 0.0 {
+        (gap * inverse_h, 1.0, 0.0)
+    } else {
+        (
+            softness.bias(gap),
+            softness.mass_scale,
+            softness.impulse_scale,
+        )
+    };
+    let target = sign * velocity + bias;
+    let impulse = -mass_scale * mass * target - impulse_scale * *accumulated;
+    let total = (*accumulated + impulse).max(0.0);
+    let applied = total - *accumulated;
+    *accumulated = total;
+    applied
+}
+
+/// The impulse one solve of a spring and damper applies along its row
+/// ([`AxisPart::solve_spring`]), from the row's `K` and velocity `Ċ`; adds it to `accumulated`.
+/// Nothing where `K` is zero (nothing moves along the row). Couplings' springs
+/// (`couplings.rs`) take it too.
+pub(super) fn spring_impulse(
+    (k, velocity): (f32, f32),
+    error: f32,
+    (stiffness, damping, h): (f32, f32, f32),
+    max_impulse: f32,
+    accumulated: &mut f32,
+) -> f32 {
+    if k == 0.0 {
+        return 0.0;
+    }
+    let impulse = if h * h * stiffness * k <= SYMPLECTIC_SPRING_LIMIT {
+        -(h * stiffness * error + h * damping * velocity + *accumulated) / (1.0 + h * damping * k)
+    } else {
+        let softness = damping + h * stiffness;
+        let bias_rate = stiffness / softness;
+        let gamma = 1.0 / (h * softness);
+        -(velocity + bias_rate * error + gamma * *accumulated) / (k + gamma)
+    };
+    let total = (*accumulated + impulse).clamp(-max_impulse, max_impulse);
+    let applied = total - *accumulated;
+    *accumulated = total;
+    applied
 }
 
 /// Largest `(ω h)²` of a spring integrated symplectically ([`AxisPart::solve_spring`]): well

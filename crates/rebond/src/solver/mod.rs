@@ -1,6 +1,6 @@
 //! The solver: one step of the soft-step scheme (Box2D v3 / Box3D "solver2d" soft step), run as
-//! a pipeline of stages over the kinds of constraint (`stages.rs`): joints (`joints.rs`) and
-//! contacts (`contacts.rs`).
+//! a pipeline of stages over the kinds of constraint (`stages.rs`): joints (`joints.rs`),
+//! couplings of joint coordinates (`couplings.rs`) and contacts (`contacts.rs`).
 //!
 //! Where a kind of constraint registers: the one list of kinds, `Kinds::each` in `stages.rs`
 //! (with a field of `Kinds` and of `Sources` beside it); a kind's source links its bodies into
@@ -51,6 +51,7 @@ pub(crate) mod contact_frame;
 mod contact_lanes;
 pub mod contact_model;
 mod contacts;
+mod couplings;
 mod graph_colour;
 mod integration;
 mod joint_groups;

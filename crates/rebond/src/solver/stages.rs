@@ -1,23 +1,26 @@
 //! The step as a pipeline of stages (Box3D's solver stages): the body stages integrate, the
 //! constraint stages run over every kind of constraint through one interface,
-//! [`ConstraintKind`]: joints (`joints.rs`, their restitution does nothing) and contacts
-//! (`contacts.rs`).
+//! [`ConstraintKind`]: joints (`joints.rs`, their restitution does nothing), couplings of joint
+//! coordinates (`couplings.rs`) and contacts (`contacts.rs`).
 //!
 //! [`Kinds::each`] is the list of kinds, the one place a kind registers: the islands' links
 //! ([`Solver::build_islands`]), `prepare`, every constraint stage and `store_impulses` go
 //! through it. A new kind is a field of [`Kinds`] and of [`Sources`], a line there, and an
 //! [`IslandLinks`] for its source. The list sets the order of the kinds in a stage: contacts
-//! first, then joints, so the joints, solved last, are the most nearly met when a pass ends (with
+//! first, then couplings (rows along the joints' free axes, which the joints' holding rows leave
+//! alone), then joints, so the joints, solved last, are the most nearly met when a pass ends (with
 //! the joints first, a pile of ragdolls opened a joint by 3.7 cm; `docs/design-notes/joints.md`).
 
 use super::contact_model::ContactSettings;
 use super::contacts::ContactConstraints;
+use super::couplings::CouplingConstraints;
 use super::integration::{SpeedLimits, MAX_ROTATION_PER_SUBSTEP};
 use super::joints::{JointConstraints, JointSettings};
 use super::{BodyMotion, BodyState, Solver, SolverBodies, StepSettings};
 use crate::arena::Arena;
 use crate::body::RigidBody;
 use crate::collision::contact_cache::ContactCache;
+use crate::coupling::CouplingSet;
 use crate::island::{IslandLinks, Islands};
 use crate::joint::JointSet;
 use crate::math::Vec3;
@@ -117,6 +120,7 @@ enum ConstraintStage {
 /// world's.
 pub(crate) struct Sources<'a> {
     pub joints: &'a mut JointSet,
+    pub couplings: &'a mut CouplingSet,
     pub contacts: &'a mut ContactCache,
 }
 
@@ -124,6 +128,7 @@ pub(crate) struct Sources<'a> {
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Kinds {
     joints: JointConstraints,
+    couplings: CouplingConstraints,
     contacts: ContactConstraints,
 }
 
@@ -145,6 +150,7 @@ impl Kinds {
     #[inline(always)]
     fn each(&mut self, sources: &mut Sources, task: &mut impl KindTask) {
         task.run(&mut self.contacts, sources.contacts);
+        task.run(&mut self.couplings, sources.couplings);
         task.run(&mut self.joints, sources.joints);
     }
 }
@@ -211,7 +217,7 @@ impl KindTask for LinkTask<'_> {
 impl Solver {
     /// Builds this step's islands (`island.rs`) from every kind's links, before the solve: first
     /// the kinds solved in groups (joints), whose groups are recorded then, then the others
-    /// (contacts). A kinematic body faster than `sleep_speed` (m/s) keeps what it touches awake.
+    /// (contacts, couplings). A kinematic body faster than `sleep_speed` (m/s) keeps what it touches awake.
     pub fn build_islands(
         &mut self,
         bodies: &Arena<RigidBody>,

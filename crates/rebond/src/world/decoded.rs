@@ -55,6 +55,7 @@ impl World {
         let is_live = |handle: BodyHandle| self.bodies.get(handle.0).is_some();
         self.contacts.check_decoded(is_live)?;
         self.joints.check_decoded(is_live)?;
+        self.couplings.check_decoded(&self.joints)?;
         if self.bounds_of_slot.len() < slots
             || self.touched_static_slots.iter().any(|&slot| slot >= slots)
         {

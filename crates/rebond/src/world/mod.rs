@@ -1,5 +1,5 @@
 //! The world: owns bodies and settings, and advances them in time. Its joint calls are in
-//! `joints.rs`, and the placing of bodies from joint coordinates in `joint_coordinates.rs`.
+//! `joints.rs`, its coupling calls in `couplings.rs`, and the placing of bodies from joint coordinates in `joint_coordinates.rs`.
 //!
 //! [`World::step`] is the list of the step's stages, in order, each with where it lives:
 //!
@@ -9,7 +9,7 @@
 //!    (`contact_update.rs`, `collision/`);
 //! 4. contact hooks: the bodies' own rules (one-way, surface velocity) and the user's hooks
 //!    change this step's contacts (`contact_update.rs`, [`crate::hooks`]);
-//! 5. islands: one union–find over the awake bodies' joints and touching contacts, which also
+//! 5. islands: one union–find over the awake bodies' joints, couplings and touching contacts, which also
 //!    gives the joint groups (`island.rs`, built through `Solver::build_islands`);
 //! 6. the solve, island by island: substeps of the soft step over every kind of constraint
 //!    (`solver/`: `stages.rs` runs them, `solver/mod.rs` lists them);
@@ -23,6 +23,7 @@
 
 mod contact_update;
 mod continuous;
+mod couplings;
 #[cfg(feature = "serde")]
 mod decoded;
 mod joint_coordinates;
@@ -34,6 +35,7 @@ use crate::collision::broad_phase::BroadPhase;
 use crate::collision::contact_cache::{Contact, ContactCache};
 use crate::collision::narrow_phase::NarrowPhase;
 use crate::collision::SPECULATIVE_DISTANCE;
+use crate::coupling::CouplingSet;
 use crate::error::{
     check_count, check_direction, check_length, check_non_negative, check_positive, check_range,
     Error, ErrorKind, Result,
@@ -189,6 +191,7 @@ pub struct World {
     settings: WorldSettings,
     bodies: Arena<RigidBody>,
     joints: JointSet,
+    couplings: CouplingSet,
     broad_phase: BroadPhase,
     contacts: ContactCache,
     #[cfg_attr(feature = "serde", serde(skip))]
@@ -240,6 +243,7 @@ impl World {
             settings,
             bodies: Arena::new(world),
             joints: JointSet::new(world),
+            couplings: CouplingSet::new(world),
             broad_phase: BroadPhase::new(),
             contacts: ContactCache::default(),
             narrow_phase: NarrowPhase::default(),
@@ -715,9 +719,11 @@ impl World {
             contacts: self.contacts.contacts().len(),
         };
         self.joints.refresh_poses(&self.bodies);
+        self.couplings.refresh(&self.joints, &self.bodies);
         let settings = &self.settings;
         let mut sources = Sources {
             joints: &mut self.joints,
+            couplings: &mut self.couplings,
             contacts: &mut self.contacts,
         };
         self.solver.build_islands(

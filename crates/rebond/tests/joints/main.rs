@@ -5,6 +5,7 @@ mod chains;
 #[path = "../common/mod.rs"]
 mod common;
 mod coordinates;
+mod couplings;
 mod drives;
 mod friction;
 mod large_groups;
