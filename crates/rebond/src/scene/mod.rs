@@ -315,10 +315,8 @@ impl Scene {
     /// attribute rebond cannot honour is an error naming its path in the file, such as
     /// `mujoco/worldbody/body[name=torso]/geom[2]@foo`. Nothing is stepped.
     pub fn from_mjcf(bytes: &[u8], folder: &Path) -> Result<Self, LoadError> {
-        let model = mjcf::import(bytes, folder)?;
-        let json = serde_json::to_vec(&model)
-            .map_err(|error| SceneError::new("", format!("cannot write the model: {error}")))?;
-        Self::load(&json, MeshFiles { folder, given: &[] })
+        let json = mjcf_to_json(bytes, folder)?;
+        Self::load(json.as_bytes(), MeshFiles { folder, given: &[] })
     }
 
     /// [`Scene::from_json`] with the mesh files it names given as `(name, contents)` pairs, the
@@ -687,6 +685,15 @@ impl Scene {
     pub fn into_world(self) -> World {
         self.world
     }
+}
+
+/// The scene file (JSON text) of a MuJoCo MJCF model: what [`Scene::from_mjcf`] loads, for a
+/// user to read, keep or edit. Mesh files the model names are read relative to `folder` (their
+/// points are written into the scene).
+pub fn mjcf_to_json(bytes: &[u8], folder: &Path) -> Result<String, LoadError> {
+    let model = mjcf::import(bytes, folder)?;
+    serde_json::to_string_pretty(&model)
+        .map_err(|error| SceneError::new("", format!("cannot write the model: {error}")).into())
 }
 
 /// The scene error for a joint the world refused: a missing axis is told the way the loader
