@@ -253,7 +253,7 @@ class _Model:
     def com_based(self, batch: Batch) -> dict[str, np.ndarray]:
         """The nearest rebond readings of MuJoCo's ``cinert``, ``cvel`` and ``cfrc_ext`` of
         MuJoCo's bodies but the world, each (count, bodies, 10 or 6), in the file's axes about
-        the centre of mass of the whole model (MuJoCo's "com-based" frame):
+        the centre of mass of MuJoCo's bodies (MuJoCo's "com-based" frame):
 
         - ``cinert``: inertia about that point (xx, yy, zz, xy, xz, yz: each body's own inertia
           shifted by ``m (|r|² E − r rᵀ)``), ``m r``, ``m``; with ``r`` the body's centre of
@@ -265,10 +265,9 @@ class _Model:
         """
         bodies = self.mujoco_body_indices()
         masses = self.masses[bodies]
-        centers = np.asarray(batch.centers_of_mass(), dtype=np.float64)
-        total = np.sum(self.masses)
-        whole = np.einsum("b,nbk->nk", self.masses, centers) / total
-        r = (centers[:, bodies] - whole[:, None, :]) @ _TO_MJCF.T
+        whole = self.mass_center(batch)
+        centers = np.asarray(batch.centers_of_mass()[:, bodies], dtype=np.float64) @ _TO_MJCF.T
+        r = centers - whole[:, None, :]
         inertia = np.asarray(batch.inertias()[:, bodies], dtype=np.float64)
         xx, yy, zz, xy, xz, yz = np.moveaxis(inertia, -1, 0)
         tensor = np.stack(
@@ -287,13 +286,16 @@ class _Model:
         cvel = np.concatenate([angular, linear - np.cross(angular, r)], axis=-1)
         force = np.asarray(batch.contact_forces()[:, bodies], dtype=np.float64) @ _TO_MJCF.T
         cfrc_ext = np.concatenate([np.cross(r, force), force], axis=-1)
-        return {"cinert": cinert, "cvel": cvel, "cfrc_ext": cfrc_ext, "whole": whole}
+        return {"cinert": cinert, "cvel": cvel, "cfrc_ext": cfrc_ext}
 
     def mass_center(self, batch: Batch) -> np.ndarray:
-        """The model's centre of mass in the file's axes, (count, 3) (Humanoid's
-        ``mass_center``)."""
-        centers = np.asarray(batch.centers_of_mass(), dtype=np.float64)
-        whole = np.einsum("b,nbk->nk", self.masses, centers) / np.sum(self.masses)
+        """The centre of mass of MuJoCo's bodies in the file's axes, (count, 3) (Humanoid's
+        ``mass_center``, the origin of MuJoCo's com-based frame); the importer's light link
+        bodies, which MuJoCo has not, are left out."""
+        bodies = self.mujoco_body_indices()
+        masses = self.masses[bodies]
+        centers = np.asarray(batch.centers_of_mass()[:, bodies], dtype=np.float64)
+        whole = np.einsum("b,nbk->nk", masses, centers) / np.sum(masses)
         return whole @ _TO_MJCF.T
 
     def actuator_forces(self, controls: np.ndarray, ctrl_range: np.ndarray) -> np.ndarray:
