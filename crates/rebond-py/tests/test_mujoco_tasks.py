@@ -165,3 +165,17 @@ def test_a_reset_state_is_mujocos_state(task):
                 np.testing.assert_allclose(to_mjcf @ ours, theirs, atol=2e-6, err_msg=name)
         np.testing.assert_allclose(com["cinert"][row], data.cinert[1:], atol=1e-5)
         np.testing.assert_allclose(com["cvel"][row], data.cvel[1:], atol=2e-6)
+
+
+@needs_mjcf
+def test_rgb_array_pictures_of_the_single_and_the_vector_env():
+    env = gymnasium.make("rebond/Humanoid-v0", render_mode="rgb_array")
+    env.reset(seed=0)
+    picture = env.render()
+    assert picture.shape == (240, 320, 3) and picture.dtype == np.uint8
+    assert picture.std() > 10  # the model is drawn, not a blank frame
+    envs = gymnasium.make_vec("rebond/Hopper-v0", num_envs=2, render_mode="rgb_array",
+                              vectorization_mode="vector_entry_point")
+    envs.reset(seed=0)
+    pictures = envs.render()
+    assert len(pictures) == 2 and pictures[1].shape == (240, 320, 3)
