@@ -80,6 +80,7 @@ def _rotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
 
 
 def _conjugate(q: np.ndarray) -> np.ndarray:
+    """The inverse rotations of the unit quaternions ``q`` (x, y, z, w)."""
     return q * np.array([-1.0, -1.0, -1.0, 1.0])
 
 
@@ -355,10 +356,14 @@ class MujocoTaskVectorEnv(VectorEnv):
     # The task, as VectorEnv calls it.
 
     def act(self, actions: np.ndarray) -> None:
+        """The actions as the actuators' controls (``Batch.set_controls``), kept for
+        Humanoid's ``qfrc_actuator``."""
         self.controls = np.asarray(actions, dtype=np.float64)
         self.batch.set_controls(actions)
 
     def _advance(self, actions: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict]:
+        """``VectorEnv._advance``, keeping the tracked positions from before the frames for the
+        forward reward."""
         self._before = self._tracked()
         return super()._advance(actions)
 
@@ -372,9 +377,10 @@ class MujocoTaskVectorEnv(VectorEnv):
         return self.model.qpos(self.batch)[:, :1]
 
     def observe(self) -> np.ndarray:
+        """v5's observation of every world, (num_envs, size), float64."""
         qpos, qvel = self.model.qpos(self.batch), self.model.qvel(self.batch)
         task = self.task
-        if task in ("HalfCheetah",):
+        if task == "HalfCheetah":
             return np.concatenate([qpos[:, 1:], qvel], axis=1)
         if task in ("Hopper", "Walker2d"):
             return np.concatenate([qpos[:, 1:], np.clip(qvel, -10, 10)], axis=1)
@@ -426,6 +432,7 @@ class MujocoTaskVectorEnv(VectorEnv):
         )
 
     def reward(self, actions: np.ndarray, observations: np.ndarray) -> np.ndarray:
+        """v5's reward of every world, its terms kept for ``info``."""
         actions = np.asarray(actions, dtype=np.float64)
         square = np.sum(np.square(actions), axis=1)
         qpos = self.model.qpos(self.batch)
@@ -500,9 +507,11 @@ class MujocoTaskVectorEnv(VectorEnv):
 
     @staticmethod
     def _pendulum_fell(observations: np.ndarray) -> np.ndarray:
+        """InvertedPendulum v5's end: an observation not finite or the pole beyond 0.2 rad."""
         return ~np.all(np.isfinite(observations), axis=1) | (np.abs(observations[:, 1]) > 0.2)
 
     def terminated(self, observations: np.ndarray) -> np.ndarray:
+        """v5's termination: unhealthy, a fallen pole, or never (HalfCheetah, Reacher)."""
         if self.task in ("Hopper", "Walker2d", "Ant", "Humanoid"):
             return ~self._healthy(self.model.qpos(self.batch))
         if self.task == "InvertedPendulum":
@@ -512,6 +521,7 @@ class MujocoTaskVectorEnv(VectorEnv):
         return np.zeros(self.num_envs, dtype=bool)
 
     def info(self, observations: np.ndarray) -> dict:
+        """v5's ``info`` terms of the step (``x_position``, ``reward_forward``, ...)."""
         return self._info
 
     def reset_noise(self, indices: np.ndarray) -> None:
@@ -578,6 +588,8 @@ class MujocoTaskEnv(gymnasium.Env):
     def reset(
         self, *, seed: Optional[int] = None, options: Optional[dict] = None
     ) -> tuple[np.ndarray, dict]:
+        """A new episode from init_qpos and init_qvel plus v5's noise, drawn from the
+        generator ``seed`` seeds."""
         super().reset(seed=seed)
         self._vector.np_random = self.np_random
         self._vector._restart(np.arange(1))
@@ -586,12 +598,15 @@ class MujocoTaskEnv(gymnasium.Env):
         return observation, {"x_position": float(qpos[0])}
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict]:
+        """``frame_skip`` steps with ``action`` as the controls; never truncates (``make``
+        adds v5's TimeLimit)."""
         actions = np.asarray(action, dtype=np.float32).reshape(1, -1)
         observations, rewards, terminated, info = self._vector._advance(actions)
         info = {key: float(value[0]) for key, value in info.items()}
         return observations[0], float(rewards[0]), bool(terminated[0]), False, info
 
     def render(self) -> Optional[np.ndarray]:
+        """A ``(height, width, 3)`` ``uint8`` picture for ``render_mode="rgb_array"``."""
         if self.render_mode is None:
             return None
         return self._pictures.of_world(self.batch.world(0))
