@@ -391,18 +391,13 @@ class MujocoTaskVectorEnv(VectorEnv):
         if task == "Humanoid":
             com = self.model.com_based(self.batch)
             count = len(qpos)
-            controls = np.zeros((count, self.single_action_space.shape[0]))
-            if self.controls is not None:
-                controls = self.controls
-            ranges = np.stack([self.single_action_space.low, self.single_action_space.high], 1)
-            actuator = self.model.actuator_forces(controls, ranges.astype(np.float64))
             return np.concatenate(
                 [
                     qpos[:, 2:],
                     qvel,
                     com["cinert"].reshape(count, -1),
                     com["cvel"].reshape(count, -1),
-                    actuator,
+                    self._actuator_forces(),
                     com["cfrc_ext"].reshape(count, -1),
                 ],
                 axis=1,
@@ -410,9 +405,13 @@ class MujocoTaskVectorEnv(VectorEnv):
         if task == "InvertedPendulum":
             return np.concatenate([qpos, qvel], axis=1)
         if task == "InvertedDoublePendulum":
-            slider = self.model.joints[self.model.joint_names.index("slider")]
+            # The slider's force on the cart along the rail is its limit's and its motor's:
+            # MuJoCo's constraint force is the limit's alone.
+            column = self.model.joint_names.index("slider")
+            slider = self.model.joints[column]
             force = np.asarray(self.batch.joint_forces()[:, slider], dtype=np.float64)
-            constraint = (force @ _TO_MJCF.T)[:, :1]
+            along = (force @ _TO_MJCF.T)[:, 0] - self._actuator_forces()[:, column]
+            constraint = along[:, None]
             return np.concatenate(
                 [
                     qpos[:, :1],
@@ -430,6 +429,16 @@ class MujocoTaskVectorEnv(VectorEnv):
             [np.cos(qpos[:, :2]), np.sin(qpos[:, :2]), qpos[:, 2:], qvel[:, :2], (tip - target)[:, :2]],
             axis=1,
         )
+
+    def _actuator_forces(self) -> np.ndarray:
+        """MuJoCo's ``qfrc_actuator`` of the hinges and slides from the controls last set
+        (zero before any), (num_envs, joints)."""
+        controls = self.controls
+        if controls is None:
+            controls = np.zeros((self.num_envs, self.single_action_space.shape[0]))
+        space = self.single_action_space
+        ranges = np.stack([space.low, space.high], axis=1).astype(np.float64)
+        return self.model.actuator_forces(controls, ranges)
 
     def reward(self, actions: np.ndarray, observations: np.ndarray) -> np.ndarray:
         """v5's reward of every world, its terms kept for ``info``."""
