@@ -38,17 +38,3 @@ def counted_during():
         return during
 
     return measure
-
-
-def mjcf_unreadable():
-    """Why rebond cannot load Gymnasium's MJCF files yet (the importer still to come), or
-    ``None`` when it can: tests of the MuJoCo tasks skip with this reason."""
-    import rebond
-    from rebond.mujoco_tasks import assets_folder
-
-    try:
-        rebond.Batch(os.path.join(assets_folder(), "inverted_pendulum.xml"), 1)
-    except rebond.SceneError as error:
-        if "not read yet" in str(error):
-            return f"rebond cannot read MJCF files yet: {error}"
-    return None

@@ -1,15 +1,9 @@
 """examples/ars.py: augmented random search raises InvertedPendulum's return in a few
 iterations."""
 
-import pytest
-
 import ars
-from conftest import mjcf_unreadable
-
-UNREADABLE = mjcf_unreadable()
 
 
-@pytest.mark.skipif(UNREADABLE is not None, reason=str(UNREADABLE))
 def test_ars_raises_the_inverted_pendulum_return():
     lines = []
     settings = ars.SETTINGS["rebond/InvertedPendulum-v0"]

@@ -8,11 +8,7 @@ import pytest
 from gymnasium.utils.env_checker import check_env
 
 import rebond.gym  # noqa: F401  (registers the tasks)
-from conftest import mjcf_unreadable
 from rebond.mujoco_tasks import TASKS, MujocoTaskVectorEnv
-
-UNREADABLE = mjcf_unreadable()
-needs_mjcf = pytest.mark.skipif(UNREADABLE is not None, reason=str(UNREADABLE))
 
 # v5's observation and action sizes (Gymnasium's documentation of each task).
 SIZES = {
@@ -37,7 +33,6 @@ def test_every_task_is_registered():
         assert f"rebond/{task}-v0" in gymnasium.registry
 
 
-@needs_mjcf
 @pytest.mark.parametrize("task", sorted(TASKS))
 def test_gymnasium_checker_passes_with_v5_spaces_and_dt(task):
     env = gymnasium.make(f"rebond/{task}-v0")
@@ -51,7 +46,6 @@ def test_gymnasium_checker_passes_with_v5_spaces_and_dt(task):
     env.close()
 
 
-@needs_mjcf
 @pytest.mark.parametrize("task", sorted(TASKS))
 def test_a_vector_env_steps_finite_under_random_actions(task):
     envs = gymnasium.make_vec(f"rebond/{task}-v0", num_envs=4,
@@ -69,7 +63,6 @@ def test_a_vector_env_steps_finite_under_random_actions(task):
     envs.close()
 
 
-@needs_mjcf
 @pytest.mark.parametrize("task", ["Hopper", "Ant", "InvertedPendulum", "InvertedDoublePendulum"])
 def test_the_vector_env_steps_each_world_as_the_single_env(task):
     """Without reset noise every world starts in the file's pose: the same actions give the
@@ -97,7 +90,6 @@ def test_the_vector_env_steps_each_world_as_the_single_env(task):
     assert compared >= 5, f"{task}: only {compared} steps before the episode ended"
 
 
-@needs_mjcf
 @pytest.mark.parametrize("task", ["HalfCheetah", "Ant", "Humanoid", "Reacher"])
 def test_qpos_and_qvel_read_back_as_set(task):
     """The state a reset sets (init_qpos and init_qvel plus noise) is the state observed:
@@ -115,7 +107,6 @@ def test_qpos_and_qvel_read_back_as_set(task):
     np.testing.assert_allclose(model.qvel(envs.batch), qvel, atol=1e-6)
 
 
-@needs_mjcf
 @pytest.mark.parametrize("task", sorted(TASKS))
 def test_the_start_is_mujocos_qpos0(task):
     mujoco = pytest.importorskip("mujoco", reason="MuJoCo's qpos0 needs the mujoco package")
@@ -127,7 +118,6 @@ def test_the_start_is_mujocos_qpos0(task):
     assert envs.batch.timestep == pytest.approx(reference.opt.timestep)
 
 
-@needs_mjcf
 @pytest.mark.parametrize("task", ["Hopper", "Ant", "Humanoid"])
 def test_a_reset_state_is_mujocos_state(task):
     """After a reset to random qpos and qvel, every body's origin, centre of mass and velocities
@@ -167,7 +157,6 @@ def test_a_reset_state_is_mujocos_state(task):
         np.testing.assert_allclose(com["cvel"][row], data.cvel[1:], atol=2e-6)
 
 
-@needs_mjcf
 def test_rgb_array_pictures_of_the_single_and_the_vector_env():
     env = gymnasium.make("rebond/Humanoid-v0", render_mode="rgb_array")
     env.reset(seed=0)
@@ -181,7 +170,6 @@ def test_rgb_array_pictures_of_the_single_and_the_vector_env():
     assert len(pictures) == 2 and pictures[1].shape == (240, 320, 3)
 
 
-@needs_mjcf
 def test_the_double_pendulums_constraint_force_is_the_rails_limit_alone():
     """Observation 8 is v5's clipped ``qfrc_constraint[0]``: zero while the cart runs free under
     its 50 N motor (float32 rounding of the joint's force, 1e-4 allowed), and the limit holding
