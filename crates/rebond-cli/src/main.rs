@@ -38,7 +38,8 @@ type CommandError = Failure;
 
 /// What `SCENE` means, shared by the subcommands' help.
 const SCENE_HELP: &str =
-    "Scene file (JSON), or the name of a built-in scene (see `rebond scenes`). \
+    "Scene file (JSON; a MuJoCo MJCF model when it ends in .xml, see docs/mjcf.md), or the name \
+     of a built-in scene (see `rebond scenes`). \
      A path that exists wins over a built-in name: use ./NAME for a file named like a built-in \
      scene";
 

@@ -40,6 +40,9 @@ fn turn() -> Quat {
     Quat::from_rotation_x(-std::f32::consts::FRAC_PI_2)
 }
 
+/// A body's name, mass (kg) and MuJoCo world position (m).
+type Body = (&'static str, f32, [f32; 3]);
+
 // Each body's mass (kg) and world position (m, `data.xpos` after `mj_forward`), from MuJoCo
 // 4.0.1, printed by this script run in tests/data/mjcf:
 //
@@ -49,7 +52,7 @@ fn turn() -> Quat {
 //       for i in range(1, m.nbody):
 //           name = mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_BODY, i) or f"body{i}"
 //           print(name, f"{m.body_mass[i]:.7g}", [float(f"{v:.7g}") for v in d.xpos[i]])
-const ANT: &[(&str, f32, [f32; 3])] = &[
+const ANT: &[Body] = &[
     ("torso", 0.3272492, [0.0, 0.0, 0.75]),
     ("front_left_leg", 0.03915775, [0.0, 0.0, 0.75]),
     ("aux_1", 0.03915775, [0.2, 0.2, 0.75]),
@@ -64,7 +67,7 @@ const ANT: &[(&str, f32, [f32; 3])] = &[
     ("aux_4", 0.03915775, [0.2, -0.2, 0.75]),
     ("body13", 0.0675922, [0.4, -0.4, 0.75]),
 ];
-const HALF_CHEETAH: &[(&str, f32, [f32; 3])] = &[
+const HALF_CHEETAH: &[Body] = &[
     ("torso", 6.250209, [0.0, 0.0, 0.7]),
     ("bthigh", 1.543515, [-0.5, 0.0, 0.7]),
     ("bshin", 1.587448, [-0.34, 0.0, 0.45]),
@@ -73,13 +76,13 @@ const HALF_CHEETAH: &[(&str, f32, [f32; 3])] = &[
     ("fshin", 1.200837, [0.36, 0.0, 0.46]),
     ("ffoot", 0.8845188, [0.49, 0.0, 0.28]),
 ];
-const HOPPER: &[(&str, f32, [f32; 3])] = &[
+const HOPPER: &[Body] = &[
     ("torso", 3.665191, [0.0, 0.0, 1.25]),
     ("thigh", 4.057891, [0.0, 0.0, 1.05]),
     ("leg", 2.781357, [0.0, 0.0, 0.35]),
     ("foot", 5.315575, [0.13, 0.0, 0.0]),
 ];
-const WALKER2D_V5: &[(&str, f32, [f32; 3])] = &[
+const WALKER2D_V5: &[Body] = &[
     ("torso", 3.665191, [0.0, 0.0, 1.25]),
     ("thigh", 4.057891, [0.0, 0.0, 1.05]),
     ("leg", 2.781357, [0.0, 0.0, 0.35]),
@@ -88,7 +91,7 @@ const WALKER2D_V5: &[(&str, f32, [f32; 3])] = &[
     ("leg_left", 2.781357, [0.0, 0.0, 0.35]),
     ("foot_left", 3.166725, [0.2, 0.0, 0.0]),
 ];
-const HUMANOID: &[(&str, f32, [f32; 3])] = &[
+const HUMANOID: &[Body] = &[
     ("torso", 8.907462, [0.0, 0.0, 1.4]),
     ("lwaist", 2.261947, [-0.01, 0.0, 1.14]),
     ("pelvis", 6.616194, [-0.009340003, 0.0, 0.9750013]),
@@ -103,23 +106,23 @@ const HUMANOID: &[(&str, f32, [f32; 3])] = &[
     ("left_upper_arm", 1.66108, [0.0, 0.17, 1.46]),
     ("left_lower_arm", 1.22954, [0.18, 0.35, 1.28]),
 ];
-const REACHER: &[(&str, f32, [f32; 3])] = &[
+const REACHER: &[Body] = &[
     ("body0", 0.03560472, [0.0, 0.0, 0.01]),
     ("body1", 0.03560472, [0.1, 0.0, 0.01]),
     ("fingertip", 0.00418879, [0.21, 0.0, 0.01]),
     ("target", 0.003053628, [0.1, -0.1, 0.01]),
 ];
-const INVERTED_PENDULUM: &[(&str, f32, [f32; 3])] = &[
+const INVERTED_PENDULUM: &[Body] = &[
     ("cart", 10.47198, [0.0, 0.0, 0.0]),
     ("pole", 5.018592, [0.0, 0.0, 0.0]),
 ];
-const INVERTED_DOUBLE_PENDULUM: &[(&str, f32, [f32; 3])] = &[
+const INVERTED_DOUBLE_PENDULUM: &[Body] = &[
     ("cart", 10.47198, [0.0, 0.0, 0.0]),
     ("pole", 4.198739, [0.0, 0.0, 0.0]),
     ("pole2", 4.198739, [0.0, 0.0, 0.6]),
 ];
 
-const MODELS: &[(&str, &[(&str, f32, [f32; 3])])] = &[
+const MODELS: &[(&str, &[Body])] = &[
     ("ant", ANT),
     ("half_cheetah", HALF_CHEETAH),
     ("hopper", HOPPER),

@@ -10,6 +10,7 @@ mod joints;
 mod kinematic;
 mod limits;
 mod meshes;
+mod mjcf;
 mod records;
 mod scenes;
 mod state;

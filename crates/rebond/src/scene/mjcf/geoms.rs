@@ -244,7 +244,7 @@ impl Importer {
     /// [`collision_groups`]).
     fn bits(&self, node: Node, name: &str) -> Result<u32, SceneError> {
         let value = self.defaults.number(node, name, 1.0)?;
-        if value >= 0.0 && value < 65536.0 && value.fract() == 0.0 {
+        if (0.0..65536.0).contains(&value) && value.fract() == 0.0 {
             Ok(value as u32)
         } else {
             let message = format!("rebond reads the bits 0 to 15 (0 to 65535), got {value}");

@@ -29,7 +29,7 @@ use parse::{
 };
 
 /// A link body of a chain of joints carries this share of its body's mass and inertia.
-pub const LINK_MASS_FRACTION: f32 = 0.01;
+const LINK_MASS_FRACTION: f32 = 0.01;
 
 /// The radius of a link's or a geomless body's sphere, m: it collides with nothing.
 const HIDDEN_SPHERE_RADIUS: f64 = 0.01;
