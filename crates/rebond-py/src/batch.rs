@@ -138,6 +138,17 @@ impl Batch {
         self.read(py, Quantity::AngularVelocity)
     }
 
+    /// Centres of mass, m: float32 array (count, bodies, 3).
+    fn centers_of_mass<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<f32>>> {
+        self.read(py, Quantity::CenterOfMass)
+    }
+
+    /// Inertia tensors about the centres of mass in world axes, kg·m², `R I Rᵀ` as xx, yy, zz,
+    /// xy, xz, yz: float32 array (count, bodies, 6); zeros for static and kinematic bodies.
+    fn inertias<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<f32>>> {
+        self.read(py, Quantity::Inertia)
+    }
+
     /// Sets every body's linear velocity in every world: array (count, bodies, 3).
     fn set_linear_velocities(&mut self, py: Python<'_>, a: &Bound<'_, PyAny>) -> PyResult<()> {
         self.write(py, a, Input::LinearVelocity, "set_linear_velocities")

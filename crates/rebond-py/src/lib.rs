@@ -5,6 +5,7 @@
 //! as scene files are and their errors are the command line's. The Python package around this
 //! module (`python/rebond`) re-exports it and carries the typed stubs.
 
+mod actuators;
 mod arrays;
 mod batch;
 mod dicts;

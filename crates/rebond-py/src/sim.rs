@@ -18,6 +18,11 @@ pub enum Quantity {
     LinearVelocity,
     /// Angular velocity, rad/s.
     AngularVelocity,
+    /// Centre of mass, m.
+    CenterOfMass,
+    /// Inertia about the centre of mass in world axes, kg·m²: `R I Rᵀ` as its six distinct
+    /// entries xx, yy, zz, xy, xz, yz (zero unless dynamic).
+    Inertia,
 }
 
 impl Quantity {
@@ -25,6 +30,7 @@ impl Quantity {
     pub fn width(self) -> usize {
         match self {
             Self::Rotation => 4,
+            Self::Inertia => 6,
             _ => 3,
         }
     }
@@ -257,6 +263,12 @@ impl Sim {
                 }
                 Quantity::AngularVelocity => {
                     slot.copy_from_slice(&body.angular_velocity().to_array());
+                }
+                Quantity::CenterOfMass => slot.copy_from_slice(&body.center_of_mass().to_array()),
+                Quantity::Inertia => {
+                    let inertia = body.world_inertia();
+                    let (x, y, z) = (inertia.x_axis, inertia.y_axis, inertia.z_axis);
+                    slot.copy_from_slice(&[x.x, y.y, z.z, y.x, z.x, z.y]);
                 }
             }
         }

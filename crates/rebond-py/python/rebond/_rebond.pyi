@@ -131,6 +131,19 @@ class World:
         """Velocities of the centres of mass, m/s: (bodies, 3)."""
     def angular_velocities(self) -> FloatArray:
         """Angular velocities, rad/s: (bodies, 3)."""
+    def centers_of_mass(self) -> FloatArray:
+        """Centres of mass, m: (bodies, 3)."""
+    def inertias(self) -> FloatArray:
+        """Inertias about the centres of mass in world axes, kg·m², ``R I Rᵀ`` as xx, yy, zz,
+        xy, xz, yz: (bodies, 6); zeros for static and kinematic bodies."""
+    def actuator_names(self) -> list[str]:
+        """Actuator names in scene order, the order of ``set_controls``."""
+    def ctrl_ranges(self) -> FloatArray:
+        """Each actuator's control range ``[lo, hi]``: (actuators, 2); ``[-inf, inf]`` if none."""
+    def set_controls(self, u: npt.ArrayLike) -> None:
+        """Sets every actuator's control (actuators,), clamped to its range: a ``motor`` gives
+        its joint ``gear * u``, a ``position`` actuator a position motor towards ``u / gear``, a
+        ``velocity`` actuator a velocity motor towards ``u / gear``."""
     def set_linear_velocities(self, a: npt.ArrayLike) -> None:
         """Sets every body's linear velocity, m/s: (bodies, 3)."""
     def set_angular_velocities(self, a: npt.ArrayLike) -> None:
@@ -253,6 +266,15 @@ class Batch:
         """(count, bodies, 3)."""
     def angular_velocities(self) -> FloatArray:
         """(count, bodies, 3)."""
+    def centers_of_mass(self) -> FloatArray:
+        """(count, bodies, 3)."""
+    def inertias(self) -> FloatArray:
+        """(count, bodies, 6): xx, yy, zz, xy, xz, yz in world axes."""
+    def actuator_names(self) -> list[str]: ...
+    def ctrl_ranges(self) -> FloatArray:
+        """(actuators, 2), the same in every world."""
+    def set_controls(self, u: npt.ArrayLike) -> None:
+        """(count, actuators), each world as ``World.set_controls``."""
     def set_linear_velocities(self, a: npt.ArrayLike) -> None:
         """(count, bodies, 3)."""
     def set_angular_velocities(self, a: npt.ArrayLike) -> None:

@@ -204,18 +204,11 @@ class VectorEnv(gymnasium.vector.VectorEnv):
                 f"actions: got an array of shape {actions.shape}, expected "
                 f"{self.action_space.shape} (num_envs, *action_shape)"
             )
-        for _ in range(self.frame_skip):
-            self.act(actions)
-            self.batch.step(1)
-        self.episode_steps += 1
-        observations = self._observations()
-        rewards = np.asarray(self.reward(actions, observations), dtype=np.float64)
-        terminated = np.asarray(self.terminated(observations), dtype=bool)
+        observations, rewards, terminated, infos = self._advance(actions)
         if self.max_episode_steps is None:
             truncated = np.zeros(self.num_envs, dtype=bool)
         else:
             truncated = self.episode_steps >= self.max_episode_steps
-        infos = dict(self.info(observations))
         done = terminated | truncated
         if done.any():
             finished = np.flatnonzero(done)
@@ -238,6 +231,19 @@ class VectorEnv(gymnasium.vector.VectorEnv):
             return None
         return tuple(self._pictures.of_batch(self.batch, range(self.num_envs)))
 
+    def _advance(self, actions: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict]:
+        """``frame_skip`` steps with ``act`` before each, one more step in every episode, then
+        the observations, rewards, terminations and info of every environment, without
+        restarting any."""
+        for _ in range(self.frame_skip):
+            self.act(actions)
+            self.batch.step(1)
+        self.episode_steps += 1
+        observations = self._observations()
+        rewards = np.asarray(self.reward(actions, observations), dtype=np.float64)
+        terminated = np.asarray(self.terminated(observations), dtype=bool)
+        return observations, rewards, terminated, dict(self.info(observations))
+
     def _restart(self, indices: np.ndarray) -> None:
         """Puts the worlds at ``indices`` back in the starting state, with reset noise."""
         self.batch.reset(indices)
@@ -253,3 +259,7 @@ class VectorEnv(gymnasium.vector.VectorEnv):
             f"rebond.gym.VectorEnv(num_envs={self.num_envs}, bodies={self.batch.body_count}, "
             f"timestep={self.batch.timestep})"
         )
+
+
+# Gymnasium's MuJoCo tasks, registered as ``rebond/<Task>-v0`` (after VectorEnv, which they use).
+from . import mujoco_tasks  # noqa: E402,F401
