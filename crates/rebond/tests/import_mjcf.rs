@@ -428,6 +428,15 @@ fn bad_files_are_refused_with_their_path() {
             r#"<mujoco><asset><mesh name="m" file="missing.stl"/></asset></mujoco>"#,
             "mujoco/asset/mesh[name=m]@file: cannot load mesh file",
         ),
+        (
+            // A joint with no body to belong to.
+            r#"<mujoco><worldbody><joint name="j"/></worldbody></mujoco>"#,
+            "mujoco/worldbody/joint[name=j]:",
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><freejoint/><geom type="hfield" size="1"/></body></worldbody></mujoco>"#,
+            "mujoco/worldbody/body[name=b]/geom@type:",
+        ),
         (r#"<mujoco><worldbody>"#, "invalid XML"),
     ];
     for (xml, start) in cases {

@@ -161,3 +161,29 @@ fn controls_are_checked_before_anything_changes() {
         assert_eq!(error.place, place, "{actuator}: {error}");
     }
 }
+
+#[test]
+fn a_velocity_actuator_is_a_damper_towards_its_speed() {
+    let mut scene = wheel(r#"{ "joint": "axle", "type": "velocity", "kv": 2 }"#).unwrap();
+    assert_eq!(
+        scene.actuators()[0].kind,
+        ActuatorKind::Velocity { kv: 2.0 }
+    );
+    scene.set_controls(&[3.0]).unwrap();
+    let axle = scene.joint_handle("axle").unwrap();
+    // I ω̇ = kv (u − ω): ω = u (1 − e^(−t kv / I)), time constant 0.5 / 2 = 0.25 s.
+    // Steps of 0.01 s: 25 to 0.25 s, 175 more to 2 s.
+    for (steps, time) in [(25, 0.25_f32), (175, 2.0)] {
+        for _ in 0..steps {
+            scene.step().unwrap();
+        }
+        let speed = scene.world().joint_velocity(axle).unwrap();
+        let expected = 3.0 * (1.0 - (-time / 0.25).exp());
+        // The implicit damping of 8 substeps of 1/800 s decays as (1 + h/τ)^(−n), 0.25 % off
+        // e^(−t/τ) at t = τ: 3 × 0.37 × 0.0025 ≈ 0.003 rad/s.
+        assert!(
+            (speed - expected).abs() < 0.01,
+            "at {time} s: {speed} vs {expected}"
+        );
+    }
+}

@@ -155,13 +155,13 @@ fn negative_joint_stiffness_damping_max_force_friction_and_break_values_are_refu
 #[test]
 fn joint_fields_of_another_joint_type_are_refused() {
     assert_refused(
-        "joint_spring_on_revolute",
+        "joint_spring_on_ball",
         &scene_with_joint(
-            r#"{"type": "revolute", "body_a": "door", "body_b": "ball", "axis": [0, 1, 0],
+            r#"{"type": "ball", "body_a": "door", "body_b": "ball",
                 "spring": {"stiffness": 10, "damping": 1}}"#,
         ),
         "joints[2].spring",
-        "does not apply to a revolute joint",
+        "does not apply to a ball joint",
     );
     assert_refused(
         "joint_motor_on_ball",

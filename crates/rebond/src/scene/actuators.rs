@@ -3,6 +3,7 @@
 
 use crate::error::{check_finite, Error, ErrorKind};
 use crate::joint::{JointHandle, Motor};
+use crate::limits::MAX_FORCE;
 use crate::world::World;
 
 /// How an actuator turns its control `u` (clamped to its range) into its joint's motor, with
@@ -20,10 +21,11 @@ pub enum ActuatorKind {
         /// Damping, N·m·s/rad or N·s/m, ≥ 0.
         kv: f32,
     },
-    /// A velocity motor towards `q̇ = u / g`, without force limit. MuJoCo's velocity actuator
-    /// is the damper `g kv (u − g q̇)` instead; rebond's motor reaches the speed within a step.
+    /// MuJoCo's velocity actuator, a damper towards `q̇ = u / g`: the torque
+    /// `g kv (u − g q̇)`, made of a torque motor `g kv u` and the joint damping `g² kv` added
+    /// to the joint's own when the scene is loaded.
     Velocity {
-        /// MuJoCo's velocity gain, N·m·s/rad or N·s/m, ≥ 0, kept for the record.
+        /// Velocity gain, N·m·s/rad or N·s/m, ≥ 0.
         kv: f32,
     },
 }
@@ -68,9 +70,29 @@ impl Actuator {
             ActuatorKind::Position { kp, kv } => {
                 Motor::position(u / gear, kp * gear * gear, kv * gear * gear, f32::INFINITY)
             }
-            ActuatorKind::Velocity { .. } => Motor::velocity(u / gear, f32::INFINITY),
+            ActuatorKind::Velocity { kv } => Motor::torque(gear * kv * u),
         }
     }
+}
+
+/// Gives each velocity actuator's joint its share of damping, `gear² kv` (see
+/// [`ActuatorKind::Velocity`]); an error names `actuators[i]` when it is beyond the engine's
+/// limit.
+pub(super) fn add_damping(world: &mut World, actuators: &[Actuator]) -> crate::Result<()> {
+    for (index, actuator) in actuators.iter().enumerate() {
+        if let ActuatorKind::Velocity { kv } = actuator.kind {
+            let damping = actuator.gear * actuator.gear * kv;
+            if !damping.is_finite() || damping > MAX_FORCE {
+                let kind = ErrorKind::TooLarge {
+                    value: damping,
+                    max: MAX_FORCE,
+                };
+                return Err(Error::new(format!("actuators[{index}].kv"), kind));
+            }
+            world.add_joint_damping(actuator.joint, damping)?;
+        }
+    }
+    Ok(())
 }
 
 /// Sets the motors of `actuators` in `world` from `controls`, one per actuator in order; every

@@ -376,6 +376,7 @@ impl Scene {
             let actuator = actuator(entry, &place, name, find_joint)?;
             scene.actuators.push(actuator);
         }
+        actuators::add_damping(&mut scene.world, &scene.actuators).map_err(SceneError::from)?;
         let zeros = vec![0.0; scene.actuators.len()];
         actuators::apply(&mut scene.world, &scene.actuators, &zeros).map_err(SceneError::from)?;
         if let Some(entry) = &file.character {

@@ -8,7 +8,7 @@ use crate::error::{Error, ErrorKind, Result};
 use crate::filter::ordered;
 use crate::joint::{
     GenericAxis, GenericCoordinates, GenericFrame, Joint, JointBreakEvent, JointDesc, JointHandle,
-    JointPlacement, JointType, Motor,
+    JointPlacement, JointType, Motor, Spring,
 };
 use crate::math::{Quat, Vec3};
 
@@ -209,6 +209,20 @@ impl World {
     /// Number of joints, broken ones included.
     pub fn joint_count(&self) -> usize {
         self.joints.len()
+    }
+
+    /// Adds `damping` (N·m·s/rad or N·s/m, finite, ≥ 0) to a revolute or prismatic joint's
+    /// passive damping, a spring of stiffness 0 when it has none: a scene's velocity actuator,
+    /// MuJoCo's `gear² kv`, is this damping plus a torque motor.
+    pub(crate) fn add_joint_damping(&mut self, handle: JointHandle, damping: f32) -> Result<()> {
+        let joint = self.joints.get_mut(handle).ok_or_else(stale_joint)?;
+        let spring = joint.desc.spring.get_or_insert(Spring {
+            stiffness: 0.0,
+            damping: 0.0,
+            reference: 0.0,
+        });
+        spring.damping += damping;
+        Ok(())
     }
 
     /// Replaces a revolute or prismatic joint's motor (`None` removes it) and wakes its bodies;
