@@ -224,6 +224,13 @@ fn gymnasium_actuators_and_tendons_are_read() {
     assert_eq!(couplings[0]["name"], "left_hipknee");
     assert_eq!(couplings[0]["joints"][0]["joint"], "left_hip_y");
     assert_eq!(couplings[0]["joints"][0]["coefficient"], -1.0);
+    // MuJoCo never lets a body touch its parent: the thigh and the pelvis, three hinges and two
+    // links apart, do not collide; the torso, a child of the world, is free to.
+    let world = humanoid.world();
+    let body = |name: &str| humanoid.body_handle(name).unwrap();
+    assert!(world.is_pair_ignored(body("right_thigh"), body("pelvis")));
+    assert!(world.is_pair_ignored(body("lwaist"), body("torso")));
+    assert!(!world.is_pair_ignored(body("right_thigh"), body("left_thigh")));
 }
 
 /// The mass of a sphere of radius `r` at MuJoCo's default density, 1000 kg/m³.

@@ -187,3 +187,42 @@ fn a_velocity_actuator_is_a_damper_towards_its_speed() {
         );
     }
 }
+
+#[test]
+fn ignored_pairs_never_collide_and_name_their_bodies() {
+    // Two unit boxes placed 0.5 m into each other, no gravity: a contact would push them apart
+    // at once; an ignored pair leaves them exactly where they are.
+    let scene_with = |pairs: &str| {
+        let json = format!(
+            r#"{{ "gravity": [0, 0, 0], "ignored_pairs": {pairs}, "bodies": [
+                {{ "name": "a", "shape": {{ "type": "box", "half_extents": [0.5, 0.5, 0.5] }} }},
+                {{ "name": "b", "shape": {{ "type": "box", "half_extents": [0.5, 0.5, 0.5] }},
+                   "position": [0.5, 0, 0] }} ] }}"#
+        );
+        Scene::from_json(json.as_bytes())
+    };
+    let mut scene = scene_with(r#"[["a", "b"]]"#).unwrap();
+    for _ in 0..60 {
+        scene.step().unwrap();
+    }
+    let b = scene.body_handle("b").unwrap();
+    assert_eq!(
+        scene.world().body(b).unwrap().position(),
+        Vec3::new(0.5, 0.0, 0.0)
+    );
+    let mut touching = scene_with("[]").unwrap();
+    for _ in 0..60 {
+        touching.step().unwrap();
+    }
+    let b = touching.body_handle("b").unwrap();
+    assert!(touching.world().body(b).unwrap().position().x > 0.9);
+    let error = scene_with(r#"[["a", "c"]]"#).unwrap_err();
+    assert_eq!(error.place, "ignored_pairs[0][1]");
+    assert!(
+        error.to_string().contains("no body is named \"c\""),
+        "{error}"
+    );
+    let error = scene_with(r#"[["a", "a"]]"#).unwrap_err();
+    assert_eq!(error.place, "ignored_pairs[0][1]", "{error}");
+    assert!(error.message.contains("itself"), "{error}");
+}

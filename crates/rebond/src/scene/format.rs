@@ -80,6 +80,9 @@ pub(super) struct SceneFile {
     pub(super) couplings: Option<Vec<JsonObject<CouplingEntry>>>,
     /// Extension of the contract: the body a player drives as a character, and how.
     pub(super) character: Option<JsonObject<CharacterEntry>>,
+    /// Extension of the contract: pairs of bodies, by name, that never collide with each other
+    /// (MuJoCo's parent and child bodies).
+    pub(super) ignored_pairs: Option<Vec<[String; 2]>>,
     /// Extension of the contract: MuJoCo's actuators, one control value each, on joints.
     pub(super) actuators: Option<Vec<JsonObject<ActuatorEntry>>>,
 }

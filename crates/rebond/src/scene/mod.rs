@@ -357,6 +357,9 @@ impl Scene {
         for entry in file.couplings.iter().flatten() {
             scene.push_coupling(entry)?;
         }
+        for (index, pair) in file.ignored_pairs.iter().flatten().enumerate() {
+            scene.ignore_pair(pair, &format!("ignored_pairs[{index}]"))?;
+        }
         for (index, entry) in file.actuators.iter().flatten().enumerate() {
             let place = format!("actuators[{index}]");
             let name = entry
@@ -483,6 +486,28 @@ impl Scene {
     pub fn coupling_handle(&self, name: &str) -> Option<CouplingHandle> {
         let coupling = self.couplings.iter().find(|c| c.name == name)?;
         Some(coupling.handle)
+    }
+
+    /// Keeps the two bodies named by `pair` from ever colliding with each other; an unknown
+    /// name, or one body named twice, is an error at `place[i]`.
+    fn ignore_pair(&mut self, pair: &[String; 2], place: &str) -> Result<(), SceneError> {
+        let [a, b] = [0, 1].map(|side| {
+            let name = &pair[side];
+            (self.body_handle(name)).ok_or_else(|| {
+                SceneError::new(
+                    format!("{place}[{side}]"),
+                    format!("no body is named \"{name}\""),
+                )
+            })
+        });
+        let (a, b) = (a?, b?);
+        if a == b {
+            let message = "a body cannot be paired with itself";
+            return Err(SceneError::new(format!("{place}[1]"), message));
+        }
+        self.world
+            .set_pair_ignored(a, b, true)
+            .map_err(|error| SceneError::from(error.within(place)))
     }
 
     /// The world holding every body of the scene.

@@ -226,6 +226,8 @@ pub(super) struct Importer {
     turn: DQuat,
     /// Bodies read so far: the next one's MuJoCo id is one more (the world is 0).
     body_count: usize,
+    /// Each body with a moving parent, and that parent: MuJoCo never lets them collide.
+    parent_pairs: Vec<Value>,
 }
 
 /// A body read from the tree, before it is written.
@@ -323,6 +325,7 @@ pub(super) fn import(bytes: &[u8], folder: &Path) -> Result<Value, LoadError> {
         joint_names: HashSet::new(),
         turn: z_up_to_y_up(),
         body_count: 0,
+        parent_pairs: Vec::new(),
     };
     let mut scene = Map::new();
     scene.insert("friction_combine".into(), json!("max"));
@@ -367,6 +370,9 @@ pub(super) fn import(bytes: &[u8], folder: &Path) -> Result<Value, LoadError> {
     for node in root.children().filter(|node| node.has_tag_name("tendon")) {
         let couplings = importer.couplings(node, &references)?;
         scene.insert("couplings".into(), Value::Array(couplings));
+    }
+    if !importer.parent_pairs.is_empty() {
+        scene.insert("ignored_pairs".into(), Value::Array(importer.parent_pairs));
     }
     Ok(Value::Object(scene))
 }
@@ -541,6 +547,9 @@ impl Importer {
             Some(name) => name.to_owned(),
             None => format!("body{}", self.body_count),
         };
+        if let Some(parent) = parent {
+            self.parent_pairs.push(json!([name, parent]));
+        }
         let frame = parent_frame.then(&frame(node, &self.defaults, &self.compiler)?);
         let mut joints = Vec::new();
         for child in node
