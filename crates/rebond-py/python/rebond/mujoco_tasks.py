@@ -98,6 +98,11 @@ class _Model:
         degrees = compiler is None or compiler.get("angle", "degree") == "degree"
         self.free_root: Optional[str] = None
         coordinates: list[tuple[str, float]] = []
+        # Each joint's passive damping (its own, or the top-level default's), which rebond's joint
+        # force holds and MuJoCo's constraint force does not.
+        default_joint = root.find("default/joint")
+        default_damping = 0.0 if default_joint is None else float(default_joint.get("damping", "0"))
+        dampings: list[float] = []
         self.sites: dict[str, tuple[str, np.ndarray]] = {}
         self.mujoco_bodies: list[str] = []
         # The importer's names (docs/mjcf.md): an unnamed body is `body<k>` (its MuJoCo body id,
@@ -115,6 +120,7 @@ class _Model:
                 if element.get("type", "hinge") == "hinge" and degrees:
                     reference = np.radians(reference)
                 coordinates.append((joint_name, reference))
+                dampings.append(float(element.get("damping", default_damping)))
             for element in body:
                 if element.tag == "site":
                     position = np.array(element.get("pos", "0 0 0").split(), dtype=float)
@@ -126,6 +132,7 @@ class _Model:
             raise ValueError(f"{path}: the rebond scene has no joint named {missing}")
         self.joints = np.array([joint_names.index(name) for name, _ in coordinates], dtype=int)
         self.joint_names = [name for name, _ in coordinates]
+        self.dampings = np.array(dampings)
         self.body_index = {name: index for index, name in enumerate(body_names)}
         # Actuated joints in actuator order, for qfrc_actuator.
         self.actuated: list[tuple[int, float]] = []
@@ -405,12 +412,13 @@ class MujocoTaskVectorEnv(VectorEnv):
         if task == "InvertedPendulum":
             return np.concatenate([qpos, qvel], axis=1)
         if task == "InvertedDoublePendulum":
-            # The slider's force on the cart along the rail is its limit's and its motor's:
-            # MuJoCo's constraint force is the limit's alone.
+            # The slider's force on the cart along the rail is its limit's, its motor's and its
+            # damping's `-d v`: MuJoCo's constraint force is the limit's alone.
             column = self.model.joint_names.index("slider")
             slider = self.model.joints[column]
             force = np.asarray(self.batch.joint_forces()[:, slider], dtype=np.float64)
-            along = (force @ _TO_MJCF.T)[:, 0] - self._actuator_forces()[:, column]
+            passive = -self.model.dampings[column] * qvel[:, column]
+            along = (force @ _TO_MJCF.T)[:, 0] - self._actuator_forces()[:, column] - passive
             constraint = along[:, None]
             return np.concatenate(
                 [
