@@ -33,7 +33,8 @@ pub enum ErrorKind {
     EmptyMesh,
     /// A mesh triangle's material index that names no material of the mesh's table.
     MaterialOutOfRange { index: u32, len: usize },
-    /// A list that must give one value per item (a material per triangle) of another length.
+    /// A list that must give one value per item (a material per triangle, a control per actuator)
+    /// of another length.
     WrongCount { expected: usize, got: usize },
     /// Heightfield rows that are too few (fewer than 2), too short (fewer than 2 samples) or of
     /// unequal lengths.
@@ -55,6 +56,8 @@ pub enum ErrorKind {
     NotForJointType(&'static str),
     /// A joint joining a body to itself.
     JointToItself,
+    /// A motor on a generic joint's axis that is locked.
+    LockedAxis,
     /// `[min, max]` limits with `min > max`.
     InvertedLimits { min: f32, max: f32 },
     /// A vector's length, or a scalar's magnitude, past the engine's limit (see
@@ -67,6 +70,11 @@ pub enum ErrorKind {
     /// A shape that must be convex and bounded (a character's) is a halfspace, a triangle mesh
     /// or a heightfield.
     NotConvex,
+    /// An inertia tensor that is not symmetric and positive definite (its principal moments
+    /// must all be positive).
+    NotPositiveDefinite,
+    /// A field that cannot be given together with the named one.
+    ExcludedBy(&'static str),
 }
 
 /// An invalid input, with the place it was found.
@@ -139,7 +147,7 @@ impl fmt::Display for ErrorKind {
             Self::WrongCount { expected, got } => {
                 write!(
                     f,
-                    "expected {expected} values (one per triangle), got {got}"
+                    "expected {expected} values (one per item: triangle, actuator), got {got}"
                 )
             }
             Self::InvalidHeightField => write!(
@@ -158,6 +166,7 @@ impl fmt::Display for ErrorKind {
             Self::Missing => write!(f, "required"),
             Self::NotForJointType(name) => write!(f, "does not apply to a {name} joint"),
             Self::JointToItself => write!(f, "a joint cannot join a body to itself"),
+            Self::LockedAxis => write!(f, "a motor needs a free or limited axis, not a locked one"),
             Self::InvertedLimits { min, max } => {
                 write!(f, "min must not exceed max, got [{min}, {max}]")
             }
@@ -173,6 +182,11 @@ impl fmt::Display for ErrorKind {
                 "must be a convex shape or a compound of them, not a halfspace, trimesh or \
                  heightfield"
             ),
+            Self::NotPositiveDefinite => write!(
+                f,
+                "inertia must be symmetric with positive principal moments (positive definite)"
+            ),
+            Self::ExcludedBy(other) => write!(f, "cannot be given together with `{other}`"),
             Self::NotIncreasing { value, previous } => {
                 write!(
                     f,

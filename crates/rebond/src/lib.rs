@@ -75,7 +75,8 @@ pub use events::{ContactEvent, ContactEventKind, ContactForceEvent, SensorEvent,
 pub use filter::InteractionGroups;
 pub use hooks::{ContactHooks, ContactModification};
 pub use joint::{
-    Joint, JointBreakEvent, JointDesc, JointHandle, JointPlacement, JointType, Motor, Spring,
+    AxisFreedom, GenericAxis, GenericCoordinates, Joint, JointBreakEvent, JointDesc, JointHandle,
+    JointPlacement, JointType, Motor, Spring,
 };
 pub use mass::MassProperties;
 pub use material::CombineRule;

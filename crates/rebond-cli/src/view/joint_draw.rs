@@ -49,7 +49,7 @@ pub fn push_joints(geometry: &mut DebugGeometry, world: &World, start: &World) {
                     lines(anchor + low * axis, anchor + high * axis, JOINT_LIMIT);
                 }
             }
-            JointType::Fixed | JointType::Ball | JointType::Revolute => {
+            JointType::Fixed | JointType::Ball | JointType::Revolute | JointType::Generic => {
                 if apart.length() > SHOWN_GAP {
                     lines(anchor, placement.anchor_b, JOINT_GAP);
                 }

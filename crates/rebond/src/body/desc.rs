@@ -2,6 +2,7 @@
 
 use super::{BodyType, KinematicPath, LockedAxes};
 use crate::filter::InteractionGroups;
+use crate::mass::MassProperties;
 use crate::math::{Quat, Vec3};
 use crate::shape::Shape;
 
@@ -30,6 +31,12 @@ pub struct BodyDesc {
     pub density: f32,
     /// Mass, kg: overrides `density`, the inertia is scaled to match.
     pub mass: Option<f32>,
+    /// Explicit mass, centre of mass (body frame, m) and inertia (about the centre of mass, body
+    /// axes, kg·m²), default `None`: they replace what the shape and `density` give, for a model
+    /// whose inertia is measured or computed elsewhere (an MJCF `inertial`, a URDF link). Dynamic
+    /// bodies only; checked when added: mass within the engine's limits, everything finite, the
+    /// inertia symmetric and positive definite. Not together with `mass`.
+    pub mass_properties: Option<MassProperties>,
     /// Coulomb friction coefficient, ≥ 0, default 0.5.
     pub friction: f32,
     /// Coefficient of restitution, 0 to 1, default 0.
@@ -104,6 +111,7 @@ impl BodyDesc {
             angular_velocity: Vec3::ZERO,
             density: DEFAULT_DENSITY,
             mass: None,
+            mass_properties: None,
             friction: DEFAULT_FRICTION,
             restitution: 0.0,
             rolling_resistance: 0.0,
@@ -174,6 +182,12 @@ impl BodyDesc {
     /// Sets the mass, overriding the density.
     pub fn mass(mut self, mass: f32) -> Self {
         self.mass = Some(mass);
+        self
+    }
+
+    /// Sets explicit mass properties, overriding the shape's and the density's.
+    pub fn mass_properties(mut self, properties: MassProperties) -> Self {
+        self.mass_properties = Some(properties);
         self
     }
 

@@ -142,6 +142,12 @@ impl RigidBody {
             check_positive("mass", mass)?;
             check_range("mass", mass, MIN_MASS, MAX_MASS)?;
         }
+        if let Some(properties) = &desc.mass_properties {
+            if desc.mass.is_some() {
+                return Err(Error::new("mass", ErrorKind::ExcludedBy("mass_properties")));
+            }
+            check_mass_properties(properties).map_err(|error| error.within("mass_properties"))?;
+        }
         check_non_negative("friction", desc.friction)?;
         check_range("restitution", desc.restitution, 0.0, 1.0)?;
         check_non_negative("rolling_resistance", desc.rolling_resistance)?;
@@ -743,6 +749,14 @@ impl RigidBody {
 /// density (`shape.radius`, `shape.half_extents`, …); otherwise a mass or inertia that is not
 /// positive and finite (field `mass` when given, `density` otherwise).
 fn dynamic_mass_properties(desc: &BodyDesc) -> Result<(MassProperties, Mat3)> {
+    if let Some(properties) = desc.mass_properties {
+        // Checked positive definite by `check_mass_properties`; the spread is bounded as for
+        // every body so that the solver keeps its conditioning.
+        let properties = properties.with_inertia_spread_at_most(MAX_INERTIA_RATIO);
+        let inverse = inverse_inertia(&properties)
+            .ok_or_else(|| Error::new("mass_properties.inertia", ErrorKind::NotPositiveDefinite))?;
+        return Ok((properties, inverse));
+    }
     let properties = desc.shape.mass_properties(desc.density).ok_or_else(|| {
         let kind = if desc.shape.is_triangulated() {
             ErrorKind::MeshOnDynamicBody
@@ -781,6 +795,27 @@ fn dynamic_mass_properties(desc: &BodyDesc) -> Result<(MassProperties, Mat3)> {
         "density"
     };
     Err(Error::new(field, ErrorKind::InvalidMass))
+}
+
+/// Checks explicit mass properties: a mass within the engine's limits, a finite centre of mass
+/// within [`MAX_SIZE`] of the origin, a finite symmetric inertia with positive principal moments
+/// (Sylvester's criterion on the leading minors, in `f64`).
+fn check_mass_properties(properties: &MassProperties) -> Result<()> {
+    check_positive("mass", properties.mass)?;
+    check_range("mass", properties.mass, MIN_MASS, MAX_MASS)?;
+    check_length("center_of_mass", properties.center_of_mass, MAX_SIZE)?;
+    let inertia = properties.inertia.as_dmat3();
+    if !properties.inertia.is_finite() {
+        return Err(Error::new("inertia", ErrorKind::NotFinite));
+    }
+    let symmetric = inertia.x_axis.y == inertia.y_axis.x
+        && inertia.x_axis.z == inertia.z_axis.x
+        && inertia.y_axis.z == inertia.z_axis.y;
+    let minor = inertia.x_axis.x * inertia.y_axis.y - inertia.x_axis.y * inertia.y_axis.x;
+    if !(symmetric && inertia.x_axis.x > 0.0 && minor > 0.0 && inertia.determinant() > 0.0) {
+        return Err(Error::new("inertia", ErrorKind::NotPositiveDefinite));
+    }
+    Ok(())
 }
 
 /// The inverse inertia, when the mass and the inertia are positive, finite and invertible. Where

@@ -14,11 +14,26 @@
 //! | [`JointType::Revolute`] | the anchor point and the axis direction | rotation about the axis |
 //! | [`JointType::Prismatic`] | the relative rotation and the line of the axis | sliding along the axis |
 //! | [`JointType::Distance`] | the distance between two anchors | everything else |
+//! | [`JointType::Generic`] | each of six axes of a joint frame chosen locked | the axes chosen free or limited |
 //!
 //! Joints are solved in the same soft step as contacts (`docs/joints.md` gives each one's
 //! equations): their velocity constraints are rigid, and their position errors are corrected by a
 //! stiff spring ([`crate::WorldSettings::joint_hertz`]). Springs and position motors are soft by
 //! design, with the stiffness and damping given.
+//!
+//! Revolute and prismatic joints also take a passive [`Spring`] on their coordinate
+//! (`−k (q − r) − d q̇`, MuJoCo's joint stiffness and damping) and an
+//! [`armature`](JointDesc::armature) (an inertia added to the coordinate, MuJoCo's armature).
+//!
+//! A [generic joint](JointType::Generic) has a frame ([`JointDesc::frame`]) and six axes
+//! ([`GenericAxis`]): `x`, `y`, `z`, the slide of `body_b`'s anchor from `body_a`'s along the
+//! frame's axes as fixed in `body_a`, and `rx`, `ry`, `rz`, rotations about them. Each is locked,
+//! free or limited ([`AxisFreedom`]) and a free or limited one may have a motor
+//! ([`JointDesc::motors`]). [`crate::World::generic_joint_coordinates`] reads the six
+//! coordinates: the slides, m, and for the rotation `d` of `body_b` relative to `body_a` since
+//! the joint was made, in the joint frame (`w ≥ 0`), the angles `2 atan2(dᵢ, d_w)`, rad: each
+//! exact when it is the only rotation left free, and the twist–swing decomposition's
+//! components otherwise.
 
 mod set;
 
@@ -31,7 +46,7 @@ use crate::error::{
 };
 use crate::error::{check_non_negative_or_infinite, check_range, Result};
 use crate::limits::{MAX_COORDINATE, MAX_FORCE, MAX_SPEED};
-use crate::math::{Quat, Vec3};
+use crate::math::{normalize_rotation, Quat, Vec3};
 use std::f32::consts::{PI, TAU};
 
 /// Names one joint of a [`crate::World`]. A handle to a removed joint stays invalid forever, even
@@ -62,11 +77,14 @@ pub enum JointType {
     Prismatic,
     /// Holds the distance between two anchor points.
     Distance,
+    /// Holds the axes of a joint frame chosen locked, limits those chosen limited, and leaves
+    /// the others free ([`JointDesc::axes`]).
+    Generic,
 }
 
 impl JointType {
     /// The name the scene format uses: `"fixed"`, `"ball"`, `"revolute"`, `"prismatic"`,
-    /// `"distance"`.
+    /// `"distance"`, `"generic"`.
     pub fn name(self) -> &'static str {
         match self {
             Self::Fixed => "fixed",
@@ -74,7 +92,79 @@ impl JointType {
             Self::Revolute => "revolute",
             Self::Prismatic => "prismatic",
             Self::Distance => "distance",
+            Self::Generic => "generic",
         }
+    }
+}
+
+/// One of a generic joint's six axes, in the joint frame ([`JointDesc::frame`]) as fixed in
+/// `body_a`: three slides and three rotations.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum GenericAxis {
+    /// The slide of `body_b`'s anchor from `body_a`'s along the frame's X axis, m.
+    X,
+    /// The same along Y, m.
+    Y,
+    /// The same along Z, m.
+    Z,
+    /// The rotation about the frame's X axis, rad.
+    RotX,
+    /// The rotation about Y, rad.
+    RotY,
+    /// The rotation about Z, rad.
+    RotZ,
+}
+
+impl GenericAxis {
+    /// The six axes, in the order of [`JointDesc::axes`] and of the coordinates.
+    pub const ALL: [Self; 6] = [
+        Self::X,
+        Self::Y,
+        Self::Z,
+        Self::RotX,
+        Self::RotY,
+        Self::RotZ,
+    ];
+
+    /// The name the scene format uses: `"x"`, `"y"`, `"z"`, `"rx"`, `"ry"`, `"rz"`.
+    pub fn name(self) -> &'static str {
+        ["x", "y", "z", "rx", "ry", "rz"][self.index()]
+    }
+
+    /// The axis of a scene-format name, `None` for a name that is not one of the six.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|axis| axis.name() == name)
+    }
+
+    /// Its place in [`Self::ALL`]: 0 to 2 the slides, 3 to 5 the rotations.
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
+    /// Whether it is a rotation (`rx`, `ry`, `rz`).
+    pub fn is_rotation(self) -> bool {
+        self.index() >= 3
+    }
+}
+
+/// What a generic joint does with one of its axes.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum AxisFreedom {
+    /// Held at its value when the joint was made (0), the default.
+    #[default]
+    Locked,
+    /// Free.
+    Free,
+    /// Free within `[min, max]`: m for a slide, rad for a rotation (within ±π).
+    Limited([f32; 2]),
+}
+
+impl AxisFreedom {
+    /// Whether the axis moves (free or limited), so that it may take a motor.
+    pub fn moves(self) -> bool {
+        self != Self::Locked
     }
 }
 
@@ -188,15 +278,24 @@ impl Motor {
     }
 }
 
-/// A distance joint's spring: force `−stiffness (d − length) − damping ḋ` along the line of the
-/// anchors.
+/// A joint's spring and damper on its coordinate. On a distance joint: force
+/// `−stiffness (d − length) − damping ḋ` along the line of the anchors, instead of a rigid
+/// length. On a revolute or prismatic joint: a passive torque or force
+/// `−stiffness (q − reference) − damping q̇` on the coordinate `q` of
+/// [`crate::World::joint_position`] (MuJoCo's joint `stiffness`, `springref` and `damping`),
+/// beside any motor; `stiffness` 0 is pure joint damping. It is integrated implicitly, so a
+/// stiff spring on a light body stays stable.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Spring {
-    /// N/m, ≥ 0.
+    /// N/m (distance, prismatic) or N·m/rad (revolute), ≥ 0.
     pub stiffness: f32,
-    /// N·s/m, ≥ 0.
+    /// N·s/m or N·m·s/rad, ≥ 0.
     pub damping: f32,
+    /// Revolute and prismatic joints: the coordinate the spring rests at, rad or m, within
+    /// ±[`MAX_COORDINATE`]; default 0 (the pose the joint was made at). Distance joints rest at
+    /// `length` and take 0 here.
+    pub reference: f32,
 }
 
 /// Everything needed to create a joint. Values are checked when the joint is added to a world;
@@ -231,8 +330,23 @@ pub struct JointDesc {
     pub motor: Option<Motor>,
     /// Distance joints: rest length, m, ≥ 0; `None` for the anchors' distance when added.
     pub length: Option<f32>,
-    /// Distance joints: a spring instead of a rigid length.
+    /// Distance joints: a spring instead of a rigid length. Revolute and prismatic joints: a
+    /// passive spring and damper on the coordinate, towards [`Spring::reference`].
     pub spring: Option<Spring>,
+    /// Revolute and prismatic joints: an inertia added to the joint's coordinate, kg·m² about
+    /// the hinge or kg along the slide, ≥ 0, default 0 (MuJoCo's `armature`: a rotor geared to
+    /// the joint). Each substep the joint's rate keeps the rotor's, which resists a change of it
+    /// with this inertia: a torque `τ` on a free hinge gives `θ̈ = τ / (I + armature)`.
+    pub armature: f32,
+    /// Generic joints: the world rotation of the joint frame when added; `None` for the
+    /// identity. Its axes, fixed in `body_a` then, are those of [`GenericAxis`].
+    pub frame: Option<Quat>,
+    /// Generic joints: each axis locked (the default), free or limited, in the order of
+    /// [`GenericAxis::ALL`].
+    pub axes: [AxisFreedom; 6],
+    /// Generic joints: a motor on each free or limited axis (a torque motor's `torque` is a
+    /// force, N, on a slide), in the order of [`GenericAxis::ALL`].
+    pub motors: [Option<Motor>; 6],
     /// Ball, revolute and prismatic joints: the most torque (N·m; prismatic: force, N) the
     /// joint's own friction opposes relative motion with, ≥ 0, default 0. Coulomb friction on the
     /// free motion: the joint holds still under a smaller load and slides against this one
@@ -269,6 +383,10 @@ impl JointDesc {
             motor: None,
             length: None,
             spring: None,
+            armature: 0.0,
+            frame: None,
+            axes: [AxisFreedom::Locked; 6],
+            motors: [None; 6],
             friction: 0.0,
             collide_connected: false,
             break_force: f32::INFINITY,
@@ -320,6 +438,41 @@ impl JointDesc {
         desc
     }
 
+    /// A generic joint at `anchor` with the identity frame and every axis locked; see
+    /// [`frame`](Self::frame), [`free`](Self::free), [`limit`](Self::limit) and
+    /// [`axis_motor`](Self::axis_motor).
+    pub fn generic(
+        body_a: impl Into<Option<BodyHandle>>,
+        body_b: BodyHandle,
+        anchor: Vec3,
+    ) -> Self {
+        Self::new(JointType::Generic, body_a, body_b, anchor)
+    }
+
+    /// Sets [`frame`](Self::frame).
+    pub fn frame(mut self, frame: Quat) -> Self {
+        self.frame = Some(frame);
+        self
+    }
+
+    /// Frees one axis of a generic joint ([`axes`](Self::axes)).
+    pub fn free(mut self, axis: GenericAxis) -> Self {
+        self.axes[axis.index()] = AxisFreedom::Free;
+        self
+    }
+
+    /// Limits one axis of a generic joint to `[min, max]` ([`axes`](Self::axes)).
+    pub fn limit(mut self, axis: GenericAxis, min: f32, max: f32) -> Self {
+        self.axes[axis.index()] = AxisFreedom::Limited([min, max]);
+        self
+    }
+
+    /// Sets the motor of one axis of a generic joint ([`motors`](Self::motors)).
+    pub fn axis_motor(mut self, axis: GenericAxis, motor: Motor) -> Self {
+        self.motors[axis.index()] = Some(motor);
+        self
+    }
+
     /// Sets [`axis`](Self::axis).
     pub fn axis(mut self, axis: Vec3) -> Self {
         self.axis = Some(axis);
@@ -357,8 +510,24 @@ impl JointDesc {
     }
 
     /// Sets [`spring`](Self::spring).
-    pub fn spring(mut self, stiffness: f32, damping: f32) -> Self {
-        self.spring = Some(Spring { stiffness, damping });
+    pub fn spring(self, stiffness: f32, damping: f32) -> Self {
+        self.spring_to(stiffness, damping, 0.0)
+    }
+
+    /// Sets [`spring`](Self::spring) with its [`reference`](Spring::reference) (revolute and
+    /// prismatic joints).
+    pub fn spring_to(mut self, stiffness: f32, damping: f32, reference: f32) -> Self {
+        self.spring = Some(Spring {
+            stiffness,
+            damping,
+            reference,
+        });
+        self
+    }
+
+    /// Sets [`armature`](Self::armature).
+    pub fn armature(mut self, armature: f32) -> Self {
+        self.armature = armature;
         self
     }
 
@@ -397,8 +566,17 @@ impl JointDesc {
                 Ok(())
             }
         };
-        use JointType::{Ball, Distance, Prismatic, Revolute};
+        use JointType::{Ball, Distance, Generic, Prismatic, Revolute};
         only("anchor_b", self.anchor_b.is_some(), &[Distance])?;
+        only("armature", self.armature != 0.0, &[Revolute, Prismatic])?;
+        only("frame", self.frame.is_some(), &[Generic])?;
+        let axes_set = self.axes.iter().any(|freedom| freedom.moves());
+        only("axes", axes_set, &[Generic])?;
+        only(
+            "motors",
+            self.motors.iter().any(Option::is_some),
+            &[Generic],
+        )?;
         only("axis", self.axis.is_some(), &[Ball, Revolute, Prismatic])?;
         only(
             "limits",
@@ -408,7 +586,11 @@ impl JointDesc {
         only("swing_limit", self.swing_limit.is_some(), &[Ball])?;
         only("twist_limits", self.twist_limits.is_some(), &[Ball])?;
         only("length", self.length.is_some(), &[Distance])?;
-        only("spring", self.spring.is_some(), &[Distance])?;
+        only(
+            "spring",
+            self.spring.is_some(),
+            &[Distance, Revolute, Prismatic],
+        )?;
         only(
             "friction",
             self.friction != 0.0,
@@ -457,6 +639,44 @@ impl JointDesc {
         if let Some(spring) = &self.spring {
             check_up_to("spring.stiffness", spring.stiffness, MAX_FORCE)?;
             check_up_to("spring.damping", spring.damping, MAX_FORCE)?;
+            if kind == Distance && spring.reference != 0.0 {
+                return Err(Error::new(
+                    "spring.reference",
+                    ErrorKind::NotForJointType(kind.name()),
+                ));
+            }
+            check_range(
+                "spring.reference",
+                spring.reference,
+                -MAX_COORDINATE,
+                MAX_COORDINATE,
+            )?;
+        }
+        check_up_to("armature", self.armature, MAX_FORCE)?;
+        if let Some(frame) = self.frame {
+            normalize_rotation("frame", frame)?;
+        }
+        for axis in GenericAxis::ALL {
+            let (freedom, motor) = (self.axes[axis.index()], self.motors[axis.index()]);
+            if let AxisFreedom::Limited(limits) = freedom {
+                let most = if axis.is_rotation() {
+                    PI
+                } else {
+                    MAX_COORDINATE
+                };
+                check_interval(
+                    &format!("axes.{}", axis.name()),
+                    limits,
+                    Some((-most, most)),
+                )?;
+            }
+            if let Some(motor) = motor {
+                let field = format!("motors.{}", axis.name());
+                if !freedom.moves() {
+                    return Err(Error::new(field, ErrorKind::LockedAxis));
+                }
+                motor.validate().map_err(|error| error.within(&field))?;
+            }
         }
         check_up_to("friction", self.friction, MAX_FORCE)?;
         check_non_negative_or_infinite("break_force", self.break_force)?;
@@ -604,6 +824,57 @@ pub(crate) fn twist_angle(relative: Quat, axis: Vec3) -> f32 {
 /// angle counted across turns, exact while it changes by less than half a turn between measures.
 pub(crate) fn unwrap_angle(angle: f32, previous: f32) -> f32 {
     angle + TAU * ((previous - angle) / TAU).round()
+}
+
+/// A generic joint's six coordinates and their rates, in the order of [`GenericAxis::ALL`]:
+/// what [`crate::World::generic_joint_coordinates`] returns.
+///
+/// - Slides `x`, `y`, `z`: `(p_B − p_A)·eᵢ`, m, with `p` the anchors and `eᵢ` the frame's axes
+///   as fixed in `body_a`; rates `(ṗ_B − ṗ_A)·eᵢ + (p_B − p_A)·(ω_A × eᵢ)`, m/s.
+/// - Rotations `rx`, `ry`, `rz`: with `d` the rotation of `body_b` relative to `body_a` since
+///   the joint was made, in the joint frame, `w ≥ 0`: `2 atan2(dᵢ, d_w)` in `(−π, π]`, rad, the
+///   exact angle when it is the only rotation the joint leaves (the others locked); rates
+///   `(ω_B − ω_A)·eᵢ`, rad/s.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct GenericCoordinates {
+    /// m (slides) and rad (rotations).
+    pub positions: [f32; 6],
+    /// m/s and rad/s.
+    pub velocities: [f32; 6],
+}
+
+/// A generic joint's frame at given poses: its axes in the world and its six coordinates.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct GenericFrame {
+    /// The frame's X, Y, Z axes as fixed in `body_a`, world frame (unit).
+    pub axes: [Vec3; 3],
+    /// The coordinates of [`GenericCoordinates::positions`].
+    pub positions: [f32; 6],
+}
+
+impl GenericFrame {
+    /// The frame of a joint whose anchors are apart by `separation` (`p_B − p_A`, world), for
+    /// the sides' rotations.
+    pub(crate) fn new(
+        frames: &JointFrames,
+        rotation_a: Quat,
+        rotation_b: Quat,
+        separation: Vec3,
+    ) -> Self {
+        let frame = rotation_a * frames.local_frame_a;
+        let axes = Vec3::AXES.map(|axis| frame * axis);
+        let relative = relative_rotation(frames, rotation_a, rotation_b);
+        // `F⁻¹ d F`: the same rotation with its axis in the joint frame; `w` is unchanged.
+        let inframe = frames.local_frame_a.inverse() * relative * frames.local_frame_a;
+        let half = Vec3::new(inframe.x, inframe.y, inframe.z);
+        let mut positions = [0.0; 6];
+        for (k, axis) in axes.into_iter().enumerate() {
+            positions[k] = separation.dot(axis);
+            positions[3 + k] = 2.0 * half[k].atan2(inframe.w);
+        }
+        Self { axes, positions }
+    }
 }
 
 /// Where a joint stands now, world frame: what [`crate::World::joint_placement`] returns.

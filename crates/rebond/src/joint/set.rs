@@ -7,7 +7,7 @@ use crate::body::{BodyHandle, RigidBody};
 use crate::filter::ordered;
 #[cfg(feature = "serde")]
 use crate::limits::MAX_SOLVER_IMPULSE;
-use crate::math::{Quat, Vec3};
+use crate::math::{normalize_rotation, Quat, Vec3};
 
 /// What a joint fixes to each body when it is added: anchors and axes in each body's frame, and
 /// the relative rotation the angles are measured from. The world side (no `body_a`) has the
@@ -24,6 +24,8 @@ pub(crate) struct JointFrames {
     pub local_axis_b: Vec3,
     /// `q_A⁻¹ q_B` when added: the relative rotation of zero angle.
     pub reference_rotation: Quat,
+    /// Generic joints: the joint frame in `body_a`'s axes (identity for the other types).
+    pub local_frame_a: Quat,
     /// Distance joints: the rest length, m.
     pub length: f32,
 }
@@ -179,7 +181,12 @@ impl JointSet {
         let (com_b, rotation_b) = frame(Some(body_b));
         let anchor_b = desc.anchor_b.unwrap_or(desc.anchor);
         let axis = axis.unwrap_or(Vec3::X);
+        let frame = desc
+            .frame
+            .and_then(|frame| normalize_rotation("frame", frame).ok())
+            .unwrap_or(Quat::IDENTITY);
         let frames = JointFrames {
+            local_frame_a: (rotation_a.inverse() * frame).normalize(),
             local_anchor_a: rotation_a.inverse() * (desc.anchor - com_a),
             local_anchor_b: rotation_b.inverse() * (anchor_b - com_b),
             local_axis_a: rotation_a.inverse() * axis,
@@ -362,6 +369,7 @@ impl JointSet {
                 .chain(&[frames.local_axis_a, frames.local_axis_b])
                 .all(|vector| vector.is_finite())
                 && frames.reference_rotation.is_finite()
+                && frames.local_frame_a.is_normalized()
                 && frames.length.is_finite()
                 && joint.angle.is_finite()
                 && data

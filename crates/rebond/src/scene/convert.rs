@@ -5,15 +5,18 @@ use crate::body::{BodyDesc, BodyHandle, BodyType, KinematicPath, LockedAxes, Pat
 use crate::character::{CharacterController, CharacterSettings};
 use crate::coupling::CouplingDesc;
 use crate::filter::InteractionGroups;
-use crate::joint::{JointDesc, JointHandle, Motor};
+use crate::joint::{AxisFreedom, GenericAxis, JointDesc, JointHandle, JointType, Motor};
 use crate::limits::{MAX_TIMESTEP, MIN_TIMESTEP};
-use crate::math::{Pose, Quat, Vec3};
+use crate::mass::MassProperties;
+use crate::math::{Mat3, Pose, Quat, Vec3};
 use crate::shape::{CompoundChild, Shape};
 use crate::world::WorldSettings;
 
+use super::actuators::{Actuator, ActuatorKind};
 use super::format::{
-    BodyEntry, CharacterEntry, ChildEntry, CouplingEntry, GroupsEntry, JointEntry, MotorEntry,
-    PathEntry, SceneFile, ShapeEntry, ShapeKind,
+    ActuatorEntry, ActuatorKindEntry, AxisEntry, BodyEntry, CharacterEntry, ChildEntry,
+    CouplingEntry, GroupsEntry, JointEntry, MassPropertiesEntry, MotorEntry, PathEntry, SceneFile,
+    ShapeEntry, ShapeKind,
 };
 use super::meshes::{heightfield, trimesh, MeshFiles};
 use super::{
@@ -253,6 +256,9 @@ pub(super) fn body_desc(
     if let Some(value) = entry.mass {
         desc.mass = Some(scalar(&field("mass"), value)?);
     }
+    if let Some(properties) = &entry.mass_properties {
+        desc.mass_properties = Some(mass_properties(properties, &field("mass_properties"))?);
+    }
     if let Some(value) = entry.friction {
         desc.friction = scalar(&field("friction"), value)?;
     }
@@ -302,6 +308,125 @@ pub(super) fn body_desc(
         desc.surface_velocity = vector(&field("surface_velocity"), value)?;
     }
     Ok(desc)
+}
+
+/// Explicit mass properties, narrowed; errors are placed under `place`
+/// (`bodies[i].mass_properties`). The checks (positive mass, positive definite inertia) are the
+/// world's, when the body is added.
+fn mass_properties(entry: &MassPropertiesEntry, place: &str) -> Result<MassProperties, SceneError> {
+    let field = |name: &str| join(place, name);
+    let center_of_mass = match entry.center_of_mass {
+        Some(value) => vector(&field("center_of_mass"), value)?,
+        None => Vec3::ZERO,
+    };
+    let mut inertia = [0.0; 6];
+    for (index, value) in entry.inertia.into_iter().enumerate() {
+        inertia[index] = scalar(&format!("{place}.inertia[{index}]"), value)?;
+    }
+    let [xx, yy, zz, xy, xz, yz] = inertia;
+    Ok(MassProperties {
+        mass: scalar(&field("mass"), entry.mass)?,
+        center_of_mass,
+        inertia: Mat3::from_cols(
+            Vec3::new(xx, xy, xz),
+            Vec3::new(xy, yy, yz),
+            Vec3::new(xz, yz, zz),
+        ),
+    })
+}
+
+/// The actuator of an `actuators` entry; errors are placed under `place` (`actuators[i]`).
+/// `find_joint` gives the handle and type of a joint by name.
+pub(super) fn actuator(
+    entry: &ActuatorEntry,
+    place: &str,
+    name: String,
+    find_joint: impl Fn(&str) -> Option<(JointHandle, JointType)>,
+) -> Result<Actuator, SceneError> {
+    let field = |name: &str| join(place, name);
+    let joint = match find_joint(&entry.joint) {
+        Some((handle, JointType::Revolute | JointType::Prismatic)) => handle,
+        Some((_, other)) => {
+            let message = format!(
+                "\"{}\" is a {} joint; an actuator drives a revolute or prismatic one",
+                entry.joint,
+                other.name()
+            );
+            return Err(SceneError::new(field("joint"), message));
+        }
+        None => {
+            let message = format!("no joint is named \"{}\"", entry.joint);
+            return Err(SceneError::new(field("joint"), message));
+        }
+    };
+    let gain = |name: &str, value: Option<f64>, default: f32| match value {
+        Some(value) => {
+            let gain = scalar(&field(name), value)?;
+            if gain >= 0.0 {
+                Ok(gain)
+            } else {
+                Err(SceneError::new(
+                    field(name),
+                    format!("must not be negative, got {gain}"),
+                ))
+            }
+        }
+        None => Ok(default),
+    };
+    let stray = |name: &str| {
+        let message = format!(
+            "unknown field `{name}` for a {} actuator",
+            entry_kind_name(entry.kind)
+        );
+        SceneError::new(field(name), message)
+    };
+    let kind = match entry.kind {
+        ActuatorKindEntry::Motor if entry.kp.is_some() => return Err(stray("kp")),
+        ActuatorKindEntry::Motor if entry.kv.is_some() => return Err(stray("kv")),
+        ActuatorKindEntry::Velocity if entry.kp.is_some() => return Err(stray("kp")),
+        ActuatorKindEntry::Motor => ActuatorKind::Motor,
+        ActuatorKindEntry::Position => ActuatorKind::Position {
+            kp: gain("kp", entry.kp, 1.0)?,
+            kv: gain("kv", entry.kv, 0.0)?,
+        },
+        ActuatorKindEntry::Velocity => ActuatorKind::Velocity {
+            kv: gain("kv", entry.kv, 1.0)?,
+        },
+    };
+    let gear = match entry.gear {
+        Some(value) => scalar(&field("gear"), value)?,
+        None => 1.0,
+    };
+    if gear == 0.0 {
+        return Err(SceneError::new(field("gear"), "must not be 0"));
+    }
+    let ctrl_range = match entry.ctrl_range {
+        Some(value) => {
+            let [lo, hi] = pair(&field("ctrl_range"), value)?;
+            if lo > hi {
+                let message = format!("min must not exceed max, got [{lo}, {hi}]");
+                return Err(SceneError::new(field("ctrl_range"), message));
+            }
+            Some([lo, hi])
+        }
+        None => None,
+    };
+    Ok(Actuator {
+        name,
+        joint,
+        kind,
+        gear,
+        ctrl_range,
+    })
+}
+
+/// The name of an actuator kind as written.
+fn entry_kind_name(kind: ActuatorKindEntry) -> &'static str {
+    match kind {
+        ActuatorKindEntry::Motor => "motor",
+        ActuatorKindEntry::Position => "position",
+        ActuatorKindEntry::Velocity => "velocity",
+    }
 }
 
 /// The engine path of a path entry; errors are placed under `place` (`bodies[i].path`). A point
@@ -543,14 +668,32 @@ pub(super) fn joint_desc(
         desc.length = Some(scalar(&field("length"), value)?);
     }
     if let Some(spring) = &entry.spring {
-        let damping = match spring.damping {
-            Some(value) => scalar(&field("spring.damping"), value)?,
-            None => 0.0,
+        let optional = |name: &str, value: Option<f64>| match value {
+            Some(value) => scalar(&field(name), value),
+            None => Ok(0.0),
         };
-        desc = desc.spring(
+        desc = desc.spring_to(
             scalar(&field("spring.stiffness"), spring.stiffness)?,
-            damping,
+            optional("spring.damping", spring.damping)?,
+            optional("spring.reference", spring.reference)?,
         );
+    }
+    if let Some(value) = entry.armature {
+        desc.armature = scalar(&field("armature"), value)?;
+    }
+    if let Some(value) = entry.frame {
+        desc.frame = Some(rotation(&field("frame"), value)?);
+    }
+    if let Some(axes) = &entry.axes {
+        for (name, value) in axes.given() {
+            desc.axes[axis_index(name)] = axis_freedom(value, &field(&format!("axes.{name}")))?;
+        }
+    }
+    if let Some(motors) = &entry.motors {
+        for (name, value) in motors.given() {
+            let place = field(&format!("motors.{name}"));
+            desc.motors[axis_index(name)] = Some(motor(value, &place)?);
+        }
     }
     if let Some(value) = entry.friction {
         desc.friction = scalar(&field("friction"), value)?;
@@ -565,6 +708,26 @@ pub(super) fn joint_desc(
         desc.break_torque = scalar(&field("break_torque"), value)?;
     }
     Ok(desc)
+}
+
+/// The index of a generic joint's axis of a name [`AxesEntry`] gives.
+fn axis_index(name: &str) -> usize {
+    GenericAxis::from_name(name).map_or(0, GenericAxis::index)
+}
+
+/// What a generic joint's axis entry says; errors are placed at `place` (`joints[i].axes.x`).
+fn axis_freedom(entry: &AxisEntry, place: &str) -> Result<AxisFreedom, SceneError> {
+    match entry {
+        AxisEntry::Mode(mode) if mode == "locked" => Ok(AxisFreedom::Locked),
+        AxisEntry::Mode(mode) if mode == "free" => Ok(AxisFreedom::Free),
+        AxisEntry::Mode(mode) => Err(SceneError::new(
+            place,
+            format!(
+                "unknown axis mode \"{mode}\", expected `\"locked\"`, `\"free\"` or [min, max]"
+            ),
+        )),
+        AxisEntry::Limited(limits) => Ok(AxisFreedom::Limited(pair(place, *limits)?)),
+    }
 }
 
 /// The engine motor of a motor entry; errors are placed under `place` (`joints[i].motor`). The

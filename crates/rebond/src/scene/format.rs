@@ -80,6 +80,42 @@ pub(super) struct SceneFile {
     pub(super) couplings: Option<Vec<JsonObject<CouplingEntry>>>,
     /// Extension of the contract: the body a player drives as a character, and how.
     pub(super) character: Option<JsonObject<CharacterEntry>>,
+    /// Extension of the contract: MuJoCo's actuators, one control value each, on joints.
+    pub(super) actuators: Option<Vec<JsonObject<ActuatorEntry>>>,
+}
+
+/// The kinds of actuator, as written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum ActuatorKindEntry {
+    Motor,
+    Position,
+    Velocity,
+}
+
+/// One actuator, as written: `kp` belongs to position actuators, `kv` to position and velocity
+/// ones (checked in `convert.rs`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct ActuatorEntry {
+    pub(super) name: Option<String>,
+    pub(super) joint: String,
+    #[serde(rename = "type")]
+    pub(super) kind: ActuatorKindEntry,
+    pub(super) gear: Option<f64>,
+    pub(super) ctrl_range: Option<[f64; 2]>,
+    pub(super) kp: Option<f64>,
+    pub(super) kv: Option<f64>,
+}
+
+/// Explicit mass properties, as written: body frame, inertia about the centre of mass as
+/// `[ixx, iyy, izz, ixy, ixz, iyz]`; the centre of mass defaults to the body origin.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct MassPropertiesEntry {
+    pub(super) mass: f64,
+    pub(super) center_of_mass: Option<[f64; 3]>,
+    pub(super) inertia: [f64; 6],
 }
 
 /// One coupling, as written (extension of the contract): the joints by name with their
@@ -170,6 +206,8 @@ pub(super) struct BodyEntry {
     pub(super) angular_velocity: Option<[f64; 3]>,
     pub(super) density: Option<f64>,
     pub(super) mass: Option<f64>,
+    /// Extension of the contract: explicit mass, centre of mass and inertia.
+    pub(super) mass_properties: Option<JsonObject<MassPropertiesEntry>>,
     pub(super) friction: Option<f64>,
     pub(super) restitution: Option<f64>,
     /// Extension of the contract: the body's rolling resistance coefficient.
@@ -362,6 +400,8 @@ pub(super) enum JointKind {
     Revolute,
     Prismatic,
     Distance,
+    /// Extension of the contract: the generic joint.
+    Generic,
 }
 
 impl From<JointKind> for JointType {
@@ -372,6 +412,7 @@ impl From<JointKind> for JointType {
             JointKind::Revolute => JointType::Revolute,
             JointKind::Prismatic => JointType::Prismatic,
             JointKind::Distance => JointType::Distance,
+            JointKind::Generic => JointType::Generic,
         }
     }
 }
@@ -395,6 +436,14 @@ pub(super) struct JointEntry {
     pub(super) motor: Option<JsonObject<MotorEntry>>,
     pub(super) length: Option<f64>,
     pub(super) spring: Option<JsonObject<SpringEntry>>,
+    /// Extension of the contract: the inertia added to a revolute or prismatic coordinate.
+    pub(super) armature: Option<f64>,
+    /// Extension of the contract: a generic joint's frame, `[x, y, z, w]`.
+    pub(super) frame: Option<[f64; 4]>,
+    /// Extension of the contract: a generic joint's axes.
+    pub(super) axes: Option<JsonObject<AxesEntry<AxisEntry>>>,
+    /// Extension of the contract: a generic joint's motors, by axis.
+    pub(super) motors: Option<JsonObject<AxesEntry<JsonObject<MotorEntry>>>>,
     pub(super) friction: Option<f64>,
     pub(super) collide_connected: Option<bool>,
     pub(super) break_force: Option<f64>,
@@ -431,12 +480,50 @@ impl MotorEntry {
     }
 }
 
-/// A distance joint's spring, as written; `damping` defaults to 0.
+/// A joint's spring, as written; `damping` and `reference` default to 0.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct SpringEntry {
     pub(super) stiffness: f64,
     pub(super) damping: Option<f64>,
+    /// Extension of the contract: the revolute or prismatic coordinate the spring rests at.
+    pub(super) reference: Option<f64>,
+}
+
+/// One value per axis of a generic joint, as written: an unknown axis name is refused.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct AxesEntry<T> {
+    pub(super) x: Option<T>,
+    pub(super) y: Option<T>,
+    pub(super) z: Option<T>,
+    pub(super) rx: Option<T>,
+    pub(super) ry: Option<T>,
+    pub(super) rz: Option<T>,
+}
+
+impl<T> AxesEntry<T> {
+    /// The values given, with their axis names, in the order of `GenericAxis::ALL`.
+    pub(super) fn given(&self) -> impl Iterator<Item = (&'static str, &T)> {
+        [
+            ("x", &self.x),
+            ("y", &self.y),
+            ("z", &self.z),
+            ("rx", &self.rx),
+            ("ry", &self.ry),
+            ("rz", &self.rz),
+        ]
+        .into_iter()
+        .filter_map(|(name, value)| value.as_ref().map(|value| (name, value)))
+    }
+}
+
+/// What a generic joint's axis does, as written: `"locked"`, `"free"` or `[min, max]`.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub(super) enum AxisEntry {
+    Mode(String),
+    Limited([f64; 2]),
 }
 
 #[cfg(test)]
@@ -450,9 +537,11 @@ mod tests {
     use serde::de::{Error as _, Visitor};
     use serde::{forward_to_deserialize_any, Deserialize, Deserializer};
 
+    use super::SpringEntry;
+    use super::{ActuatorEntry, ActuatorKindEntry, MassPropertiesEntry};
+    use super::{AxesEntry, JointEntry, JointKind, MotorEntry, PathEntry, PathPointEntry};
     use super::{BodyEntry, BodyKind, ChildEntry, GroupsEntry, SceneFile, ShapeEntry, ShapeKind};
     use super::{CoupledJointEntry, CouplingEntry};
-    use super::{JointEntry, JointKind, MotorEntry, PathEntry, PathPointEntry, SpringEntry};
 
     const REFERENCE: &str = include_str!("../../../../docs/scene-format.md");
 
@@ -515,10 +604,14 @@ mod tests {
             names_of::<JointKind>(),
             names_of::<MotorEntry>(),
             names_of::<SpringEntry>(),
+            names_of::<AxesEntry<f64>>(),
             names_of::<PathEntry>(),
             names_of::<PathPointEntry>(),
             names_of::<CouplingEntry>(),
             names_of::<CoupledJointEntry>(),
+            names_of::<ActuatorEntry>(),
+            names_of::<ActuatorKindEntry>(),
+            names_of::<MassPropertiesEntry>(),
         ]
         .concat();
         assert!(names.len() > 30, "recorded only {names:?}");

@@ -24,10 +24,12 @@
 //! Every value is checked before anything is built: an invalid scene is a [`SceneError`] naming
 //! the place of the bad value in the file (`bodies[3].shape.radius`) and what is wrong with it.
 
+mod actuators;
 mod builtin;
 mod convert;
 mod format;
 mod meshes;
+mod mjcf;
 
 use std::collections::HashMap;
 use std::fmt;
@@ -43,8 +45,10 @@ use crate::coupling::CouplingHandle;
 use crate::error::ErrorKind;
 use crate::joint::{Joint, JointHandle, JointType};
 use crate::world::World;
+pub use actuators::{Actuator, ActuatorKind};
 pub use builtin::{builtin, BuiltinScene, BUILTIN_SCENES};
-use convert::{body_desc, character, coupling_desc, joint_desc, timestep, world_settings};
+use convert::{actuator, body_desc, character, coupling_desc, joint_desc};
+use convert::{timestep, world_settings};
 use format::{BodyEntry, CouplingEntry, JointEntry, JsonObject, SceneFile};
 use meshes::MeshFiles;
 
@@ -262,11 +266,16 @@ pub struct Scene {
     joint_indices: HashMap<String, usize>,
     timestep: Timestep,
     character: Option<SceneCharacter>,
+    /// The actuators, in file order (a state read from its portable part, by another build,
+    /// has none, as it has no character).
+    actuators: Vec<Actuator>,
 }
 
 impl Scene {
     /// Reads, checks and loads the scene file at `path`; mesh files it names are found relative
-    /// to the scene file's folder. Nothing is stepped.
+    /// to the scene file's folder. Nothing is stepped. The extension says the format: `.xml` is
+    /// a MuJoCo MJCF model ([`Scene::from_mjcf`]), `.urdf` a URDF robot, anything else a JSON
+    /// scene.
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self, LoadError> {
         let path = path.as_ref();
         let bytes = fs::read(path).map_err(|error| LoadError::Read {
@@ -274,7 +283,16 @@ impl Scene {
             error,
         })?;
         let folder = path.parent().unwrap_or(Path::new(""));
-        Self::from_json_in(&bytes, folder)
+        let extension = path.extension().and_then(|extension| extension.to_str());
+        match extension.map(str::to_ascii_lowercase).as_deref() {
+            Some("xml") => Self::from_mjcf(&bytes, folder),
+            Some("urdf") => Err(SceneError::new(
+                "",
+                "URDF files are not read yet (only JSON scenes and MJCF `.xml` models)",
+            )
+            .into()),
+            _ => Self::from_json_in(&bytes, folder),
+        }
     }
 
     /// Parses and checks a scene given as JSON text and builds its world; mesh files it names
@@ -288,6 +306,18 @@ impl Scene {
     /// cannot be loaded reported as [`LoadError::Mesh`].
     pub fn from_json_in(bytes: &[u8], folder: &Path) -> Result<Self, LoadError> {
         Self::load(bytes, MeshFiles { folder, given: &[] })
+    }
+
+    /// Reads a MuJoCo MJCF model (the XML text `bytes`) as a scene: its bodies, joints,
+    /// actuators and fixed tendons, turned from MuJoCo's Z-up to rebond's Y-up
+    /// (`docs/mjcf.md`). Mesh files it names are found relative to `folder`. An element or
+    /// attribute rebond cannot honour is an error naming its path in the file, such as
+    /// `mujoco/worldbody/body[name=torso]/geom[2]@foo`. Nothing is stepped.
+    pub fn from_mjcf(bytes: &[u8], folder: &Path) -> Result<Self, LoadError> {
+        let model = mjcf::import(bytes, folder)?;
+        let json = serde_json::to_vec(&model)
+            .map_err(|error| SceneError::new("", format!("cannot write the model: {error}")))?;
+        Self::load(&json, MeshFiles { folder, given: &[] })
     }
 
     /// [`Scene::from_json`] with the mesh files it names given as `(name, contents)` pairs, the
@@ -317,6 +347,7 @@ impl Scene {
             joint_indices: HashMap::new(),
             timestep,
             character: None,
+            actuators: Vec::new(),
         };
         for entry in &file.bodies {
             scene.push_body(entry, &files)?;
@@ -327,6 +358,27 @@ impl Scene {
         for entry in file.couplings.iter().flatten() {
             scene.push_coupling(entry)?;
         }
+        for (index, entry) in file.actuators.iter().flatten().enumerate() {
+            let place = format!("actuators[{index}]");
+            let name = entry
+                .name
+                .clone()
+                .unwrap_or_else(|| format!("actuator{index}"));
+            if let Some(first) = scene.actuators.iter().position(|known| known.name == name) {
+                let message = format!(
+                    "duplicate name \"{name}\": actuators[{first}] and {place} both have it"
+                );
+                return Err(SceneError::new(format!("{place}.name"), message).into());
+            }
+            let find_joint = |name: &str| {
+                let handle = scene.joints[*scene.joint_indices.get(name)?].handle;
+                Some((handle, scene.world.joint(handle).ok()?.joint_type()))
+            };
+            let actuator = actuator(entry, &place, name, find_joint)?;
+            scene.actuators.push(actuator);
+        }
+        let zeros = vec![0.0; scene.actuators.len()];
+        actuators::apply(&mut scene.world, &scene.actuators, &zeros).map_err(SceneError::from)?;
         if let Some(entry) = &file.character {
             let find_body = |name: &str| {
                 let handle = scene.body_handle(name)?;
@@ -443,6 +495,21 @@ impl Scene {
         self.character.as_ref()
     }
 
+    /// The scene's actuators (its `actuators`), in file order: the order of
+    /// [`Scene::set_controls`]'s values.
+    pub fn actuators(&self) -> &[Actuator] {
+        &self.actuators
+    }
+
+    /// Sets every actuator's control, one value per actuator in the order of
+    /// [`Scene::actuators`], as the motor of its joint ([`Actuator::motor`]): a `motor` gives the
+    /// torque `gear · clamp(u)`. The controls hold until set again. Every value is checked first:
+    /// a wrong count is an error at `controls`, a non-finite value or a resulting motor out of
+    /// the engine's range an error at `controls[i]`, and nothing changes then.
+    pub fn set_controls(&mut self, controls: &[f32]) -> crate::Result<()> {
+        actuators::apply(&mut self.world, &self.actuators, controls)
+    }
+
     /// Seconds per step.
     pub fn timestep(&self) -> Timestep {
         self.timestep
@@ -523,7 +590,7 @@ impl Scene {
         let coupling_names = (self.couplings.iter())
             .map(|coupling| named(&coupling.name, coupling.handle.0))
             .collect();
-        let snapshot = crate::state::SnapshotV4::of(&self.world, Some(scene), coupling_names);
+        let snapshot = crate::state::SnapshotV5::of(&self.world, Some(scene), coupling_names);
         crate::state::encode(SCENE_MAGIC, &(step, self), snapshot)
     }
 
@@ -594,6 +661,7 @@ impl Scene {
                         })
                         .collect(),
                     character: None,
+                    actuators: Vec::new(),
                 };
                 (names.step, scene)
             }

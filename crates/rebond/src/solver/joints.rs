@@ -110,6 +110,7 @@ impl JointOptions {
             JointType::Ball => 3,
             JointType::Revolute | JointType::Prismatic => 5,
             JointType::Distance => usize::from(self.has_rigid_length()),
+            JointType::Generic => 0,
         }
     }
 }
@@ -263,6 +264,7 @@ impl JointConstraint {
                         Some(AxisPart::linear(bodies, (arm_a, arm_b), geometry.axis));
                 }
             }
+            JointType::Generic => {}
         }
         self.geometry = geometry;
     }
@@ -343,7 +345,7 @@ impl JointConstraint {
         let axis = self.geometry.axis;
         let along_axis = impulses.lower - impulses.upper + impulses.motor + impulses.friction;
         match self.options.joint_type {
-            JointType::Fixed => (impulses.linear, impulses.angular),
+            JointType::Fixed | JointType::Generic => (impulses.linear, impulses.angular),
             JointType::Ball => (
                 impulses.linear,
                 axis * (impulses.twist_lower - impulses.twist_upper)

@@ -7,9 +7,10 @@ use crate::body::{BodyHandle, RigidBody};
 use crate::error::{Error, ErrorKind, Result};
 use crate::filter::ordered;
 use crate::joint::{
-    Joint, JointBreakEvent, JointDesc, JointHandle, JointPlacement, JointType, Motor,
+    GenericAxis, GenericCoordinates, GenericFrame, Joint, JointBreakEvent, JointDesc, JointHandle,
+    JointPlacement, JointType, Motor,
 };
-use crate::math::Vec3;
+use crate::math::{Quat, Vec3};
 
 impl World {
     /// Checks `desc` and adds the joint, fixing its anchors and axes to the bodies as they stand
@@ -123,6 +124,69 @@ impl World {
                 ErrorKind::NotForJointType(other.name()),
             )),
         }
+    }
+
+    /// A generic joint's six coordinates and their rates at the bodies' current poses and
+    /// velocities ([`GenericCoordinates`] gives their definitions). Other joint types: an error
+    /// naming `coordinates`.
+    pub fn generic_joint_coordinates(&self, handle: JointHandle) -> Result<GenericCoordinates> {
+        let (joint, placement, body_a, body_b) = self.joint_sides(handle)?;
+        if joint.joint_type() != JointType::Generic {
+            return Err(Error::new(
+                "coordinates",
+                ErrorKind::NotForJointType(joint.joint_type().name()),
+            ));
+        }
+        let rotation = |body: Option<&RigidBody>| body.map_or(Quat::IDENTITY, RigidBody::rotation);
+        let separation = placement.anchor_b - placement.anchor_a;
+        let frame = GenericFrame::new(
+            &joint.frames,
+            rotation(body_a),
+            rotation(Some(body_b)),
+            separation,
+        );
+        let spin = |body: Option<&RigidBody>| body.map_or(Vec3::ZERO, RigidBody::angular_velocity);
+        let anchor_velocity = |body: Option<&RigidBody>, anchor: Vec3| {
+            body.map_or(Vec3::ZERO, |body| {
+                body.linear_velocity()
+                    + body
+                        .angular_velocity()
+                        .cross(anchor - body.center_of_mass())
+            })
+        };
+        let closing = anchor_velocity(Some(body_b), placement.anchor_b)
+            - anchor_velocity(body_a, placement.anchor_a);
+        let turning = spin(Some(body_b)) - spin(body_a);
+        let mut velocities = [0.0; 6];
+        for (k, axis) in frame.axes.into_iter().enumerate() {
+            velocities[k] = closing.dot(axis) + separation.dot(spin(body_a).cross(axis));
+            velocities[3 + k] = turning.dot(axis);
+        }
+        Ok(GenericCoordinates {
+            positions: frame.positions,
+            velocities,
+        })
+    }
+
+    /// Replaces the motor of one axis of a generic joint (`None` removes it) and wakes its
+    /// bodies, as [`World::set_joint_motor`] does for a revolute or prismatic joint; an error
+    /// names the field (`motors.rz`, `motors.x.torque`) and leaves the joint as it was.
+    pub fn set_generic_joint_motor(
+        &mut self,
+        handle: JointHandle,
+        axis: GenericAxis,
+        motor: Option<Motor>,
+    ) -> Result<()> {
+        let joint = self.joints.get_mut(handle).ok_or_else(stale_joint)?;
+        let mut desc = joint.desc.clone();
+        desc.motors[axis.index()] = motor;
+        desc.validate()?;
+        joint.desc = desc;
+        let (body_a, body_b) = joint.bodies();
+        for body in body_a.into_iter().chain([body_b]) {
+            self.wake_slot(body.slot());
+        }
+        Ok(())
     }
 
     /// The joint behind `handle`, where it stands now, and its bodies (`body_a` `None` for the

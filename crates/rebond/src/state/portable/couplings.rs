@@ -1,19 +1,19 @@
-//! The coupling records of a portable snapshot ([`super`], version 4): each coupling's
+//! The coupling records of a portable snapshot ([`super`], version 5): each coupling's
 //! description as given, with its rest length; its warm-start impulses start cold, as the
 //! joints' do.
 
 use serde::{Deserialize, Serialize};
 
-use super::{NamedV1, SlotV1, SnapshotV3};
+use super::{NamedV1, SlotV1, SnapshotV4};
 use crate::coupling::{Coupling, CouplingDesc, CouplingSet};
 use crate::joint::{JointHandle, JointSet};
 use crate::World;
 
-/// Version 4 of a snapshot: version 3's, and the couplings with a scene's names for them.
+/// Version 5 of a snapshot: version 4's, and the couplings with a scene's names for them.
 #[derive(Serialize, Deserialize)]
-pub(crate) struct SnapshotV4 {
-    pub base: SnapshotV3,
-    couplings: Vec<SlotV1<CouplingV4>>,
+pub(crate) struct SnapshotV5 {
+    pub base: SnapshotV4,
+    couplings: Vec<SlotV1<CouplingV5>>,
     free_couplings: Vec<u32>,
     /// Each scene coupling's name and handle, in scene order (empty for a world's state).
     pub coupling_names: Vec<NamedV1>,
@@ -22,7 +22,7 @@ pub(crate) struct SnapshotV4 {
 /// A coupling: its joints by slot (the handles take the slots' generations) and coefficient,
 /// limits, spring and rest length.
 #[derive(Serialize, Deserialize)]
-struct CouplingV4 {
+struct CouplingV5 {
     joints: Vec<(u32, f32)>,
     limits: Option<[f32; 2]>,
     stiffness: f32,
@@ -32,9 +32,9 @@ struct CouplingV4 {
     rest_length: f32,
 }
 
-impl SnapshotV4 {
-    /// Version 3's records with no couplings: what an earlier snapshot reads as.
-    pub fn without_couplings(base: SnapshotV3) -> Self {
+impl SnapshotV5 {
+    /// Version 4's records with no couplings: what an earlier snapshot reads as.
+    pub fn without_couplings(base: SnapshotV4) -> Self {
         Self {
             base,
             couplings: Vec::new(),
@@ -49,18 +49,18 @@ impl SnapshotV4 {
         let couplings = slots
             .map(|(generation, coupling)| SlotV1 {
                 generation,
-                item: coupling.map(CouplingV4::of),
+                item: coupling.map(CouplingV5::of),
             })
             .collect();
         Self {
-            base: SnapshotV3::of(world, scene),
+            base: SnapshotV4::of(world, scene),
             couplings,
             free_couplings: free.to_vec(),
             coupling_names,
         }
     }
 
-    /// The world of the snapshot with its couplings ([`SnapshotV3::restore_world`]).
+    /// The world of the snapshot with its couplings ([`SnapshotV4::restore_world`]).
     pub fn restore_world(self) -> Result<World, String> {
         let mut world = self.base.restore_world()?;
         let identity = world.identity();
@@ -81,7 +81,7 @@ impl SnapshotV4 {
     }
 }
 
-impl CouplingV4 {
+impl CouplingV5 {
     fn of(coupling: &Coupling) -> Self {
         let desc = coupling.desc();
         Self {

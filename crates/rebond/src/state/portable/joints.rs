@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::body::BodyHandle;
-use crate::joint::{Joint, JointDesc, JointFrames, JointType, Motor, Spring};
+use crate::joint::{AxisFreedom, Joint, JointDesc, JointFrames, JointType, Motor, Spring};
 use crate::math::{Quat, Vec3};
 
 #[derive(Serialize, Deserialize)]
@@ -82,6 +82,9 @@ impl JointV1 {
                 JointType::Revolute => JointTypeV1::Revolute,
                 JointType::Prismatic => JointTypeV1::Prismatic,
                 JointType::Distance => JointTypeV1::Distance,
+                // Version 1 has no generic joint: its record says fixed, and the joint's
+                // extras ([`JointExtrasV4`]) make it generic again.
+                JointType::Generic => JointTypeV1::Fixed,
             },
             body_a: desc.body_a.map(|body| body.slot() as u32),
             body_b: desc.body_b.slot() as u32,
@@ -91,27 +94,7 @@ impl JointV1 {
             limits: desc.limits,
             swing_limit: desc.swing_limit,
             twist_limits: desc.twist_limits,
-            motor: desc.motor.map(|motor| match motor {
-                Motor::Velocity {
-                    target_velocity,
-                    max_force,
-                } => MotorV1::Velocity {
-                    target_velocity,
-                    max_force,
-                },
-                Motor::Position {
-                    target_position,
-                    stiffness,
-                    damping,
-                    max_force,
-                } => MotorV1::Position {
-                    target_position,
-                    stiffness,
-                    damping,
-                    max_force,
-                },
-                Motor::Torque { torque } => MotorV1::Torque { torque },
-            }),
+            motor: desc.motor.map(MotorV1::of),
             length: desc.length,
             spring: desc.spring.map(|spring| [spring.stiffness, spring.damping]),
             friction: desc.friction,
@@ -153,35 +136,21 @@ impl JointV1 {
             limits: self.limits,
             swing_limit: self.swing_limit,
             twist_limits: self.twist_limits,
-            motor: self.motor.map(|motor| match motor {
-                MotorV1::Velocity {
-                    target_velocity,
-                    max_force,
-                } => Motor::Velocity {
-                    target_velocity,
-                    max_force,
-                },
-                MotorV1::Position {
-                    target_position,
-                    stiffness,
-                    damping,
-                    max_force,
-                } => Motor::Position {
-                    target_position,
-                    stiffness,
-                    damping,
-                    max_force,
-                },
-                MotorV1::Torque { torque } => Motor::Torque { torque },
-            }),
+            motor: self.motor.map(MotorV1::restore),
             length: self.length,
-            spring: self
-                .spring
-                .map(|[stiffness, damping]| Spring { stiffness, damping }),
+            spring: self.spring.map(|[stiffness, damping]| Spring {
+                stiffness,
+                damping,
+                reference: 0.0,
+            }),
             friction: self.friction,
             collide_connected: self.collide_connected,
             break_force: self.break_force,
             break_torque: self.break_torque,
+            armature: 0.0,
+            frame: None,
+            axes: [AxisFreedom::Locked; 6],
+            motors: [None; 6],
         };
         Ok(Joint {
             desc,
@@ -191,6 +160,7 @@ impl JointV1 {
                 local_axis_a: Vec3::from_array(self.local_axis_a),
                 local_axis_b: Vec3::from_array(self.local_axis_b),
                 reference_rotation: Quat::from_array(self.reference_rotation),
+                local_frame_a: Quat::IDENTITY,
                 length: self.rest_length,
             },
             force: Vec3::from_array(self.force),
@@ -198,5 +168,132 @@ impl JointV1 {
             broken: self.broken,
             angle: self.angle,
         })
+    }
+}
+
+impl MotorV1 {
+    fn of(motor: Motor) -> Self {
+        match motor {
+            Motor::Velocity {
+                target_velocity,
+                max_force,
+            } => Self::Velocity {
+                target_velocity,
+                max_force,
+            },
+            Motor::Position {
+                target_position,
+                stiffness,
+                damping,
+                max_force,
+            } => Self::Position {
+                target_position,
+                stiffness,
+                damping,
+                max_force,
+            },
+            Motor::Torque { torque } => Self::Torque { torque },
+        }
+    }
+
+    fn restore(self) -> Motor {
+        match self {
+            Self::Velocity {
+                target_velocity,
+                max_force,
+            } => Motor::Velocity {
+                target_velocity,
+                max_force,
+            },
+            Self::Position {
+                target_position,
+                stiffness,
+                damping,
+                max_force,
+            } => Motor::Position {
+                target_position,
+                stiffness,
+                damping,
+                max_force,
+            },
+            Self::Torque { torque } => Motor::Torque { torque },
+        }
+    }
+}
+
+/// What version 4 adds to a joint's record ([`JointV1`]): the spring's reference and the
+/// armature (revolute, prismatic), and a generic joint's frame, axes and motors.
+#[derive(Serialize, Deserialize)]
+pub(super) struct JointExtrasV4 {
+    /// The joint's slot.
+    pub(super) slot: u32,
+    /// rad or m.
+    spring_reference: f32,
+    /// kg·m² or kg.
+    armature: f32,
+    generic: Option<GenericV4>,
+}
+
+/// A generic joint's own fields.
+#[derive(Serialize, Deserialize)]
+struct GenericV4 {
+    /// The frame as given, world rotation of the moment it was added.
+    frame: Option<[f32; 4]>,
+    /// The frame in `body_a`'s axes.
+    local_frame_a: [f32; 4],
+    /// In the order x, y, z, rx, ry, rz.
+    axes: [AxisV4; 6],
+    motors: [Option<MotorV1>; 6],
+}
+
+#[derive(Serialize, Deserialize)]
+enum AxisV4 {
+    Locked,
+    Free,
+    Limited([f32; 2]),
+}
+
+impl JointExtrasV4 {
+    /// The extras of the joint in `slot`; `None` for a joint with none.
+    pub(super) fn of(slot: u32, joint: &Joint) -> Option<Self> {
+        let desc = &joint.desc;
+        let spring_reference = desc.spring.map_or(0.0, |spring| spring.reference);
+        let generic = (desc.joint_type == JointType::Generic).then(|| GenericV4 {
+            frame: desc.frame.map(|frame| frame.to_array()),
+            local_frame_a: joint.frames.local_frame_a.to_array(),
+            axes: desc.axes.map(|freedom| match freedom {
+                AxisFreedom::Locked => AxisV4::Locked,
+                AxisFreedom::Free => AxisV4::Free,
+                AxisFreedom::Limited(limits) => AxisV4::Limited(limits),
+            }),
+            motors: desc.motors.map(|motor| motor.map(MotorV1::of)),
+        });
+        (spring_reference != 0.0 || desc.armature != 0.0 || generic.is_some()).then_some(Self {
+            slot,
+            spring_reference,
+            armature: desc.armature,
+            generic,
+        })
+    }
+
+    /// Gives `joint`, restored from its version 1 record, its extras; its values are checked
+    /// with the world's.
+    pub(super) fn apply(self, joint: &mut Joint) {
+        let desc = &mut joint.desc;
+        if let Some(spring) = &mut desc.spring {
+            spring.reference = self.spring_reference;
+        }
+        desc.armature = self.armature;
+        if let Some(generic) = self.generic {
+            desc.joint_type = JointType::Generic;
+            desc.frame = generic.frame.map(Quat::from_array);
+            joint.frames.local_frame_a = Quat::from_array(generic.local_frame_a);
+            desc.axes = generic.axes.map(|axis| match axis {
+                AxisV4::Locked => AxisFreedom::Locked,
+                AxisV4::Free => AxisFreedom::Free,
+                AxisV4::Limited(limits) => AxisFreedom::Limited(limits),
+            });
+            desc.motors = generic.motors.map(|motor| motor.map(MotorV1::restore));
+        }
     }
 }

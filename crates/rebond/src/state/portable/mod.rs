@@ -30,8 +30,8 @@ use crate::material::CombineRule;
 use crate::math::{Mat3, Pose, Quat, Vec3};
 use crate::shape::{CompoundChild, Shape, TriMesh, TriangleMaterial};
 use crate::{World, WorldSettings};
-pub(crate) use couplings::SnapshotV4;
-use joints::JointV1;
+pub(crate) use couplings::SnapshotV5;
+use joints::{JointExtrasV4, JointV1};
 
 /// A portable snapshot, by version. Reading takes any variant this build knows; a snapshot of a
 /// later version than [`SNAPSHOT_VERSIONS`] is one this build cannot read.
@@ -43,13 +43,16 @@ pub(crate) enum Snapshot {
     V2(SnapshotV2),
     /// Version 3: version 2's records and the triangle meshes' materials.
     V3(SnapshotV3),
-    /// Version 4: version 3's records and the couplings (`couplings.rs`).
+    /// Version 4: version 3's records and the joints' springs' references, armatures and
+    /// generic joints.
     V4(SnapshotV4),
+    /// Version 5: version 4's records and the couplings (`couplings.rs`).
+    V5(SnapshotV5),
 }
 
 /// How many versions of [`Snapshot`] this build reads: its variants, numbered from 0 in its
 /// encoding.
-pub(crate) const SNAPSHOT_VERSIONS: u32 = 4;
+pub(crate) const SNAPSHOT_VERSIONS: u32 = 5;
 
 /// Version 2 of a snapshot: version 1's, and the contact rules of the bodies that have some.
 #[derive(Serialize, Deserialize)]
@@ -70,6 +73,20 @@ pub(crate) struct SnapshotV3 {
     contact_rules: Vec<ContactRulesV2>,
     /// By ascending shape.
     mesh_materials: Vec<MeshMaterialsV3>,
+}
+
+/// Version 4 of a snapshot: version 3's, and what the joints that have some add to their
+/// records ([`JointExtrasV4`]).
+#[derive(Serialize, Deserialize)]
+pub(crate) struct SnapshotV4 {
+    pub world: WorldV1,
+    pub scene: Option<SceneV1>,
+    /// By ascending slot.
+    contact_rules: Vec<ContactRulesV2>,
+    /// By ascending shape.
+    mesh_materials: Vec<MeshMaterialsV3>,
+    /// By ascending joint slot.
+    joint_extras: Vec<JointExtrasV4>,
 }
 
 /// The materials of the triangle mesh [`WorldV1::shapes`]`[shape]`
@@ -349,7 +366,7 @@ struct PathV1 {
     looping: bool,
 }
 
-impl SnapshotV3 {
+impl SnapshotV4 {
     /// The snapshot of `world`, and of a scene's `scene` part.
     pub fn of(world: &World, scene: Option<SceneV1>) -> Self {
         let (bodies, _, _) = world.portable_parts();
@@ -368,18 +385,26 @@ impl SnapshotV3 {
             .zip(&shapes)
             .filter_map(|(index, shape)| MeshMaterialsV3::of(shape, index))
             .collect();
+        let (joint_slots, _) = world.portable_parts().1.slots();
+        let joint_extras = (0..)
+            .zip(joint_slots)
+            .filter_map(|(slot, (_, joint))| JointExtrasV4::of(slot, joint?))
+            .collect();
         Self {
             world: world_record,
             scene,
             contact_rules,
             mesh_materials,
+            joint_extras,
         }
     }
 
     /// The world of the snapshot, with its meshes' materials and its bodies' contact rules
     /// ([`WorldV1::restore`]).
     pub fn restore_world(self) -> Result<World, String> {
-        let mut world = self.world.restore(&self.mesh_materials)?;
+        let mut world = self
+            .world
+            .restore(&self.mesh_materials, self.joint_extras)?;
         for rules in self.contact_rules {
             let slot = rules.slot as usize;
             world
@@ -396,25 +421,35 @@ impl SnapshotV3 {
 
 impl Snapshot {
     /// The latest version of the snapshot, whatever version it was written in: a version 1
-    /// snapshot has no contact rules, and neither it nor a version 2 one mesh materials.
-    pub fn into_latest(self) -> SnapshotV4 {
+    /// snapshot has no contact rules, neither it nor a version 2 one mesh materials, and none
+    /// before version 4 joint extras, or before version 5 couplings.
+    pub fn into_latest(self) -> SnapshotV5 {
         let base = match self {
-            Self::V1(snapshot) => SnapshotV3 {
+            Self::V1(snapshot) => SnapshotV4 {
                 world: snapshot.world,
                 scene: snapshot.scene,
                 contact_rules: Vec::new(),
                 mesh_materials: Vec::new(),
+                joint_extras: Vec::new(),
             },
-            Self::V2(snapshot) => SnapshotV3 {
+            Self::V2(snapshot) => SnapshotV4 {
                 world: snapshot.world,
                 scene: snapshot.scene,
                 contact_rules: snapshot.contact_rules,
                 mesh_materials: Vec::new(),
+                joint_extras: Vec::new(),
             },
-            Self::V3(snapshot) => snapshot,
-            Self::V4(snapshot) => return snapshot,
+            Self::V3(snapshot) => SnapshotV4 {
+                world: snapshot.world,
+                scene: snapshot.scene,
+                contact_rules: snapshot.contact_rules,
+                mesh_materials: snapshot.mesh_materials,
+                joint_extras: Vec::new(),
+            },
+            Self::V4(snapshot) => snapshot,
+            Self::V5(snapshot) => return snapshot,
         };
-        SnapshotV4::without_couplings(base)
+        SnapshotV5::without_couplings(base)
     }
 }
 
@@ -467,9 +502,14 @@ impl WorldV1 {
         (record, distinct)
     }
 
-    /// The world of the snapshot, its meshes given `mesh_materials`, its handles those of the
-    /// saved world; contacts start cold. Describes the first value refused.
-    fn restore(self, mesh_materials: &[MeshMaterialsV3]) -> Result<World, String> {
+    /// The world of the snapshot, its meshes given `mesh_materials`, its joints
+    /// `joint_extras`, its handles those of the saved world; contacts start cold. Describes the
+    /// first value refused.
+    fn restore(
+        self,
+        mesh_materials: &[MeshMaterialsV3],
+        joint_extras: Vec<JointExtrasV4>,
+    ) -> Result<World, String> {
         let mut shapes = (self.shapes.iter().enumerate())
             .map(|(index, shape)| build_shape(shape).map_err(|e| format!("shape {index}: {e}")))
             .collect::<Result<Vec<Shape>, String>>()?;
@@ -503,6 +543,14 @@ impl WorldV1 {
                 Ok((entry.generation, joint))
             })
             .collect::<Result<Vec<_>, String>>()?;
+        let mut joint_slots = joint_slots;
+        for extras in joint_extras {
+            let slot = extras.slot;
+            match joint_slots.get_mut(slot as usize) {
+                Some((_, Some(joint))) => extras.apply(joint),
+                _ => return Err(format!("joint slot {slot} is empty")),
+            }
+        }
         let joints = JointSet::restored(self.identity, joint_slots, self.free_joints)?;
         let ignored = (self.ignored_pairs.iter())
             .map(|&[a, b]| Ok((handle_at(a)?, handle_at(b)?)))
