@@ -30,6 +30,7 @@ mod convert;
 mod format;
 mod meshes;
 mod mjcf;
+mod urdf;
 
 use std::collections::HashMap;
 use std::fmt;
@@ -51,6 +52,7 @@ use convert::{actuator, body_desc, character, coupling_desc, joint_desc};
 use convert::{timestep, world_settings};
 use format::{BodyEntry, CouplingEntry, JointEntry, JsonObject, SceneFile};
 use meshes::MeshFiles;
+pub use urdf::UrdfOptions;
 
 /// Default seconds per step when a scene leaves `timestep` out.
 pub const DEFAULT_TIMESTEP: f64 = 1.0 / 60.0;
@@ -286,11 +288,7 @@ impl Scene {
         let extension = path.extension().and_then(|extension| extension.to_str());
         match extension.map(str::to_ascii_lowercase).as_deref() {
             Some("xml") => Self::from_mjcf(&bytes, folder),
-            Some("urdf") => Err(SceneError::new(
-                "",
-                "URDF files are not read yet (only JSON scenes and MJCF `.xml` models)",
-            )
-            .into()),
+            Some("urdf") => Self::from_urdf(&bytes, folder),
             _ => Self::from_json_in(&bytes, folder),
         }
     }
@@ -315,6 +313,29 @@ impl Scene {
     /// `mujoco/worldbody/body[name=torso]/geom[2]@foo`. Nothing is stepped.
     pub fn from_mjcf(bytes: &[u8], folder: &Path) -> Result<Self, LoadError> {
         let model = mjcf::import(bytes, folder)?;
+        let json = serde_json::to_vec(&model)
+            .map_err(|error| SceneError::new("", format!("cannot write the model: {error}")))?;
+        Self::load(&json, MeshFiles { folder, given: &[] })
+    }
+
+    /// Reads a URDF robot (the XML text `bytes`) as a scene, its root link fixed to the world:
+    /// [`Scene::from_urdf_with`] with the default [`UrdfOptions`].
+    pub fn from_urdf(bytes: &[u8], folder: &Path) -> Result<Self, LoadError> {
+        Self::from_urdf_with(bytes, folder, UrdfOptions::default())
+    }
+
+    /// Reads a URDF robot (the XML text `bytes`) as a scene: a body per link, a joint per
+    /// joint, each named as in the file, a torque actuator per joint with an `effort` limit, a
+    /// coupling per `mimic`, turned from URDF's Z-up to rebond's Y-up (`docs/urdf.md`). The root
+    /// link is fixed to the world unless `options.floating_base`. What rebond cannot honour is
+    /// an error naming its path in the file, such as `robot/link[name=base]/inertial/mass`.
+    /// Nothing is stepped.
+    pub fn from_urdf_with(
+        bytes: &[u8],
+        folder: &Path,
+        options: UrdfOptions,
+    ) -> Result<Self, LoadError> {
+        let model = urdf::import(bytes, folder, options)?;
         let json = serde_json::to_vec(&model)
             .map_err(|error| SceneError::new("", format!("cannot write the model: {error}")))?;
         Self::load(&json, MeshFiles { folder, given: &[] })
