@@ -607,11 +607,11 @@ mod tests {
             names_of::<AxesEntry<f64>>(),
             names_of::<PathEntry>(),
             names_of::<PathPointEntry>(),
-            names_of::<CouplingEntry>(),
-            names_of::<CoupledJointEntry>(),
             names_of::<ActuatorEntry>(),
             names_of::<ActuatorKindEntry>(),
             names_of::<MassPropertiesEntry>(),
+            names_of::<CouplingEntry>(),
+            names_of::<CoupledJointEntry>(),
         ]
         .concat();
         assert!(names.len() > 30, "recorded only {names:?}");

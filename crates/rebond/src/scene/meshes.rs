@@ -27,7 +27,11 @@ impl MeshFiles<'_> {
     /// The triangles of the OBJ file `file` (relative to the folder): every object's faces,
     /// triangulated, as one mesh. A file that cannot be read or parsed is a
     /// [`LoadError::Mesh`] at `place`.
-    fn read_obj(&self, file: &str, place: &str) -> Result<(Vec<Vec3>, Vec<[u32; 3]>), LoadError> {
+    pub(super) fn read_obj(
+        &self,
+        file: &str,
+        place: &str,
+    ) -> Result<(Vec<Vec3>, Vec<[u32; 3]>), LoadError> {
         let path = self.folder.join(file);
         let failure = |message: String| LoadError::Mesh {
             place: place.to_owned(),

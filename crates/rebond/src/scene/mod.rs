@@ -48,8 +48,9 @@ use crate::joint::{Joint, JointHandle, JointType};
 use crate::world::World;
 pub use actuators::{Actuator, ActuatorKind};
 pub use builtin::{builtin, BuiltinScene, BUILTIN_SCENES};
-use convert::{actuator, body_desc, character, coupling_desc, joint_desc};
-use convert::{timestep, world_settings};
+use convert::{
+    actuator, body_desc, character, coupling_desc, joint_desc, timestep, world_settings,
+};
 use format::{BodyEntry, CouplingEntry, JointEntry, JsonObject, SceneFile};
 use meshes::MeshFiles;
 pub use urdf::UrdfOptions;
@@ -312,10 +313,8 @@ impl Scene {
     /// attribute rebond cannot honour is an error naming its path in the file, such as
     /// `mujoco/worldbody/body[name=torso]/geom[2]@foo`. Nothing is stepped.
     pub fn from_mjcf(bytes: &[u8], folder: &Path) -> Result<Self, LoadError> {
-        let model = mjcf::import(bytes, folder)?;
-        let json = serde_json::to_vec(&model)
-            .map_err(|error| SceneError::new("", format!("cannot write the model: {error}")))?;
-        Self::load(&json, MeshFiles { folder, given: &[] })
+        let json = mjcf_to_json(bytes, folder)?;
+        Self::load(json.as_bytes(), MeshFiles { folder, given: &[] })
     }
 
     /// Reads a URDF robot (the XML text `bytes`) as a scene, its root link fixed to the world:
@@ -715,6 +714,15 @@ impl Scene {
     pub fn into_world(self) -> World {
         self.world
     }
+}
+
+/// The scene file (JSON text) of a MuJoCo MJCF model: what [`Scene::from_mjcf`] loads, for a
+/// user to read, keep or edit. Mesh files the model names are read relative to `folder` (their
+/// points are written into the scene).
+pub fn mjcf_to_json(bytes: &[u8], folder: &Path) -> Result<String, LoadError> {
+    let model = mjcf::import(bytes, folder)?;
+    serde_json::to_string_pretty(&model)
+        .map_err(|error| SceneError::new("", format!("cannot write the model: {error}")).into())
 }
 
 /// The scene error for a joint the world refused: a missing axis is told the way the loader

@@ -7,7 +7,9 @@
 //! named as the joint (a `floating` joint none: its child is a free body), a `mimic` a coupling
 //! `q_f − m q_l` held at `o`. URDF is Z-up and rebond Y-up: the whole robot is turned by `C`, a
 //! rotation of −90° about X (`(x, y, z)` becomes `(x, z, −y)`), while what is given in a link's
-//! own frame (collisions, inertial, joint axes) keeps the file's local numbers.
+//! own frame (collisions, inertial, joint axes) keeps the file's local numbers. The element
+//! paths of errors, the frames, the turn `C` and the mesh reader are the MJCF importer's
+//! (`mjcf/parse.rs`, `mjcf/frames.rs`, `mjcf/geoms.rs`).
 
 use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
@@ -17,6 +19,9 @@ use glam::{DMat3, DQuat, DVec3, EulerRot};
 use roxmltree::{Document, Node};
 use serde_json::{json, Value};
 
+use super::mjcf::frames::{z_up_to_y_up, Frame};
+use super::mjcf::geoms::{read_mesh, rotation_json};
+use super::mjcf::parse::{attribute_error, element_error, path as path_of};
 use super::{LoadError, SceneError};
 
 /// How a URDF robot is read ([`super::Scene::from_urdf_with`]).
@@ -34,7 +39,7 @@ const NO_COLLISION_RADIUS: f64 = 0.01;
 /// The scene model of the URDF robot `bytes`.
 pub(super) fn import(
     bytes: &[u8],
-    _folder: &Path,
+    folder: &Path,
     options: UrdfOptions,
 ) -> Result<Value, LoadError> {
     let text = std::str::from_utf8(bytes)
@@ -45,41 +50,7 @@ pub(super) fn import(
     if robot.tag_name().name() != "robot" {
         return Err(element_error(robot, "a URDF file's root element is `robot`").into());
     }
-    Robot::read(robot)?.scene(options).map_err(Into::into)
-}
-
-/// The path of an element in the file, for errors: `robot/link[name=base]/inertial/mass`, a
-/// named element by its name, an unnamed one by its place among its parent's children of the
-/// same tag (from 1) when it has such siblings.
-fn path(node: Node) -> String {
-    let mut parts: Vec<String> = (node.ancestors().filter(Node::is_element))
-        .map(|element| {
-            let tag = element.tag_name().name();
-            if let Some(name) = element.attribute("name") {
-                return format!("{tag}[name={name}]");
-            }
-            let Some(parent) = element.parent_element() else {
-                return tag.to_owned();
-            };
-            let same: Vec<_> = (parent.children())
-                .filter(|child| child.is_element() && child.tag_name().name() == tag)
-                .collect();
-            match same.iter().position(|child| *child == element) {
-                Some(index) if same.len() > 1 => format!("{tag}[{}]", index + 1),
-                _ => tag.to_owned(),
-            }
-        })
-        .collect();
-    parts.reverse();
-    parts.join("/")
-}
-
-fn element_error(node: Node, message: impl Into<String>) -> SceneError {
-    SceneError::new(path(node), message)
-}
-
-fn attribute_error(node: Node, name: &str, message: impl Into<String>) -> SceneError {
-    SceneError::new(format!("{}@{name}", path(node)), message)
+    Robot::read(robot)?.scene(options, folder)
 }
 
 /// Refuses an attribute of `node` not in `known`, and a child element not in `children`.
@@ -149,52 +120,21 @@ fn vector(node: Node, name: &str) -> Result<Option<DVec3>, SceneError> {
     Ok(numbers(node, name, 3)?.map(|values| DVec3::new(values[0], values[1], values[2])))
 }
 
-/// A rigid transform: rotation, then translation.
-#[derive(Debug, Clone, Copy)]
-struct Frame {
-    position: DVec3,
-    rotation: DQuat,
-}
-
-impl Frame {
-    const IDENTITY: Self = Self {
-        position: DVec3::ZERO,
-        rotation: DQuat::IDENTITY,
+/// The `origin` child of `node` (`xyz`, `rpy`: roll about X, pitch about Y, yaw about Z, applied
+/// in that order about the fixed axes) as a frame in `node`'s parent's; identity when absent.
+fn origin(node: Node) -> Result<Frame, SceneError> {
+    let Some(origin) = child(node, "origin")? else {
+        return Ok(Frame::IDENTITY);
     };
-
-    /// The `origin` child of `node` (`xyz`, `rpy`: roll about X, pitch about Y, yaw about Z,
-    /// applied in that order about the fixed axes); identity when absent.
-    fn origin(node: Node) -> Result<Self, SceneError> {
-        let Some(origin) = child(node, "origin")? else {
-            return Ok(Self::IDENTITY);
-        };
-        check_element(origin, &["xyz", "rpy"], &[])?;
-        let position = vector(origin, "xyz")?.unwrap_or(DVec3::ZERO);
-        let rpy = vector(origin, "rpy")?.unwrap_or(DVec3::ZERO);
-        let rotation = DQuat::from_euler(EulerRot::ZYX, rpy.z, rpy.y, rpy.x);
-        Ok(Self { position, rotation })
-    }
-
-    /// `self` followed by `local` (a frame given in `self`'s).
-    fn then(&self, local: &Frame) -> Frame {
-        Frame {
-            position: self.position + self.rotation * local.position,
-            rotation: (self.rotation * local.rotation).normalize(),
-        }
-    }
-}
-
-/// The turn from URDF's Z-up world to rebond's Y-up one: −90° about X.
-fn z_up_to_y_up() -> DQuat {
-    DQuat::from_rotation_x(-FRAC_PI_2)
+    check_element(origin, &["xyz", "rpy"], &[])?;
+    let position = vector(origin, "xyz")?.unwrap_or(DVec3::ZERO);
+    let rpy = vector(origin, "rpy")?.unwrap_or(DVec3::ZERO);
+    let rotation = DQuat::from_euler(EulerRot::ZYX, rpy.z, rpy.y, rpy.x);
+    Ok(Frame { position, rotation })
 }
 
 fn vector_json(vector: DVec3) -> Value {
     json!([vector.x, vector.y, vector.z])
-}
-
-fn rotation_json(rotation: DQuat) -> Value {
-    json!([rotation.x, rotation.y, rotation.z, rotation.w])
 }
 
 /// A link as read.
@@ -280,7 +220,7 @@ impl<'a, 'input> Robot<'a, 'input> {
                 kind: kind.to_owned(),
                 parent,
                 child: child_link,
-                origin: Frame::origin(node)?,
+                origin: origin(node)?,
             });
         }
         let mut roots = (0..links.len()).filter(|&link| parent_joint[link].is_none());
@@ -330,7 +270,8 @@ impl<'a, 'input> Robot<'a, 'input> {
     }
 
     /// The scene model.
-    fn scene(&self, options: UrdfOptions) -> Result<Value, SceneError> {
+    /// The scene model; mesh files are found relative to `folder`.
+    fn scene(&self, options: UrdfOptions, folder: &Path) -> Result<Value, LoadError> {
         let turn = z_up_to_y_up();
         let order = self.frames()?;
         let mut world_frames = vec![Frame::IDENTITY; self.links.len()];
@@ -338,7 +279,7 @@ impl<'a, 'input> Robot<'a, 'input> {
         for &(link, frame) in &order {
             world_frames[link] = frame;
             let fixed = link == self.root && !options.floating_base;
-            bodies.push(self.body(link, frame, turn, fixed)?);
+            bodies.push(self.body(link, frame, turn, fixed, folder)?);
         }
         let mut joints = Vec::new();
         let mut actuators = Vec::new();
@@ -370,13 +311,14 @@ impl<'a, 'input> Robot<'a, 'input> {
         frame: Frame,
         turn: DQuat,
         fixed: bool,
-    ) -> Result<Value, SceneError> {
+        folder: &Path,
+    ) -> Result<Value, LoadError> {
         let link = &self.links[index];
         let node = link.node;
         check_element(node, &["name"], &["inertial", "visual", "collision"])?;
         let mut children = Vec::new();
         for collision in node.children().filter(|n| n.has_tag_name("collision")) {
-            children.push(collision_child(collision)?);
+            children.push(collision_child(collision, folder)?);
         }
         let mut body = json!({
             "name": link.name,
@@ -542,7 +484,7 @@ impl<'a, 'input> Robot<'a, 'input> {
 /// the inertia turned from the origin's axes to the link's (`R I Rᵀ`).
 fn mass_properties(inertial: Node) -> Result<Value, SceneError> {
     check_element(inertial, &[], &["origin", "mass", "inertia"])?;
-    let origin = Frame::origin(inertial)?;
+    let origin = origin(inertial)?;
     let mass_node = child(inertial, "mass")?
         .ok_or_else(|| element_error(inertial, "required element `mass` is missing"))?;
     check_element(mass_node, &["value"], &[])?;
@@ -575,10 +517,11 @@ fn mass_properties(inertial: Node) -> Result<Value, SceneError> {
     }))
 }
 
-/// The compound child of a `collision` element: its geometry at its origin, link frame.
-fn collision_child(collision: Node) -> Result<Value, SceneError> {
+/// The compound child of a `collision` element: its geometry at its origin, link frame; a mesh
+/// file (STL or OBJ, relative to `folder`) is the convex hull of its vertices.
+fn collision_child(collision: Node, folder: &Path) -> Result<Value, LoadError> {
     check_element(collision, &["name"], &["origin", "geometry"])?;
-    let mut frame = Frame::origin(collision)?;
+    let mut frame = origin(collision)?;
     let geometry = child(collision, "geometry")?
         .ok_or_else(|| element_error(collision, "required element `geometry` is missing"))?;
     check_element(geometry, &[], &["box", "cylinder", "sphere", "mesh"])?;
@@ -587,7 +530,7 @@ fn collision_child(collision: Node) -> Result<Value, SceneError> {
         .next()
         .ok_or_else(|| element_error(geometry, "a geometry needs a shape"))?;
     if let Some(second) = shapes.next() {
-        return Err(element_error(second, "a geometry holds one shape"));
+        return Err(element_error(second, "a geometry holds one shape").into());
     }
     let positive = |name: &str| -> Result<f64, SceneError> {
         let value = required_number(shape, name)?;
@@ -606,7 +549,7 @@ fn collision_child(collision: Node) -> Result<Value, SceneError> {
             let size = vector(shape, "size")?
                 .ok_or_else(|| attribute_error(shape, "size", "required attribute is missing"))?;
             if size.min_element() <= 0.0 {
-                return Err(attribute_error(shape, "size", "a size is not positive"));
+                return Err(attribute_error(shape, "size", "a size is not positive").into());
             }
             json!({"type": "box", "half_extents": vector_json(0.5 * size)})
         }
@@ -622,10 +565,26 @@ fn collision_child(collision: Node) -> Result<Value, SceneError> {
             json!({"type": "cylinder", "radius": radius, "half_height": 0.5 * length})
         }
         _ => {
-            return Err(element_error(
-                shape,
-                "mesh collisions are not read yet (docs/urdf.md)",
-            ))
+            check_element(shape, &["filename", "scale"], &[])?;
+            let name = (shape.attribute("filename")).ok_or_else(|| {
+                attribute_error(shape, "filename", "required attribute is missing")
+            })?;
+            if name.contains("://") && !name.starts_with("file://") {
+                let message = "only paths relative to the URDF file (or file://) are read: \
+                               package:// and other URLs are not resolved";
+                return Err(attribute_error(shape, "filename", message).into());
+            }
+            let file = folder.join(name.trim_start_matches("file://"));
+            let place = format!("{}@filename", path_of(shape));
+            let scale = vector(shape, "scale")?.unwrap_or(DVec3::ONE);
+            if scale.min_element() <= 0.0 {
+                return Err(attribute_error(shape, "scale", "a scale is not positive").into());
+            }
+            let points: Vec<Value> = read_mesh(&file, &place)?
+                .into_iter()
+                .map(|vertex| vector_json(vertex.as_dvec3() * scale))
+                .collect();
+            json!({"type": "convex_hull", "points": points})
         }
     };
     Ok(json!({
