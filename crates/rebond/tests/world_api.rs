@@ -293,10 +293,9 @@ fn bad_scene_joints_are_refused_at_their_place() {
             "min must not exceed max, got [2, 1]",
         ),
         (
-            r#"{"type": "revolute", "body_b": "door", "axis": [0, 1, 0],
-                "spring": {"stiffness": 1}}"#,
+            r#"{"type": "ball", "body_b": "door", "spring": {"stiffness": 1}}"#,
             "joints[0].spring",
-            "does not apply to a revolute joint",
+            "does not apply to a ball joint",
         ),
         (
             r#"{"type": "distance", "body_b": "door", "spring": {"stiffness": -1}}"#,

@@ -832,8 +832,10 @@ pub(crate) fn unwrap_angle(angle: f32, previous: f32) -> f32 {
 /// - Slides `x`, `y`, `z`: `(p_B − p_A)·eᵢ`, m, with `p` the anchors and `eᵢ` the frame's axes
 ///   as fixed in `body_a`; rates `(ṗ_B − ṗ_A)·eᵢ + (p_B − p_A)·(ω_A × eᵢ)`, m/s.
 /// - Rotations `rx`, `ry`, `rz`: with `d` the rotation of `body_b` relative to `body_a` since
-///   the joint was made, in the joint frame, `w ≥ 0`: `2 atan2(dᵢ, d_w)` in `(−π, π]`, rad, the
-///   exact angle when it is the only rotation the joint leaves (the others locked); rates
+///   the joint was made, in the joint frame, `w ≥ 0`: `2 atan2(dᵢ, d_w)` in `(−π, π]`, rad.
+///   When exactly one rotation is free or limited, its coordinate is that, the exact angle
+///   (the twist `t` about its axis), and the locked ones are those of the swing `s = d t⁻¹`
+///   left once the twist is taken out, so that they read 0 at any angle of the free one. Rates
 ///   `(ω_B − ω_A)·eᵢ`, rad/s.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -854,26 +856,49 @@ pub(crate) struct GenericFrame {
 }
 
 impl GenericFrame {
-    /// The frame of a joint whose anchors are apart by `separation` (`p_B − p_A`, world), for
-    /// the sides' rotations.
+    /// The frame of a joint with `axes` whose anchors are apart by `separation` (`p_B − p_A`,
+    /// world), for the sides' rotations.
     pub(crate) fn new(
         frames: &JointFrames,
-        rotation_a: Quat,
-        rotation_b: Quat,
+        axes: &[AxisFreedom; 6],
+        (rotation_a, rotation_b): (Quat, Quat),
         separation: Vec3,
     ) -> Self {
         let frame = rotation_a * frames.local_frame_a;
-        let axes = Vec3::AXES.map(|axis| frame * axis);
+        let world_axes = Vec3::AXES.map(|axis| frame * axis);
         let relative = relative_rotation(frames, rotation_a, rotation_b);
         // `F⁻¹ d F`: the same rotation with its axis in the joint frame; `w` is unchanged.
         let inframe = frames.local_frame_a.inverse() * relative * frames.local_frame_a;
         let half = Vec3::new(inframe.x, inframe.y, inframe.z);
         let mut positions = [0.0; 6];
-        for (k, axis) in axes.into_iter().enumerate() {
+        for (k, axis) in world_axes.into_iter().enumerate() {
             positions[k] = separation.dot(axis);
             positions[3 + k] = 2.0 * half[k].atan2(inframe.w);
         }
-        Self { axes, positions }
+        let mut turning = (3..6).filter(|&k| axes[k].moves());
+        if let (Some(free), None) = (turning.next(), turning.next()) {
+            // One rotation moves: `d = s t`, its twist `t` about its axis and the swing `s`
+            // left, whose components are the locked rotations' coordinates. They stay 0 at any
+            // twist, where `2 atan2(dᵢ, d_w)` would turn into ±π as the twist passes a half turn.
+            let k = free - 3;
+            let mut along = Vec3::ZERO;
+            along[k] = half[k];
+            let length = (along[k] * along[k] + inframe.w * inframe.w).sqrt();
+            // A swing of a half turn leaves no twist to take out (`d_k = d_w = 0`).
+            if length > f32::EPSILON {
+                let twist = Quat::from_xyzw(along.x, along.y, along.z, inframe.w) / length;
+                let swing = inframe * twist.inverse();
+                let swing = if swing.w < 0.0 { -swing } else { swing };
+                let swing_half = Vec3::new(swing.x, swing.y, swing.z);
+                for i in (0..3).filter(|&i| i != k) {
+                    positions[3 + i] = 2.0 * swing_half[i].atan2(swing.w);
+                }
+            }
+        }
+        Self {
+            axes: world_axes,
+            positions,
+        }
     }
 }
 

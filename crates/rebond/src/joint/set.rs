@@ -53,6 +53,10 @@ pub(crate) struct JointImpulses {
     pub friction_couple: Vec3,
     /// Joint friction along the revolute or prismatic axis, N·m·s or N·s.
     pub friction: f32,
+    /// Generic joints: each axis's lower and upper limit and motor, N·s or N·m·s.
+    pub axis_lower: [f32; 6],
+    pub axis_upper: [f32; 6],
+    pub axis_motor: [f32; 6],
 }
 
 impl JointImpulses {
@@ -73,6 +77,8 @@ impl JointImpulses {
                 self.friction,
             ]
             .iter()
+            .chain(self.axis_lower.iter().chain(&self.axis_upper))
+            .chain(&self.axis_motor)
             .all(|impulse| impulse.abs() <= limit)
     }
 }
@@ -136,6 +142,9 @@ impl JointSolverData {
             twist_upper: 0.0,
             friction_couple: Vec3::ZERO,
             friction: 0.0,
+            axis_lower: [0.0; 6],
+            axis_upper: [0.0; 6],
+            axis_motor: [0.0; 6],
         },
         poses: [SidePose::WORLD; 2],
         step_linear: Vec3::ZERO,

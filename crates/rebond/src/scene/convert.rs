@@ -5,7 +5,7 @@ use crate::body::{BodyDesc, BodyHandle, BodyType, KinematicPath, LockedAxes, Pat
 use crate::character::{CharacterController, CharacterSettings};
 use crate::coupling::CouplingDesc;
 use crate::filter::InteractionGroups;
-use crate::joint::{AxisFreedom, GenericAxis, JointDesc, JointHandle, JointType, Motor};
+use crate::joint::{AxisFreedom, JointDesc, JointHandle, JointType, Motor};
 use crate::limits::{MAX_TIMESTEP, MIN_TIMESTEP};
 use crate::mass::MassProperties;
 use crate::math::{Mat3, Pose, Quat, Vec3};
@@ -685,14 +685,15 @@ pub(super) fn joint_desc(
         desc.frame = Some(rotation(&field("frame"), value)?);
     }
     if let Some(axes) = &entry.axes {
-        for (name, value) in axes.given() {
-            desc.axes[axis_index(name)] = axis_freedom(value, &field(&format!("axes.{name}")))?;
+        for (axis, value) in axes.given() {
+            let place = field(&format!("axes.{}", axis.name()));
+            desc.axes[axis.index()] = axis_freedom(value, &place)?;
         }
     }
     if let Some(motors) = &entry.motors {
-        for (name, value) in motors.given() {
-            let place = field(&format!("motors.{name}"));
-            desc.motors[axis_index(name)] = Some(motor(value, &place)?);
+        for (axis, value) in motors.given() {
+            let place = field(&format!("motors.{}", axis.name()));
+            desc.motors[axis.index()] = Some(motor(value, &place)?);
         }
     }
     if let Some(value) = entry.friction {
@@ -708,11 +709,6 @@ pub(super) fn joint_desc(
         desc.break_torque = scalar(&field("break_torque"), value)?;
     }
     Ok(desc)
-}
-
-/// The index of a generic joint's axis of a name [`AxesEntry`] gives.
-fn axis_index(name: &str) -> usize {
-    GenericAxis::from_name(name).map_or(0, GenericAxis::index)
 }
 
 /// What a generic joint's axis entry says; errors are placed at `place` (`joints[i].axes.x`).

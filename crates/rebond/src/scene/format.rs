@@ -16,7 +16,7 @@ use serde::de::{Deserializer, MapAccess, Visitor};
 use serde::Deserialize;
 
 use crate::body::BodyType;
-use crate::joint::JointType;
+use crate::joint::{GenericAxis, JointType};
 use crate::material::CombineRule;
 
 /// A value that must be written as a JSON object. Derived structs alone would also take a JSON
@@ -503,18 +503,13 @@ pub(super) struct AxesEntry<T> {
 }
 
 impl<T> AxesEntry<T> {
-    /// The values given, with their axis names, in the order of `GenericAxis::ALL`.
-    pub(super) fn given(&self) -> impl Iterator<Item = (&'static str, &T)> {
-        [
-            ("x", &self.x),
-            ("y", &self.y),
-            ("z", &self.z),
-            ("rx", &self.rx),
-            ("ry", &self.ry),
-            ("rz", &self.rz),
-        ]
-        .into_iter()
-        .filter_map(|(name, value)| value.as_ref().map(|value| (name, value)))
+    /// The values given, with their axes, in the order of [`GenericAxis::ALL`].
+    pub(super) fn given(&self) -> impl Iterator<Item = (GenericAxis, &T)> {
+        let values = [&self.x, &self.y, &self.z, &self.rx, &self.ry, &self.rz];
+        GenericAxis::ALL
+            .into_iter()
+            .zip(values)
+            .filter_map(|(axis, value)| value.as_ref().map(|value| (axis, value)))
     }
 }
 

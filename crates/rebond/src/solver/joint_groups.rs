@@ -31,6 +31,9 @@ pub(super) enum Accumulator {
     Angular(Vec3),
     /// `axial`.
     Axial,
+    /// The armature's rotor (revolute, prismatic): the joint's own sum for the substep, not
+    /// warm-started.
+    Armature,
 }
 
 /// One equality row of a group.
@@ -50,6 +53,10 @@ pub(super) struct GroupRow {
     pub angular_response: [Vec3; 2],
     /// Position error `C` at the pose the row was built for.
     pub error: f32,
+    /// A soft row's compliance `γ`, added to its diagonal of `A` (0 for a rigid row), and the
+    /// term its solve adds to `J v` (the armature's `γ λ_acc − ω_rotor`), set before each solve.
+    pub compliance: f32,
+    pub offset: f32,
 }
 
 impl GroupRow {
@@ -72,6 +79,8 @@ impl GroupRow {
             linear_response: [0, 1].map(|side| inverse_mass[side] * jacobian.linear[side]),
             angular_response: [0, 1].map(|side| inverse_inertia[side] * jacobian.angular[side]),
             error,
+            compliance: 0.0,
+            offset: 0.0,
         }
     }
 
@@ -210,6 +219,10 @@ impl GroupSystem {
             }
             run_start += run.len();
         }
+        for (i, row) in self.rows.iter().enumerate() {
+            let block = &self.blocks[self.block_of_row[i]];
+            self.factor[block.column(i)][i - block.start] += row.compliance;
+        }
         self.inverse_diagonal.clear();
         for block in &self.blocks {
             let end = block.start + block.len;
@@ -304,8 +317,8 @@ impl GroupSystem {
         self.structure_known = true;
     }
 
-    /// One solve of the group: `λ = −A⁻¹ (J v + b C)` per row (the rows are rigid; `softness`
-    /// gives the bias `b C`), applied to `states`. [`Self::impulses`] then gives the impulse of
+    /// One solve of the group: `λ = −(A + Γ)⁻¹ (J v + b C + o)` per row (`softness` gives the
+    /// bias `b C`; the soft rows' compliances `Γ` and offsets `o` are the rows' own), applied to `states`. [`Self::impulses`] then gives the impulse of
     /// each row, for the caller's accumulators. A solve that asks any row for more than
     /// [`MAX_SOLVER_IMPULSE`], or for an impulse that is not finite, applies nothing, gives
     /// every row zero and returns `false`.
@@ -314,7 +327,7 @@ impl GroupSystem {
         self.work.extend(
             self.rows
                 .iter()
-                .map(|row| -(row.velocity(states) + softness.bias(row.error))),
+                .map(|row| -(row.velocity(states) + softness.bias(row.error) + row.offset)),
         );
         // `L y = r`, a block at a time: the block's rows less what the earlier rows give them,
         // then its own rows in order.

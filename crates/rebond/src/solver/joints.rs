@@ -20,8 +20,8 @@ use super::softness::Softness;
 use super::stages::{ConstraintKind, StepContext, BIASED_ITERATIONS};
 use super::{BodyMotion, BodyState, SolverBodies};
 use crate::joint::{
-    relative_rotation, twist_angle, unwrap_angle, JointFrames, JointImpulses, JointSet, JointType,
-    Motor, Spring,
+    relative_rotation, twist_angle, unwrap_angle, AxisFreedom, GenericFrame, JointFrames,
+    JointImpulses, JointSet, JointType, Motor, Spring,
 };
 use crate::limits::MAX_SOLVER_IMPULSE;
 use crate::math::{rotation_vector, Quat, Vec3};
@@ -95,6 +95,11 @@ struct JointOptions {
     spring: Option<Spring>,
     /// Most friction torque (force for a prismatic joint), N·m or N.
     friction: f32,
+    /// Revolute and prismatic joints: the inertia added to the coordinate, kg·m² or kg.
+    armature: f32,
+    /// Generic joints: each axis's freedom and motor.
+    axes: [AxisFreedom; 6],
+    motors: [Option<Motor>; 6],
 }
 
 impl JointOptions {
@@ -108,9 +113,9 @@ impl JointOptions {
         match self.joint_type {
             JointType::Fixed => 6,
             JointType::Ball => 3,
-            JointType::Revolute | JointType::Prismatic => 5,
+            JointType::Revolute | JointType::Prismatic => 5 + usize::from(self.armature > 0.0),
             JointType::Distance => usize::from(self.has_rigid_length()),
-            JointType::Generic => 0,
+            JointType::Generic => self.axes.iter().filter(|axis| !axis.moves()).count(),
         }
     }
 }
@@ -137,6 +142,11 @@ struct JointConstraint {
     group: Option<usize>,
     /// Revolute joints: the angle counted across turns at the last refresh, rad.
     angle: f32,
+    /// Joints with an armature: the rotor's speed, the joint's rate as the substep starts (as
+    /// the last one ended), rad/s or m/s, and the impulse it has given the joint in this
+    /// substep, N·m·s or N·s.
+    rotor_speed: f32,
+    armature_impulse: f32,
     /// Impulses on B summed over the substeps, N·s and N·m·s.
     step_linear: Vec3,
     step_angular: Vec3,
@@ -169,6 +179,25 @@ struct Geometry {
     swing: Option<AxisPart>,
     /// Ball joints with friction: the relative rotation's effective mass.
     friction: Option<RotationPart>,
+    /// Generic joints: a part per axis ([`GenericAxis::ALL`]'s order), along the frame's axes
+    /// fixed in A, and the coordinates.
+    generic: Option<GenericGeometry>,
+}
+
+/// A generic joint at the poses of the current substep.
+#[derive(Debug, Clone, Copy)]
+struct GenericGeometry {
+    parts: [AxisPart; 6],
+    /// The frame's axes in the world (unit), and the six coordinates (m, rad).
+    axes: [Vec3; 3],
+    positions: [f32; 6],
+}
+
+impl GenericGeometry {
+    /// The unit world direction (slide) or axis (rotation) of axis `k`.
+    fn direction(&self, k: usize) -> Vec3 {
+        self.axes[k % 3]
+    }
 }
 
 impl JointConstraint {
@@ -264,7 +293,24 @@ impl JointConstraint {
                         Some(AxisPart::linear(bodies, (arm_a, arm_b), geometry.axis));
                 }
             }
-            JointType::Generic => {}
+            JointType::Generic => {
+                let frame =
+                    GenericFrame::new(frames, &options.axes, (rotation_a, rotation_b), separation);
+                let arms = (arm_a + separation, arm_b);
+                let parts = [0, 1, 2, 3, 4, 5].map(|k| {
+                    let axis = frame.axes[k % 3];
+                    if k < 3 {
+                        AxisPart::linear(bodies, arms, axis)
+                    } else {
+                        AxisPart::angular(bodies, axis)
+                    }
+                });
+                geometry.generic = Some(GenericGeometry {
+                    parts,
+                    axes: frame.axes,
+                    positions: frame.positions,
+                });
+            }
         }
         self.geometry = geometry;
     }
@@ -328,6 +374,28 @@ impl JointConstraint {
                 geometry.position - self.frames.length,
             );
         }
+        if let Some(generic) = &geometry.generic {
+            for (k, freedom) in self.options.axes.iter().enumerate() {
+                if freedom.moves() {
+                    continue;
+                }
+                let direction = generic.direction(k);
+                let accumulator = if k < 3 {
+                    Accumulator::Linear(direction)
+                } else {
+                    Accumulator::Angular(direction)
+                };
+                push(accumulator, generic.parts[k].row(), generic.positions[k]);
+            }
+        }
+        if let (Some(axis), true) = (&geometry.axis_part, self.options.armature > 0.0) {
+            // The rotor: `J v = ω_rotor` with the compliance `1 / a`, so that the joint and
+            // rotor share the impulse as one body of inertia `I + a` along the coordinate.
+            push(Accumulator::Armature, axis.row(), 0.0);
+            if let Some(row) = rows.last_mut() {
+                row.compliance = 1.0 / self.options.armature;
+            }
+        }
     }
 
     /// Adds `impulse` to one of its holding rows' accumulated impulses.
@@ -336,16 +404,42 @@ impl JointConstraint {
             Accumulator::Linear(axis) => self.impulses.linear += impulse * axis,
             Accumulator::Angular(axis) => self.impulses.angular += impulse * axis,
             Accumulator::Axial => self.impulses.axial += impulse,
+            Accumulator::Armature => self.armature_impulse += impulse,
         }
+    }
+
+    /// The joint's rate along its coordinate at `v`, for the armature's rotor (0 without an
+    /// axis).
+    fn coordinate_rate(&self, v: &Velocities) -> f32 {
+        self.geometry.axis_part.map_or(0.0, |axis| axis.velocity(v))
     }
 
     /// The impulse on B these accumulated impulses make: linear at B's anchor, and the couple.
     fn impulse_on_b(&self) -> (Vec3, Vec3) {
         let impulses = &self.impulses;
         let axis = self.geometry.axis;
-        let along_axis = impulses.lower - impulses.upper + impulses.motor + impulses.friction;
+        let along_axis = impulses.lower - impulses.upper
+            + impulses.motor
+            + impulses.friction
+            + impulses.axial
+            + self.armature_impulse;
         match self.options.joint_type {
-            JointType::Fixed | JointType::Generic => (impulses.linear, impulses.angular),
+            JointType::Fixed => (impulses.linear, impulses.angular),
+            JointType::Generic => {
+                let (mut linear, mut angular) = (impulses.linear, impulses.angular);
+                if let Some(generic) = &self.geometry.generic {
+                    for k in 0..6 {
+                        let along = impulses.axis_lower[k] - impulses.axis_upper[k]
+                            + impulses.axis_motor[k];
+                        if k < 3 {
+                            linear += generic.direction(k) * along;
+                        } else {
+                            angular += generic.direction(k) * along;
+                        }
+                    }
+                }
+                (linear, angular)
+            }
             JointType::Ball => (
                 impulses.linear,
                 axis * (impulses.twist_lower - impulses.twist_upper)
@@ -370,6 +464,7 @@ impl JointConstraint {
         if !self.impulses.is_within(MAX_SOLVER_IMPULSE) {
             self.impulses = JointImpulses::default();
         }
+        self.armature_impulse = 0.0;
         let (geometry, impulses, bodies) = (&self.geometry, &self.impulses, &self.bodies);
         if let Some(point) = &geometry.point {
             point.apply(bodies, v, impulses.linear);
@@ -397,6 +492,20 @@ impl JointConstraint {
         }
         if geometry.friction.is_some() {
             RotationPart::apply(bodies, v, impulses.friction_couple);
+        }
+        if let Some(generic) = &geometry.generic {
+            // A locked axis's share of the linear or angular impulse kept as a world vector
+            // (the frame has turned since), and a moving axis's limits and motor.
+            for (k, freedom) in self.options.axes.iter().enumerate() {
+                let scalar = if freedom.moves() {
+                    impulses.axis_lower[k] - impulses.axis_upper[k] + impulses.axis_motor[k]
+                } else if k < 3 {
+                    impulses.linear.dot(generic.direction(k))
+                } else {
+                    impulses.angular.dot(generic.direction(k))
+                };
+                generic.parts[k].apply(bodies, v, scalar);
+            }
         }
         if let Some(swing) = &geometry.swing {
             swing.apply(bodies, v, -impulses.swing);
@@ -455,10 +564,14 @@ impl JointConstraint {
                 axis.solve_velocity_motor(bodies, v, 0.0, most, &mut impulses.friction);
             }
             if let (Some(spring), true) = (options.spring, biased) {
+                let rest = match options.joint_type {
+                    JointType::Distance => self.frames.length,
+                    _ => spring.reference,
+                };
                 axis.solve_spring(
                     bodies,
                     v,
-                    position - self.frames.length,
+                    position - rest,
                     (spring.stiffness, spring.damping, h),
                     f32::INFINITY,
                     &mut impulses.axial,
@@ -476,6 +589,41 @@ impl JointConstraint {
                 let pass = (softness, inverse_h);
                 axis.solve_limit(bodies, v, (position - min, 1.0), pass, lower);
                 axis.solve_limit(bodies, v, (max - position, -1.0), pass, upper);
+            }
+        }
+        if let Some(generic) = &geometry.generic {
+            for k in 0..6 {
+                let (part, position) = (&generic.parts[k], generic.positions[k]);
+                let motor = &mut impulses.axis_motor[k];
+                match options.motors[k] {
+                    Some(Motor::Velocity {
+                        target_velocity,
+                        max_force,
+                    }) => {
+                        part.solve_velocity_motor(bodies, v, target_velocity, max_force * h, motor)
+                    }
+                    Some(Motor::Position {
+                        target_position,
+                        stiffness,
+                        damping,
+                        max_force,
+                    }) if biased => part.solve_spring(
+                        bodies,
+                        v,
+                        position - target_position,
+                        (stiffness, damping, h),
+                        max_force * h,
+                        motor,
+                    ),
+                    Some(Motor::Position { .. } | Motor::Torque { .. }) | None => {}
+                }
+                if let AxisFreedom::Limited([min, max]) = options.axes[k] {
+                    let pass = (softness, inverse_h);
+                    let lower = &mut impulses.axis_lower[k];
+                    part.solve_limit(bodies, v, (position - min, 1.0), pass, lower);
+                    let upper = &mut impulses.axis_upper[k];
+                    part.solve_limit(bodies, v, (max - position, -1.0), pass, upper);
+                }
             }
         }
         if let Some(friction) = &geometry.friction {
@@ -570,6 +718,12 @@ impl JointConstraints {
             if group.rows.is_empty() {
                 continue;
             }
+            for row in &mut group.rows {
+                if row.accumulator == Accumulator::Armature {
+                    let joint = &constraints[row.joint];
+                    row.offset = row.compliance * joint.armature_impulse - joint.rotor_speed;
+                }
+            }
             if !group.solve(states, softness) {
                 self.refused_solves += 1;
             }
@@ -636,6 +790,13 @@ impl ConstraintKind for JointConstraints {
                 None => impulses.motor = 0.0,
                 Some(Motor::Velocity { .. } | Motor::Position { .. }) => {}
             }
+            for (impulse, motor) in impulses.axis_motor.iter_mut().zip(&desc.motors) {
+                match motor {
+                    Some(Motor::Torque { torque }) => *impulse = torque * context.h,
+                    None => *impulse = 0.0,
+                    Some(Motor::Velocity { .. } | Motor::Position { .. }) => {}
+                }
+            }
             self.constraints.push(JointConstraint {
                 slot,
                 options: JointOptions {
@@ -646,6 +807,9 @@ impl ConstraintKind for JointConstraints {
                     motor: desc.motor,
                     spring: desc.spring,
                     friction: desc.friction,
+                    armature: desc.armature,
+                    axes: desc.axes,
+                    motors: desc.motors,
                 },
                 frames: joint.frames,
                 solver,
@@ -664,10 +828,27 @@ impl ConstraintKind for JointConstraints {
                 impulses,
                 group: None,
                 angle: joint.angle,
+                rotor_speed: 0.0,
+                armature_impulse: 0.0,
                 step_linear: Vec3::ZERO,
                 step_angular: Vec3::ZERO,
                 geometry: Geometry::default(),
             });
+        }
+        // The rotors start the step at their joints' rates: the bodies' velocities as the step
+        // starts (before the first substep's forces), which a saved state holds, so a resumed
+        // run goes on with the same bits.
+        for constraint in &mut self.constraints {
+            if constraint.options.armature > 0.0 {
+                constraint.refresh(&solver_bodies.motions);
+                let [a, b] = constraint.solver;
+                let states = &solver_bodies.states;
+                let v = Velocities {
+                    linear: [a, b].map(|index| states[index].linear_velocity.into()),
+                    angular: [a, b].map(|index| states[index].angular_velocity.into()),
+                };
+                constraint.rotor_speed = constraint.coordinate_rate(&v);
+            }
         }
         self.group(solver_bodies);
         self.rows_current = false;
@@ -720,6 +901,12 @@ impl ConstraintKind for JointConstraints {
                 constraint.step_linear += linear;
                 constraint.step_angular += angular;
             }
+            // The rotor ends the substep at the joint's rate: the group's solve, last, met it.
+            self.for_each_joint(states, |constraint, v| {
+                if constraint.options.armature > 0.0 {
+                    constraint.rotor_speed = constraint.coordinate_rate(v);
+                }
+            });
         }
     }
 

@@ -43,8 +43,8 @@ impl World {
     /// nothing: it reads what the others' placement gives. A joint listed twice takes the last
     /// value. Velocities are kept.
     ///
-    /// Errors name the entry (`positions[2]`): a stale handle, a fixed or ball joint (they have
-    /// no coordinate), a value not finite or beyond ±[`MAX_COORDINATE`]; `positions` when a body
+    /// Errors name the entry (`positions[2]`): a stale handle, a fixed, ball or generic joint
+    /// (they have no one coordinate), a value not finite or beyond ±[`MAX_COORDINATE`]; `positions` when a body
     /// would be placed beyond [`MAX_COORDINATE`]. On error the world is unchanged.
     pub fn set_joint_positions(&mut self, positions: &[(JointHandle, f32)]) -> Result<()> {
         let given = self.given_coordinates(positions, "positions", |_| MAX_COORDINATE)?;
@@ -202,7 +202,11 @@ impl World {
                 .get(handle)
                 .ok_or_else(|| stale_joint().within(&field))?;
             let joint_type = joint.joint_type();
-            if matches!(joint_type, JointType::Fixed | JointType::Ball) {
+            // A generic joint has six coordinates, not one (`World::generic_joint_coordinates`).
+            if matches!(
+                joint_type,
+                JointType::Fixed | JointType::Ball | JointType::Generic
+            ) {
                 return Err(Error::new(
                     field,
                     ErrorKind::NotForJointType(joint_type.name()),

@@ -77,7 +77,8 @@ impl World {
     /// The turns are counted each substep the joint is solved and as each step starts: a
     /// revolute angle read between steps is right while the bodies turn by less than half a turn
     /// relative to each other in a substep (and in a step, when moved by hand or asleep).
-    /// Fixed and ball joints have no such coordinate: an error naming `position`.
+    /// Fixed, ball and generic joints have no one such coordinate (a generic joint's six are
+    /// [`World::generic_joint_coordinates`]): an error naming `position`.
     pub fn joint_position(&self, handle: JointHandle) -> Result<f32> {
         let (joint, placement, body_a, body_b) = self.joint_sides(handle)?;
         let separation = placement.anchor_b - placement.anchor_a;
@@ -97,7 +98,7 @@ impl World {
     /// The rate of [`World::joint_position`] at the bodies' current velocities: rad/s
     /// (`θ̇ = (ω_B − ω_A)·a`) or m/s (`ṡ = (ṗ_B − ṗ_A)·a + (p_B − p_A)·(ω_A × a)`,
     /// `L̇ = u·(ṗ_B − ṗ_A)`, `ṗ` each anchor's velocity, `u` the unit direction A → B; 0 while the
-    /// anchors coincide). Fixed and ball joints: an error naming `velocity`.
+    /// anchors coincide). Fixed, ball and generic joints: an error naming `velocity`.
     pub fn joint_velocity(&self, handle: JointHandle) -> Result<f32> {
         let (joint, placement, body_a, body_b) = self.joint_sides(handle)?;
         let spin = |body: Option<&RigidBody>| body.map_or(Vec3::ZERO, RigidBody::angular_velocity);
@@ -141,8 +142,8 @@ impl World {
         let separation = placement.anchor_b - placement.anchor_a;
         let frame = GenericFrame::new(
             &joint.frames,
-            rotation(body_a),
-            rotation(Some(body_b)),
+            &joint.desc.axes,
+            (rotation(body_a), rotation(Some(body_b))),
             separation,
         );
         let spin = |body: Option<&RigidBody>| body.map_or(Vec3::ZERO, RigidBody::angular_velocity);

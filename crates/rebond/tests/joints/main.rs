@@ -1,6 +1,7 @@
 //! Joints against closed forms: pendulum periods, springs, motors, limits, reaction forces,
 //! breaking, and chains under heavy loads.
 
+mod armature;
 mod chains;
 #[path = "../common/mod.rs"]
 mod common;
@@ -8,6 +9,9 @@ mod coordinates;
 mod couplings;
 mod drives;
 mod friction;
+mod friction_threshold;
+mod generic;
+mod joint_springs;
 mod large_groups;
 mod pendulums;
 mod reactions;
