@@ -284,3 +284,34 @@ fn a_mesh_collision_is_the_convex_hull_of_its_file_and_from_file_reads_urdf() {
     assert!(from_file.body_handle("crate").is_some());
     std::fs::remove_dir_all(&folder).unwrap();
 }
+
+#[test]
+fn dynamics_damping_slows_a_free_wheel_exponentially() {
+    // A wheel of I = 0.1 kg·m² on a continuous joint with damping d = 0.1 N·m·s/rad, spun at
+    // 1 rad/s, no other torque: ω(t) = e^(−d t / I), 1/e after 1 s.
+    let urdf = r#"<robot name="wheel"><link name="base"/>
+      <link name="wheel"><inertial><mass value="1"/>
+        <inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+      <joint name="axle" type="continuous"><parent link="base"/><child link="wheel"/>
+        <axis xyz="0 0 1"/><dynamics damping="0.1"/></joint></robot>"#;
+    let mut scene = load(urdf);
+    let (axle, wheel) = (
+        scene.joint_handle("axle").unwrap(),
+        scene.body_handle("wheel").unwrap(),
+    );
+    let world = scene.world_mut();
+    world.body_mut(wheel).unwrap().set_can_sleep(false);
+    world.set_joint_velocities(&[(axle, 1.0)]).unwrap();
+    for _ in 0..60 {
+        scene.step().unwrap();
+    }
+    let rate = scene.world().joint_velocity(axle).unwrap();
+    let expected = (-1.0f32).exp();
+    // Damping is taken at the substep's end velocity (implicit), which decays by
+    // `1/(1 + d h / I)` a substep instead of `e^(−d h / I)`: (d h / I)²/2 a substep, 1e-3 over
+    // the 480 substeps (measured 0.36826 against 0.36788, 1.0e-3); 0.5 % is the bound.
+    assert!(
+        (rate / expected - 1.0).abs() < 0.005,
+        "ω = {rate} rad/s after 1 s, e^(−d t/I) = {expected}"
+    );
+}
