@@ -248,11 +248,9 @@ impl CouplingSet {
         let mut count = 0;
         for (index, (coupling, _)) in self.couplings.iter() {
             let terms = &coupling.desc.joints;
-            let live = terms.iter().map(|term| joints.get(term.joint));
-            let Some(live) = live.collect::<Option<Vec<_>>>() else {
-                continue;
-            };
-            if live.iter().any(|joint| joint.broken) {
+            // Without collecting the joints: a steady scene's step allocates nothing.
+            let acts = |term: &CouplingTerm| joints.get(term.joint).is_some_and(|j| !j.broken);
+            if !terms.iter().all(acts) {
                 continue;
             }
             if self.acting.len() == count {
@@ -261,7 +259,7 @@ impl CouplingSet {
             let (slot, coupled) = &mut self.acting[count];
             *slot = index.slot();
             coupled.clear();
-            for (term, joint) in terms.iter().zip(live) {
+            for (term, joint) in terms.iter().filter_map(|t| Some((t, joints.get(t.joint)?))) {
                 let (body_a, body_b) = joint.bodies();
                 coupled.push(CoupledJoint {
                     coefficient: term.coefficient,

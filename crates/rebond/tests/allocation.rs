@@ -12,7 +12,8 @@ use common::{add_ground, unit_box, world, DT, G};
 use rebond::internals::collision::epa;
 use rebond::internals::collision::PosedCore;
 use rebond::{
-    BodyDesc, BodyHandle, CompoundChild, JointDesc, Motor, Pose, Quat, Shape, Vec3, World,
+    BodyDesc, BodyHandle, CompoundChild, CouplingDesc, JointDesc, Motor, Pose, Quat, Shape, Vec3,
+    World,
 };
 
 /// Counts the allocations of the calling thread, so a test can prove a step allocates nothing
@@ -365,6 +366,72 @@ fn a_steady_step_with_joints_allocates_nothing() {
     allocations_of(|| {
         for _ in 0..240 {
             control(&mut world);
+        }
+    });
+}
+
+/// A hip and a knee (a thigh shared by two hinges) under a limited spring coupling, and two
+/// wheels geared by an equality coupling, one driven: the couplings' rows and the coupled joints
+/// they read each step reuse their buffers, and reading a coupling's length allocates nothing.
+#[test]
+fn a_steady_step_with_couplings_allocates_nothing() {
+    let mut world = world(Vec3::new(0.0, -G, 0.0));
+    let limb = |world: &mut World, y: f32| {
+        (world.add_body(
+            BodyDesc::dynamic(Shape::cuboid(Vec3::new(0.05, 0.25, 0.05)).unwrap())
+                .position(Vec3::new(0.0, y, 0.0))
+                .can_sleep(false),
+        ))
+        .unwrap()
+    };
+    let (thigh, shin) = (limb(&mut world, 7.75), limb(&mut world, 7.25));
+    let hip = (world.add_joint(JointDesc::revolute(
+        None,
+        thigh,
+        Vec3::new(0.0, 8.0, 0.0),
+        Vec3::Z,
+    )))
+    .unwrap();
+    let knee = (world.add_joint(JointDesc::revolute(
+        thigh,
+        shin,
+        Vec3::new(0.0, 7.5, 0.0),
+        Vec3::Z,
+    )))
+    .unwrap();
+    let limb_coupling = (world.add_coupling(
+        CouplingDesc::new([(hip, -1.0), (knee, 1.0)])
+            .limits(-0.3, 0.3)
+            .spring(5.0, 0.5),
+    ))
+    .unwrap();
+    let wheel = |world: &mut World, x: f32| {
+        let centre = Vec3::new(x, 12.0, 0.0);
+        let body = (world.add_body(
+            BodyDesc::dynamic(Shape::sphere(0.3).unwrap())
+                .position(centre)
+                .can_sleep(false),
+        ))
+        .unwrap();
+        (world.add_joint(JointDesc::revolute(None, body, centre, Vec3::Z))).unwrap()
+    };
+    let (driven, follower) = (wheel(&mut world, 0.0), wheel(&mut world, 2.0));
+    (world.set_joint_motor(driven, Some(Motor::torque(0.5)))).unwrap();
+    let gear = (world
+        .add_coupling(CouplingDesc::new([(follower, 1.0), (driven, -2.0)]).limits(0.0, 0.0)))
+    .unwrap();
+    world.set_joint_velocities(&[(hip, 2.0)]).unwrap();
+    let run = |world: &mut World| {
+        world.step(DT).unwrap();
+        std::hint::black_box(world.coupling_length(limb_coupling).unwrap());
+        std::hint::black_box(world.coupling_length(gear).unwrap());
+    };
+    for _ in 0..60 {
+        run(&mut world);
+    }
+    allocations_of(|| {
+        for _ in 0..120 {
+            run(&mut world);
         }
     });
 }

@@ -570,10 +570,10 @@ fn a_snapshot_cut_damaged_or_of_a_later_version_is_refused() {
         StateError::Damaged
     );
     // A later build's snapshot version (the first byte of the snapshot) is another build's:
-    // this build writes version 4 (byte 3) and reads versions 1 to 4.
-    assert_eq!(bytes[start], 3);
+    // this build writes version 5 (byte 4) and reads versions 1 to 5.
+    assert_eq!(bytes[start], 4);
     let mut later = bytes.clone();
-    later[start] = 4;
+    later[start] = 5;
     assert_eq!(
         World::load_state_as_other_build(&with_checksum(later)).unwrap_err(),
         StateError::OtherBuild
@@ -587,23 +587,23 @@ fn a_snapshot_cut_damaged_or_of_a_later_version_is_refused() {
     );
 }
 
-/// Version-1, 2 and 3 snapshots (earlier builds': no contact rules, no mesh materials, no
-/// couplings) still read. Version 2 is version 1's records followed by the bodies' contact
-/// rules, version 3 version 2's followed by the meshes' materials, and version 4 version 3's
-/// followed by the couplings (two lists) and their names, so a version-4 snapshot with none of
-/// them, its version byte set back and the empty lists (its last bytes) cut, is the earlier
-/// version's snapshot of the same world.
+/// Version-1 to 4 snapshots (earlier builds': no contact rules, no mesh materials, no joint
+/// extras, no couplings) still read. Version 2 is version 1's records followed by the bodies'
+/// contact rules, version 3 version 2's followed by the meshes' materials, version 4 version 3's
+/// followed by the joints' extras, and version 5 version 4's followed by the couplings (two
+/// lists) and their names, so a version-5 snapshot with none of them, its version byte set back
+/// and the empty lists (its last bytes) cut, is the earlier version's snapshot of the same world.
 #[test]
-fn version_1_2_and_3_snapshots_still_read() {
+fn version_1_to_4_snapshots_still_read() {
     let (bytes, start) = small_state();
     let saved = World::load_state_as_other_build(&bytes).unwrap();
     assert_eq!(
-        bytes[bytes.len() - 5..],
-        [0; 5],
-        "empty lists of rules, materials, couplings and their names"
+        bytes[bytes.len() - 6..],
+        [0; 6],
+        "empty lists of rules, materials, joint extras, couplings and their names"
     );
-    for version in [0, 1, 2] {
-        let mut earlier = bytes[..bytes.len() - 5 + usize::from(version)].to_vec();
+    for version in [0, 1, 2, 3] {
+        let mut earlier = bytes[..bytes.len() - 6 + usize::from(version)].to_vec();
         earlier[start] = version;
         let payload = (earlier.len() - 32) as u64;
         earlier[20..28].copy_from_slice(&payload.to_le_bytes());

@@ -30,6 +30,7 @@ mod convert;
 mod format;
 mod meshes;
 mod mjcf;
+mod urdf;
 
 use std::collections::HashMap;
 use std::fmt;
@@ -52,6 +53,7 @@ use convert::{
 };
 use format::{BodyEntry, CouplingEntry, JointEntry, JsonObject, SceneFile};
 use meshes::MeshFiles;
+pub use urdf::UrdfOptions;
 
 /// Default seconds per step when a scene leaves `timestep` out.
 pub const DEFAULT_TIMESTEP: f64 = 1.0 / 60.0;
@@ -287,11 +289,7 @@ impl Scene {
         let extension = path.extension().and_then(|extension| extension.to_str());
         match extension.map(str::to_ascii_lowercase).as_deref() {
             Some("xml") => Self::from_mjcf(&bytes, folder),
-            Some("urdf") => Err(SceneError::new(
-                "",
-                "URDF files are not read yet (only JSON scenes and MJCF `.xml` models)",
-            )
-            .into()),
+            Some("urdf") => Self::from_urdf(&bytes, folder),
             _ => Self::from_json_in(&bytes, folder),
         }
     }
@@ -317,6 +315,29 @@ impl Scene {
     pub fn from_mjcf(bytes: &[u8], folder: &Path) -> Result<Self, LoadError> {
         let json = mjcf_to_json(bytes, folder)?;
         Self::load(json.as_bytes(), MeshFiles { folder, given: &[] })
+    }
+
+    /// Reads a URDF robot (the XML text `bytes`) as a scene, its root link fixed to the world:
+    /// [`Scene::from_urdf_with`] with the default [`UrdfOptions`].
+    pub fn from_urdf(bytes: &[u8], folder: &Path) -> Result<Self, LoadError> {
+        Self::from_urdf_with(bytes, folder, UrdfOptions::default())
+    }
+
+    /// Reads a URDF robot (the XML text `bytes`) as a scene: a body per link, a joint per
+    /// joint, each named as in the file, a torque actuator per joint with an `effort` limit, a
+    /// coupling per `mimic`, turned from URDF's Z-up to rebond's Y-up (`docs/urdf.md`). The root
+    /// link is fixed to the world unless `options.floating_base`. What rebond cannot honour is
+    /// an error naming its path in the file, such as `robot/link[name=base]/inertial/mass`.
+    /// Nothing is stepped.
+    pub fn from_urdf_with(
+        bytes: &[u8],
+        folder: &Path,
+        options: UrdfOptions,
+    ) -> Result<Self, LoadError> {
+        let model = urdf::import(bytes, folder, options)?;
+        let json = serde_json::to_vec(&model)
+            .map_err(|error| SceneError::new("", format!("cannot write the model: {error}")))?;
+        Self::load(&json, MeshFiles { folder, given: &[] })
     }
 
     /// [`Scene::from_json`] with the mesh files it names given as `(name, contents)` pairs, the
@@ -615,7 +636,7 @@ impl Scene {
         let coupling_names = (self.couplings.iter())
             .map(|coupling| named(&coupling.name, coupling.handle.0))
             .collect();
-        let snapshot = crate::state::SnapshotV4::of(&self.world, Some(scene), coupling_names);
+        let snapshot = crate::state::SnapshotV5::of(&self.world, Some(scene), coupling_names);
         crate::state::encode(SCENE_MAGIC, &(step, self), snapshot)
     }
 
@@ -653,7 +674,7 @@ impl Scene {
             Decoded::Portable(snapshot) => {
                 let missing = || StateError::Inconsistent("the scene's names are missing".into());
                 let mut snapshot = *snapshot;
-                let names = snapshot.scene.take().ok_or_else(missing)?;
+                let names = snapshot.base.scene.take().ok_or_else(missing)?;
                 let coupling_names = std::mem::take(&mut snapshot.coupling_names);
                 let world = snapshot.restore_world().map_err(StateError::Inconsistent)?;
                 let identity = world.identity();

@@ -21,7 +21,7 @@
 //!   frames in each body, broken flag, last force and revolute turn count (its spring's
 //!   reference, armature and generic axes since snapshot version 4); ignored pairs; every
 //!   handle (slots, generations and the world's identity), stale ones staying stale; every
-//!   coupling with its description and rest length (since snapshot version 4). Not kept:
+//!   coupling with its description and rest length (since snapshot version 5). Not kept:
 //!   contacts and warm-start impulses (contacts, joints and couplings start cold: the next step makes them again, so
 //!   the steps after a load differ slightly from the exact continuation's, and contact and
 //!   sensor start events are reported again), the broad phase's tree and solver buffers (rebuilt).
@@ -62,7 +62,7 @@ use crate::World;
 mod portable;
 pub(crate) mod shared;
 
-pub(crate) use portable::{NamedV1, SceneV1, SnapshotV4};
+pub(crate) use portable::{NamedV1, SceneV1, SnapshotV5};
 use portable::{Snapshot, SNAPSHOT_VERSIONS};
 
 /// The format version this build writes and reads; states of other versions are refused. Version
@@ -147,11 +147,11 @@ impl fmt::Display for StateError {
 impl std::error::Error for StateError {}
 
 /// `exact` encoded, then `snapshot`, behind the header starting with `magic`.
-pub(crate) fn encode<T: Serialize>(magic: &[u8; 8], exact: &T, snapshot: SnapshotV4) -> Vec<u8> {
+pub(crate) fn encode<T: Serialize>(magic: &[u8; 8], exact: &T, snapshot: SnapshotV5) -> Vec<u8> {
     // Every part of a world encodes: postcard fails only on types serde cannot describe
     // (maps with non-string keys and the like), which neither holds.
     let exact = shared::writing(|| postcard::to_stdvec(exact)).unwrap_or_default();
-    let snapshot = postcard::to_stdvec(&Snapshot::V4(snapshot)).unwrap_or_default();
+    let snapshot = postcard::to_stdvec(&Snapshot::V5(snapshot)).unwrap_or_default();
     let mut payload = Vec::with_capacity(8 + exact.len() + snapshot.len());
     payload.extend_from_slice(&(exact.len() as u64).to_le_bytes());
     payload.extend_from_slice(&exact);
@@ -169,7 +169,7 @@ pub(crate) fn encode<T: Serialize>(magic: &[u8; 8], exact: &T, snapshot: Snapsho
 /// What a state gave: its exact part, when this build wrote it, or its portable snapshot.
 pub(crate) enum Decoded<T> {
     Exact(T),
-    Portable(Box<SnapshotV4>),
+    Portable(Box<SnapshotV5>),
 }
 
 /// The exact part `bytes` encode behind a header starting with `magic` when the build that
@@ -246,7 +246,7 @@ impl World {
     /// [`World::load_state`] in this build, it steps exactly as this world would; in any other
     /// build, later ones included, it is rebuilt from its portable snapshot, contacts cold.
     pub fn save_state(&self) -> Vec<u8> {
-        encode(WORLD_MAGIC, self, SnapshotV4::of(self, None, Vec::new()))
+        encode(WORLD_MAGIC, self, SnapshotV5::of(self, None, Vec::new()))
     }
 
     /// A world saved by [`World::save_state`]; bytes that are not a state of this format

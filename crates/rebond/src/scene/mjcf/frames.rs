@@ -10,25 +10,25 @@ use super::parse::{attribute_error, Defaults};
 
 /// The rotation `C` that turns the whole model from Z-up to Y-up: −90° about X, so a point
 /// `(x, y, z)` becomes `(x, z, −y)`.
-pub(super) fn z_up_to_y_up() -> DQuat {
+pub(in crate::scene) fn z_up_to_y_up() -> DQuat {
     DQuat::from_rotation_x(-std::f64::consts::FRAC_PI_2)
 }
 
 /// A pose: position and rotation of a frame in its parent's.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct Frame {
-    pub(super) position: DVec3,
-    pub(super) rotation: DQuat,
+pub(in crate::scene) struct Frame {
+    pub(in crate::scene) position: DVec3,
+    pub(in crate::scene) rotation: DQuat,
 }
 
 impl Frame {
-    pub(super) const IDENTITY: Self = Self {
+    pub(in crate::scene) const IDENTITY: Self = Self {
         position: DVec3::ZERO,
         rotation: DQuat::IDENTITY,
     };
 
     /// This frame followed by `local` (a frame given in this one).
-    pub(super) fn then(&self, local: &Frame) -> Frame {
+    pub(in crate::scene) fn then(&self, local: &Frame) -> Frame {
         Frame {
             position: self.position + self.rotation * local.position,
             rotation: (self.rotation * local.rotation).normalize(),

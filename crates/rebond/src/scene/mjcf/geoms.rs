@@ -374,7 +374,10 @@ pub(super) struct MeshAsset {
 
 /// Reads the mesh file at `path` (STL, binary or ASCII, or Wavefront OBJ); errors are
 /// [`LoadError::Mesh`] at `place`.
-pub(super) fn read_mesh(path: &Path, place: &str) -> Result<(Vec<Vec3>, Vec<[u32; 3]>), LoadError> {
+pub(in crate::scene) fn read_mesh(
+    path: &Path,
+    place: &str,
+) -> Result<(Vec<Vec3>, Vec<[u32; 3]>), LoadError> {
     let failure = |message: String| LoadError::Mesh {
         place: place.to_owned(),
         path: path.to_owned(),
@@ -485,6 +488,6 @@ fn engine(node: Node, error: crate::Error) -> SceneError {
 }
 
 /// The quaternion of a frame as JSON `[x, y, z, w]`, for the other modules.
-pub(super) fn rotation_json(rotation: DQuat) -> Value {
+pub(in crate::scene) fn rotation_json(rotation: DQuat) -> Value {
     quat_json(rotation)
 }

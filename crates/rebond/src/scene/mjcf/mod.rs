@@ -8,10 +8,10 @@
 //! and axes) keeps the file's local coordinates.
 
 mod actuators;
-mod frames;
-mod geoms;
+pub(super) mod frames;
+pub(super) mod geoms;
 mod joints;
-mod parse;
+pub(super) mod parse;
 
 use std::collections::{HashMap, HashSet};
 use std::path::Path;

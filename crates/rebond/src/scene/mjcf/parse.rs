@@ -10,7 +10,7 @@ use super::super::SceneError;
 /// The path of an element in the file, for errors: `mujoco/worldbody/body[name=torso]/geom[2]`,
 /// a named element by its name, an unnamed one by its place among its parent's children of the
 /// same tag (from 1) when it has such siblings.
-pub(super) fn path(node: Node) -> String {
+pub(in crate::scene) fn path(node: Node) -> String {
     let mut parts: Vec<String> = node
         .ancestors()
         .filter(Node::is_element)
@@ -38,12 +38,16 @@ pub(super) fn path(node: Node) -> String {
 }
 
 /// An error about the attribute `name` of `node`: `path@name`.
-pub(super) fn attribute_error(node: Node, name: &str, message: impl Into<String>) -> SceneError {
+pub(in crate::scene) fn attribute_error(
+    node: Node,
+    name: &str,
+    message: impl Into<String>,
+) -> SceneError {
     SceneError::new(format!("{}@{name}", path(node)), message)
 }
 
 /// An error about the element `node` as a whole.
-pub(super) fn element_error(node: Node, message: impl Into<String>) -> SceneError {
+pub(in crate::scene) fn element_error(node: Node, message: impl Into<String>) -> SceneError {
     SceneError::new(path(node), message)
 }
 

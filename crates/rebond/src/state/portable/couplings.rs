@@ -1,18 +1,28 @@
-//! The coupling records of a portable snapshot ([`super`], version 4): each coupling's
+//! The coupling records of a portable snapshot ([`super`], version 5): each coupling's
 //! description as given, with its rest length; its warm-start impulses start cold, as the
 //! joints' do.
 
 use serde::{Deserialize, Serialize};
 
-use super::SlotV1;
+use super::{NamedV1, SlotV1, SnapshotV4};
 use crate::coupling::{Coupling, CouplingDesc, CouplingSet};
 use crate::joint::{JointHandle, JointSet};
 use crate::World;
 
+/// Version 5 of a snapshot: version 4's, and the couplings with a scene's names for them.
+#[derive(Serialize, Deserialize)]
+pub(crate) struct SnapshotV5 {
+    pub base: SnapshotV4,
+    couplings: Vec<SlotV1<CouplingV5>>,
+    free_couplings: Vec<u32>,
+    /// Each scene coupling's name and handle, in scene order (empty for a world's state).
+    pub coupling_names: Vec<NamedV1>,
+}
+
 /// A coupling: its joints by slot (the handles take the slots' generations) and coefficient,
 /// limits, spring and rest length.
 #[derive(Serialize, Deserialize)]
-pub(super) struct CouplingV4 {
+struct CouplingV5 {
     joints: Vec<(u32, f32)>,
     limits: Option<[f32; 2]>,
     stiffness: f32,
@@ -22,41 +32,56 @@ pub(super) struct CouplingV4 {
     rest_length: f32,
 }
 
-/// Every coupling slot of `world`, and its free slots.
-pub(super) fn records(world: &World) -> (Vec<SlotV1<CouplingV4>>, Vec<u32>) {
-    let (slots, free) = world.portable_couplings().slots();
-    let couplings = slots
-        .map(|(generation, coupling)| SlotV1 {
-            generation,
-            item: coupling.map(CouplingV4::of),
-        })
-        .collect();
-    (couplings, free.to_vec())
+impl SnapshotV5 {
+    /// Version 4's records with no couplings: what an earlier snapshot reads as.
+    pub fn without_couplings(base: SnapshotV4) -> Self {
+        Self {
+            base,
+            couplings: Vec::new(),
+            free_couplings: Vec::new(),
+            coupling_names: Vec::new(),
+        }
+    }
+
+    /// The snapshot of `world`, of a scene's `scene` part and its couplings' `coupling_names`.
+    pub fn of(world: &World, scene: Option<super::SceneV1>, coupling_names: Vec<NamedV1>) -> Self {
+        let (slots, free) = world.portable_couplings().slots();
+        let couplings = slots
+            .map(|(generation, coupling)| SlotV1 {
+                generation,
+                item: coupling.map(CouplingV5::of),
+            })
+            .collect();
+        Self {
+            base: SnapshotV4::of(world, scene),
+            couplings,
+            free_couplings: free.to_vec(),
+            coupling_names,
+        }
+    }
+
+    /// The world of the snapshot with its couplings ([`SnapshotV4::restore_world`]).
+    pub fn restore_world(self) -> Result<World, String> {
+        let mut world = self.base.restore_world()?;
+        let identity = world.identity();
+        let joints = world.portable_parts().1;
+        let slots = (self.couplings.into_iter().enumerate())
+            .map(|(slot, entry)| {
+                let coupling = entry
+                    .item
+                    .map(|coupling| coupling.restore(joints))
+                    .transpose()
+                    .map_err(|error| format!("coupling {slot}: {error}"))?;
+                Ok((entry.generation, coupling))
+            })
+            .collect::<Result<Vec<_>, String>>()?;
+        let couplings = CouplingSet::restored(identity, slots, self.free_couplings)?;
+        world.restore_couplings(couplings)?;
+        Ok(world)
+    }
 }
 
-/// Gives `world` (its joints restored) the recorded couplings.
-pub(super) fn restore(
-    world: &mut World,
-    couplings: Vec<SlotV1<CouplingV4>>,
-    free: Vec<u32>,
-) -> Result<(), String> {
-    let identity = world.identity();
-    let joints = world.portable_parts().1;
-    let slots = (couplings.into_iter().enumerate())
-        .map(|(slot, entry)| {
-            let coupling = entry
-                .item
-                .map(|coupling| coupling.restore(joints))
-                .transpose()
-                .map_err(|error| format!("coupling {slot}: {error}"))?;
-            Ok((entry.generation, coupling))
-        })
-        .collect::<Result<Vec<_>, String>>()?;
-    let couplings = CouplingSet::restored(identity, slots, free)?;
-    world.restore_couplings(couplings)
-}
-
-impl CouplingV4 {
+impl CouplingV5 {
     fn of(coupling: &Coupling) -> Self {
         let desc = coupling.desc();
         Self {

@@ -30,7 +30,7 @@ use crate::material::CombineRule;
 use crate::math::{Mat3, Pose, Quat, Vec3};
 use crate::shape::{CompoundChild, Shape, TriMesh, TriangleMaterial};
 use crate::{World, WorldSettings};
-use couplings::CouplingV4;
+pub(crate) use couplings::SnapshotV5;
 use joints::{JointExtrasV4, JointV1};
 
 /// A portable snapshot, by version. Reading takes any variant this build knows; a snapshot of a
@@ -43,14 +43,16 @@ pub(crate) enum Snapshot {
     V2(SnapshotV2),
     /// Version 3: version 2's records and the triangle meshes' materials.
     V3(SnapshotV3),
-    /// Version 4: version 3's records, the joints' springs' references, armatures and generic
-    /// joints, and the couplings (`couplings.rs`).
+    /// Version 4: version 3's records and the joints' springs' references, armatures and
+    /// generic joints.
     V4(SnapshotV4),
+    /// Version 5: version 4's records and the couplings (`couplings.rs`).
+    V5(SnapshotV5),
 }
 
 /// How many versions of [`Snapshot`] this build reads: its variants, numbered from 0 in its
 /// encoding.
-pub(crate) const SNAPSHOT_VERSIONS: u32 = 4;
+pub(crate) const SNAPSHOT_VERSIONS: u32 = 5;
 
 /// Version 2 of a snapshot: version 1's, and the contact rules of the bodies that have some.
 #[derive(Serialize, Deserialize)]
@@ -85,11 +87,6 @@ pub(crate) struct SnapshotV4 {
     mesh_materials: Vec<MeshMaterialsV3>,
     /// By ascending joint slot.
     joint_extras: Vec<JointExtrasV4>,
-    /// Every coupling slot, and the free slots.
-    couplings: Vec<SlotV1<CouplingV4>>,
-    free_couplings: Vec<u32>,
-    /// Each scene coupling's name and handle, in scene order (empty for a world's state).
-    pub coupling_names: Vec<NamedV1>,
 }
 
 /// The materials of the triangle mesh [`WorldV1::shapes`]`[shape]`
@@ -370,8 +367,8 @@ struct PathV1 {
 }
 
 impl SnapshotV4 {
-    /// The snapshot of `world`, of a scene's `scene` part and its couplings' `coupling_names`.
-    pub fn of(world: &World, scene: Option<SceneV1>, coupling_names: Vec<NamedV1>) -> Self {
+    /// The snapshot of `world`, and of a scene's `scene` part.
+    pub fn of(world: &World, scene: Option<SceneV1>) -> Self {
         let (bodies, _, _) = world.portable_parts();
         let contact_rules = (bodies.slots().enumerate())
             .filter_map(|(slot, (_, body))| {
@@ -393,16 +390,12 @@ impl SnapshotV4 {
             .zip(joint_slots)
             .filter_map(|(slot, (_, joint))| JointExtrasV4::of(slot, joint?))
             .collect();
-        let (couplings, free_couplings) = couplings::records(world);
         Self {
             world: world_record,
             scene,
             contact_rules,
             mesh_materials,
             joint_extras,
-            couplings,
-            free_couplings,
-            coupling_names,
         }
     }
 
@@ -422,7 +415,6 @@ impl SnapshotV4 {
                 )
                 .map_err(|error| format!("body {slot}: {error}"))?;
         }
-        couplings::restore(&mut world, self.couplings, self.free_couplings)?;
         Ok(world)
     }
 }
@@ -430,34 +422,34 @@ impl SnapshotV4 {
 impl Snapshot {
     /// The latest version of the snapshot, whatever version it was written in: a version 1
     /// snapshot has no contact rules, neither it nor a version 2 one mesh materials, and none
-    /// before version 4 joint extras or couplings.
-    pub fn into_latest(self) -> SnapshotV4 {
-        let (world, scene, contact_rules, mesh_materials) = match self {
-            Self::V1(snapshot) => (snapshot.world, snapshot.scene, Vec::new(), Vec::new()),
-            Self::V2(snapshot) => (
-                snapshot.world,
-                snapshot.scene,
-                snapshot.contact_rules,
-                Vec::new(),
-            ),
-            Self::V3(snapshot) => (
-                snapshot.world,
-                snapshot.scene,
-                snapshot.contact_rules,
-                snapshot.mesh_materials,
-            ),
-            Self::V4(snapshot) => return snapshot,
+    /// before version 4 joint extras, or before version 5 couplings.
+    pub fn into_latest(self) -> SnapshotV5 {
+        let base = match self {
+            Self::V1(snapshot) => SnapshotV4 {
+                world: snapshot.world,
+                scene: snapshot.scene,
+                contact_rules: Vec::new(),
+                mesh_materials: Vec::new(),
+                joint_extras: Vec::new(),
+            },
+            Self::V2(snapshot) => SnapshotV4 {
+                world: snapshot.world,
+                scene: snapshot.scene,
+                contact_rules: snapshot.contact_rules,
+                mesh_materials: Vec::new(),
+                joint_extras: Vec::new(),
+            },
+            Self::V3(snapshot) => SnapshotV4 {
+                world: snapshot.world,
+                scene: snapshot.scene,
+                contact_rules: snapshot.contact_rules,
+                mesh_materials: snapshot.mesh_materials,
+                joint_extras: Vec::new(),
+            },
+            Self::V4(snapshot) => snapshot,
+            Self::V5(snapshot) => return snapshot,
         };
-        SnapshotV4 {
-            world,
-            scene,
-            contact_rules,
-            mesh_materials,
-            joint_extras: Vec::new(),
-            couplings: Vec::new(),
-            free_couplings: Vec::new(),
-            coupling_names: Vec::new(),
-        }
+        SnapshotV5::without_couplings(base)
     }
 }
 
