@@ -8,7 +8,7 @@ use crate::error::{Error, ErrorKind, Result};
 use crate::filter::ordered;
 use crate::joint::{
     GenericAxis, GenericCoordinates, GenericFrame, Joint, JointBreakEvent, JointDesc, JointHandle,
-    JointPlacement, JointType, Motor, Spring,
+    JointPlacement, JointType, Motor,
 };
 use crate::math::{Quat, Vec3};
 
@@ -214,9 +214,10 @@ impl World {
     /// Adds `damping` (N·m·s/rad or N·s/m, finite, ≥ 0) to a revolute or prismatic joint's
     /// passive damping, a spring of stiffness 0 when it has none: a scene's velocity actuator,
     /// MuJoCo's `gear² kv`, is this damping plus a torque motor.
+    #[cfg(feature = "scene")]
     pub(crate) fn add_joint_damping(&mut self, handle: JointHandle, damping: f32) -> Result<()> {
         let joint = self.joints.get_mut(handle).ok_or_else(stale_joint)?;
-        let spring = joint.desc.spring.get_or_insert(Spring {
+        let spring = joint.desc.spring.get_or_insert(crate::joint::Spring {
             stiffness: 0.0,
             damping: 0.0,
             reference: 0.0,
