@@ -197,6 +197,49 @@ fn gymnasium_models_step_five_seconds_with_zero_controls() {
 }
 
 #[test]
+fn ant_brings_its_ankles_into_range_and_rests_on_them() {
+    // Gymnasium's Ant starts its ankles at 0, outside their 30° to 70° range (`[-70°, -30°]` for
+    // ankles 2 and 3), with an armature of 1 kg·m² on legs of 0.07 kg. The limits push them in
+    // with their rotors; standing on them the legs spread until the ankles rest on the 30° end
+    // (a leg flatter than about 39° cannot hold its foot with friction 1), the torso's centre
+    // then at `0.566 sin 30° + 0.08 = 0.363` m (the leg's length and radius; the ankle at the
+    // torso's height). From 1 s to 3 s, sleeping off: every ankle within 0.01 rad of its range
+    // (measured 5e-6 rad; 0.27 rad while the limits pushed the legs without their rotors), and
+    // the torso within 5 mm of 0.363 m at the end (measured 0.3627 m). MuJoCo's
+    // soft limit throws the ankles across to 73° instead, from where its feet creep down to
+    // 30° by 15 s (`docs/mjcf.md`).
+    let mut scene = gymnasium("ant");
+    let mut settings = *scene.world().settings();
+    settings.sleep_speed = 0.0;
+    scene.world_mut().set_settings(settings).unwrap();
+    let controls = vec![0.0; scene.actuators().len()];
+    scene.set_controls(&controls).unwrap();
+    let ankles = [
+        ("ankle_1", 1.0),
+        ("ankle_2", -1.0),
+        ("ankle_3", -1.0),
+        ("ankle_4", 1.0),
+    ]
+    .map(|(name, sign)| (scene.joint_handle(name).unwrap(), sign));
+    let (low, high) = (30_f32.to_radians(), 70_f32.to_radians());
+    let mut worst = 0.0_f32;
+    for step in 0..300 {
+        scene.step().unwrap();
+        if step >= 100 {
+            for (joint, sign) in ankles {
+                let angle = sign * scene.world().joint_position(joint).unwrap();
+                worst = worst.max(low - angle).max(angle - high);
+            }
+        }
+    }
+    assert!(worst < 0.01, "an ankle {worst} rad outside its range");
+    let torso = scene.body_handle("torso").unwrap();
+    let height = scene.world().body(torso).unwrap().center_of_mass().y;
+    let expected = 0.566 * 0.5 + 0.08;
+    assert!((height - expected).abs() < 0.005, "torso at {height} m");
+}
+
+#[test]
 fn gymnasium_actuators_and_tendons_are_read() {
     let scene = gymnasium("ant");
     assert_eq!(scene.actuators().len(), 8);

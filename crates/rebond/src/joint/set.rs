@@ -60,6 +60,12 @@ pub(crate) struct JointImpulses {
 }
 
 impl JointImpulses {
+    /// What the rows along a revolute or prismatic axis (spring, limits, motor, friction) give
+    /// together, N·m·s or N·s.
+    pub fn along_axis(&self) -> f32 {
+        self.axial + self.lower - self.upper + self.motor + self.friction
+    }
+
     /// Whether every impulse is at most `limit` long (N·s or N·m·s; NaN is not), so that it can
     /// warm-start the next substep or step.
     pub fn is_within(&self, limit: f32) -> bool {

@@ -204,6 +204,9 @@ impl RotationPart {
 ///   (an angle about `e`) has `d = 0`, `a_A = a_B = e`.
 /// - Effective mass: `K = (m_A⁻¹ + m_B⁻¹) |d|² + a_A·I_A⁻¹ a_A + a_B·I_B⁻¹ a_B`, kept as `K⁻¹`.
 /// - Impulse `λ`: `Δv_B = λ d / m_B`, `Δω_B = λ I_B⁻¹ a_B`, the opposite on A.
+/// - Geared to a rotor of inertia `a` ([`AxisPart::geared`]): `K⁻¹ + a` is the row's effective
+///   mass, and the bodies take the share `s = 1 / (1 + a K)` of an impulse, so `Ċ` changes by
+///   `λ / (K⁻¹ + a)`, the rotor's speed with it.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct AxisPart {
     direction: Vec3,
@@ -214,6 +217,8 @@ pub(super) struct AxisPart {
     /// `K`, kg (or kg·m²), and `K⁻¹`; both zero where nothing can move along the row.
     k: f32,
     mass: f32,
+    /// The share `s` of an impulse the bodies take: 1, or less when geared to a rotor.
+    share: f32,
 }
 
 impl AxisPart {
@@ -248,7 +253,45 @@ impl AxisPart {
             spin_b,
             k,
             mass,
+            share: 1.0,
         }
+    }
+
+    /// The row geared to a rotor of inertia `armature` (kg·m² or kg) turning with it: effective
+    /// mass `K⁻¹ + a`, the bodies' share `1 / (1 + a K)` of each impulse. Unchanged where
+    /// nothing moves along the row.
+    pub fn geared(&self, armature: f32) -> Self {
+        if self.k == 0.0 {
+            return *self;
+        }
+        let share = 1.0 / (1.0 + armature * self.k);
+        Self {
+            k: self.k * share,
+            mass: self.mass + armature,
+            share,
+            ..*self
+        }
+    }
+
+    /// The share of an impulse the bodies take ([`AxisPart::geared`]).
+    pub fn body_share(&self) -> f32 {
+        self.share
+    }
+
+    /// Brings the bodies and a rotor of inertia `armature` turning at `rotor_speed` to their
+    /// common rate `(K⁻¹ Ċ + a ω) / (K⁻¹ + a)`, momentum kept: applies to the bodies, and
+    /// returns, the impulse `K⁻¹ a (ω − Ċ) / (K⁻¹ + a)` the rotor gives them.
+    pub fn share_with_rotor(
+        &self,
+        bodies: &JointBodies,
+        v: &mut Velocities,
+        armature: f32,
+        rotor_speed: f32,
+    ) -> f32 {
+        let impulse =
+            self.mass * armature * (rotor_speed - self.velocity(v)) / (self.mass + armature);
+        self.apply(bodies, v, impulse);
+        impulse
     }
 
     pub fn velocity(&self, v: &Velocities) -> f32 {
@@ -264,6 +307,7 @@ impl AxisPart {
     }
 
     pub fn apply(&self, bodies: &JointBodies, v: &mut Velocities, impulse: f32) {
+        let impulse = self.share * impulse;
         v.linear[0] -= bodies.inverse_mass[0] * impulse * self.direction;
         v.linear[1] += bodies.inverse_mass[1] * impulse * self.direction;
         v.angular[0] -= impulse * self.spin_a;

@@ -418,11 +418,7 @@ impl JointConstraint {
     fn impulse_on_b(&self) -> (Vec3, Vec3) {
         let impulses = &self.impulses;
         let axis = self.geometry.axis;
-        let along_axis = impulses.lower - impulses.upper
-            + impulses.motor
-            + impulses.friction
-            + impulses.axial
-            + self.armature_impulse;
+        let along_axis = impulses.along_axis() + self.armature_impulse;
         match self.options.joint_type {
             JointType::Fixed => (impulses.linear, impulses.angular),
             JointType::Generic => {
@@ -482,11 +478,7 @@ impl JointConstraint {
         if let Some(axis) = &geometry.axis_part {
             let scalar = match self.options.joint_type {
                 JointType::Ball => impulses.twist_lower - impulses.twist_upper,
-                _ => {
-                    impulses.axial + impulses.lower - impulses.upper
-                        + impulses.motor
-                        + impulses.friction
-                }
+                _ => impulses.along_axis(),
             };
             axis.apply(bodies, v, scalar);
         }
@@ -533,6 +525,23 @@ impl JointConstraint {
         let options = &self.options;
         if let Some(axis) = &geometry.axis_part {
             let position = geometry.position;
+            let armature = options.armature;
+            let given_before = impulses.along_axis();
+            // With an armature the rows below move the bodies and the rotor together, one
+            // inertia `K⁻¹ + a` along the coordinate, as MuJoCo's limits and damping see the
+            // armature: a row on the bodies alone, light beside their rotor, is undone by the
+            // group's rotor row after it, and lets the rotor carry a limb through its limit
+            // (Gymnasium Ant's ankles went 13° past theirs). The rotor first shares its
+            // momentum with the bodies (both then turn at `(K⁻¹ Ċ + a ω_rotor) / (K⁻¹ + a)`);
+            // each row's impulse then reaches the bodies in the share `1 / (1 + a K)`, the rest
+            // turning the rotor.
+            let axis = if armature > 0.0 {
+                let rotor = self.rotor_speed - self.armature_impulse / armature;
+                self.armature_impulse += axis.share_with_rotor(bodies, v, armature, rotor);
+                axis.geared(armature)
+            } else {
+                *axis
+            };
             match options.motor {
                 Some(Motor::Velocity {
                     target_velocity,
@@ -589,6 +598,11 @@ impl JointConstraint {
                 let pass = (softness, inverse_h);
                 axis.solve_limit(bodies, v, (position - min, 1.0), pass, lower);
                 axis.solve_limit(bodies, v, (max - position, -1.0), pass, upper);
+            }
+            if armature > 0.0 {
+                // The rotor's part of what the rows gave, as the impulse it gives the bodies.
+                let given = impulses.along_axis() - given_before;
+                self.armature_impulse -= given * (1.0 - axis.body_share());
             }
         }
         if let Some(generic) = &geometry.generic {
