@@ -101,15 +101,6 @@ impl World {
     /// anchors coincide). Fixed, ball and generic joints: an error naming `velocity`.
     pub fn joint_velocity(&self, handle: JointHandle) -> Result<f32> {
         let (joint, placement, body_a, body_b) = self.joint_sides(handle)?;
-        let spin = |body: Option<&RigidBody>| body.map_or(Vec3::ZERO, RigidBody::angular_velocity);
-        let anchor_velocity = |body: Option<&RigidBody>, anchor: Vec3| {
-            body.map_or(Vec3::ZERO, |body| {
-                body.linear_velocity()
-                    + body
-                        .angular_velocity()
-                        .cross(anchor - body.center_of_mass())
-            })
-        };
         let separation = placement.anchor_b - placement.anchor_a;
         let closing = anchor_velocity(Some(body_b), placement.anchor_b)
             - anchor_velocity(body_a, placement.anchor_a);
@@ -146,15 +137,6 @@ impl World {
             (rotation(body_a), rotation(Some(body_b))),
             separation,
         );
-        let spin = |body: Option<&RigidBody>| body.map_or(Vec3::ZERO, RigidBody::angular_velocity);
-        let anchor_velocity = |body: Option<&RigidBody>, anchor: Vec3| {
-            body.map_or(Vec3::ZERO, |body| {
-                body.linear_velocity()
-                    + body
-                        .angular_velocity()
-                        .cross(anchor - body.center_of_mass())
-            })
-        };
         let closing = anchor_velocity(Some(body_b), placement.anchor_b)
             - anchor_velocity(body_a, placement.anchor_a);
         let turning = spin(Some(body_b)) - spin(body_a);
@@ -285,4 +267,15 @@ impl World {
             }
         }
     }
+}
+
+/// A joined body's angular velocity, rad/s (zero for the world).
+fn spin(body: Option<&RigidBody>) -> Vec3 {
+    body.map_or(Vec3::ZERO, RigidBody::angular_velocity)
+}
+
+/// The velocity of the point of a joined body at `anchor` (world point, m), m/s (zero for the
+/// world).
+fn anchor_velocity(body: Option<&RigidBody>, anchor: Vec3) -> Vec3 {
+    body.map_or(Vec3::ZERO, |body| body.velocity_at_point(anchor))
 }
