@@ -1,6 +1,6 @@
 //! The couplings as a constraint kind (`crate::coupling`, `docs/joints.md` "Couplings"): one
 //! row per coupling on the bodies of its joints, `L̇ = Σ cᵢ q̇ᵢ`, each joint's part the row
-//! its own axis has in `joints.rs`:
+//! its own axis has in `joints/`:
 //! - revolute: `q̇ = (ω_B − ω_A)·a`, `a` the axis fixed in A;
 //! - prismatic: `q̇ = a·(v_B + ω_B × r_B − v_A − ω_A × r_A) + (p_B − p_A)·(ω_A × a)`, so A's
 //!   angular part is `−(r_A + p_B − p_A) × a` (the lever of the prismatic row).
@@ -8,7 +8,7 @@
 //! A body met by several of the joints (the thigh between hip and knee) has one entry with the
 //! sum of its parts, so the effective mass `K = Σ_bodies (l·M⁻¹ l + a·I⁻¹ a)` counts the cross
 //! terms. The row is solved one at a time, as the joints' limits and springs are: the spring in
-//! the biased passes only (`joints.rs` says why), the limits softly in the biased passes and
+//! the biased passes only (`joints/` says why), the limits softly in the biased passes and
 //! rigidly in the relax pass. The geometry follows the poses as the joints' does: rebuilt at the
 //! first substep's warm start and for every relax pass.
 
@@ -31,7 +31,7 @@ pub(crate) struct CouplingConstraints {
     /// The row's entries of every constraint, one per moving body, each constraint's a range.
     entries: Vec<Entry>,
     softness: Softness,
-    /// Whether the rows were built at the bodies' current poses (as `joints.rs` keeps it).
+    /// Whether the rows were built at the bodies' current poses (as `joints/` keeps it).
     rows_current: bool,
 }
 

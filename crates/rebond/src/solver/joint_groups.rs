@@ -8,7 +8,7 @@
 //! over each row's profile, so a chain costs what a band matrix does). Only the profiles are
 //! stored, so a group of any size is solved exactly: a net of hundreds of joints costs its
 //! profiles, not `n²`. A joint's rows share their profile and are factored together, one SIMD
-//! lane a row ([`Block`]). Limits, motors and springs stay one row at a time (`joints.rs`): they are
+//! lane a row ([`Block`]). Limits, motors and springs stay one row at a time (`joints/`): they are
 //! inequalities or soft by design.
 //!
 //! A row that depends on the ones before it (a bridge fixed at both ends, a four-bar linkage)

@@ -1,5 +1,5 @@
 //! The solver: one step of the soft-step scheme (Box2D v3 / Box3D "solver2d" soft step), run as
-//! a pipeline of stages over the kinds of constraint (`stages.rs`): joints (`joints.rs`),
+//! a pipeline of stages over the kinds of constraint (`stages.rs`): joints (`joints/`),
 //! couplings of joint coordinates (`couplings.rs`) and contacts (`contacts.rs`).
 //!
 //! Where a kind of constraint registers: the one list of kinds, `Kinds::each` in `stages.rs`

@@ -1,6 +1,6 @@
 //! The step as a pipeline of stages (Box3D's solver stages): the body stages integrate, the
 //! constraint stages run over every kind of constraint through one interface,
-//! [`ConstraintKind`]: joints (`joints.rs`, their restitution does nothing), couplings of joint
+//! [`ConstraintKind`]: joints (`joints/`, their restitution does nothing), couplings of joint
 //! coordinates (`couplings.rs`) and contacts (`contacts.rs`).
 //!
 //! [`Kinds::each`] is the list of kinds, the one place a kind registers: the islands' links

@@ -529,7 +529,7 @@ impl ContactLanes {
             contact.friction_impulse =
                 (tangent_1 * tangents[0][lane] + tangent_2 * tangents[1][lane]).into();
             contact.twist_impulse = self.twist_impulse.lane(lane);
-            // As for joints (`joints.rs`): impulses past what bodies within the limits exchange
+            // As for joints (`joints/`): impulses past what bodies within the limits exchange
             // are not kept to warm-start from.
             let impulses = [tangent_1, tangent_2, contact.twist_impulse].into_iter();
             if !impulses
