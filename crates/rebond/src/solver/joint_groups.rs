@@ -219,7 +219,11 @@ impl GroupSystem {
             }
             run_start += run.len();
         }
+        // Only soft rows (an armature's) have a compliance: rigid rows skip the block lookup.
         for (i, row) in self.rows.iter().enumerate() {
+            if row.compliance == 0.0 {
+                continue;
+            }
             let block = &self.blocks[self.block_of_row[i]];
             self.factor[block.column(i)][i - block.start] += row.compliance;
         }
