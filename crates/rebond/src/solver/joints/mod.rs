@@ -15,7 +15,9 @@
 mod geometry;
 
 use super::joint_groups::{Accumulator, EliminationOrder, GroupRow, GroupSystem};
-use super::joint_parts::{JointBodies, RotationPart, RowJacobian, RowSoftness, Velocities};
+use super::joint_parts::{
+    AxisPart, JointBodies, RotationPart, RowJacobian, RowSoftness, Velocities,
+};
 use super::softness::Softness;
 use super::stages::{ConstraintKind, StepContext, BIASED_ITERATIONS};
 use super::{BodyMotion, BodyState, SolverBodies};
@@ -379,32 +381,14 @@ impl JointConstraint {
             } else {
                 *axis
             };
-            match options.motor {
-                Some(Motor::Velocity {
-                    target_velocity,
-                    max_force,
-                }) => axis.solve_velocity_motor(
-                    bodies,
-                    v,
-                    target_velocity,
-                    max_force * h,
-                    &mut impulses.motor,
-                ),
-                Some(Motor::Position {
-                    target_position,
-                    stiffness,
-                    damping,
-                    max_force,
-                }) if biased => axis.solve_spring(
-                    bodies,
-                    v,
-                    position - target_position,
-                    (stiffness, damping, h),
-                    max_force * h,
-                    &mut impulses.motor,
-                ),
-                Some(Motor::Position { .. } | Motor::Torque { .. }) | None => {}
-            }
+            solve_motor(
+                &axis,
+                options.motor,
+                (position, biased, h),
+                bodies,
+                v,
+                &mut impulses.motor,
+            );
             if options.friction > 0.0 && options.joint_type != JointType::Ball {
                 let most = options.friction * h;
                 axis.solve_velocity_motor(bodies, v, 0.0, most, &mut impulses.friction);
@@ -446,28 +430,8 @@ impl JointConstraint {
             for k in 0..6 {
                 let (part, position) = (&generic.parts[k], generic.positions[k]);
                 let motor = &mut impulses.axis_motor[k];
-                match options.motors[k] {
-                    Some(Motor::Velocity {
-                        target_velocity,
-                        max_force,
-                    }) => {
-                        part.solve_velocity_motor(bodies, v, target_velocity, max_force * h, motor)
-                    }
-                    Some(Motor::Position {
-                        target_position,
-                        stiffness,
-                        damping,
-                        max_force,
-                    }) if biased => part.solve_spring(
-                        bodies,
-                        v,
-                        position - target_position,
-                        (stiffness, damping, h),
-                        max_force * h,
-                        motor,
-                    ),
-                    Some(Motor::Position { .. } | Motor::Torque { .. }) | None => {}
-                }
+                let when = (position, biased, h);
+                solve_motor(part, options.motors[k], when, bodies, v, motor);
                 if let AxisFreedom::Limited([min, max]) = options.axes[k] {
                     let pass = (softness, inverse_h);
                     let lower = &mut impulses.axis_lower[k];
@@ -781,5 +745,39 @@ impl ConstraintKind for JointConstraints {
                 data.solved = true;
             }
         }
+    }
+}
+
+/// One pass of `motor` on the coordinate of `part` at `position` (rad or m), substep `h`: a
+/// velocity motor in every pass, a position motor in the biased passes only (its spring pulls
+/// on the position error, as springs do), a torque motor never (it is a force the integration
+/// applies).
+fn solve_motor(
+    part: &AxisPart,
+    motor: Option<Motor>,
+    (position, biased, h): (f32, bool, f32),
+    bodies: &JointBodies,
+    v: &mut Velocities,
+    impulse: &mut f32,
+) {
+    match motor {
+        Some(Motor::Velocity {
+            target_velocity,
+            max_force,
+        }) => part.solve_velocity_motor(bodies, v, target_velocity, max_force * h, impulse),
+        Some(Motor::Position {
+            target_position,
+            stiffness,
+            damping,
+            max_force,
+        }) if biased => part.solve_spring(
+            bodies,
+            v,
+            position - target_position,
+            (stiffness, damping, h),
+            max_force * h,
+            impulse,
+        ),
+        Some(Motor::Position { .. } | Motor::Torque { .. }) | None => {}
     }
 }
